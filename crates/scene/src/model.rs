@@ -1,0 +1,438 @@
+//! The scene model: plain serde types mirroring the RON file field by field.
+//!
+//! Invariant: a `Scene` returned by [`crate::load`] or [`crate::parse`] has passed
+//! validation, so every later stage may assume finite numbers and in-range values.
+//! Vectors are `[f32; 3]`, written in RON as tuples `(x, y, z)`. Angles are in degrees.
+//! World space is left-handed like RenderMan's: with the camera looking down +z and +y up,
+//! +x is to the right.
+
+use serde::{Deserialize, Serialize};
+
+/// A 3-vector as written in the scene file: `(x, y, z)`.
+pub type V3 = [f32; 3];
+/// An RGB triple, linear light.
+pub type Rgb = [f32; 3];
+
+/// A whole scene: one frame.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    /// Output resolution.
+    pub image: Image,
+    /// The camera.
+    pub camera: Camera,
+    /// Sampling, filtering and bucketing settings.
+    #[serde(default)]
+    pub hider: Hider,
+    /// Light sources.
+    #[serde(default)]
+    pub lights: Vec<Light>,
+    /// Geometric objects.
+    #[serde(default)]
+    pub objects: Vec<Object>,
+}
+
+/// Output resolution in pixels.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Image {
+    /// Width in pixels (> 0).
+    pub width: u32,
+    /// Height in pixels (> 0).
+    pub height: u32,
+}
+
+/// A perspective camera. Camera space has +x right, +y up, +z forward (eye depth).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Camera {
+    /// Eye position in world space.
+    pub eye: V3,
+    /// A point the camera looks at.
+    pub look_at: V3,
+    /// Up direction (need not be perpendicular to the view direction).
+    #[serde(default = "default_up")]
+    pub up: V3,
+    /// Field of view in degrees across the shorter image side, in (0, 180).
+    #[serde(default = "default_fov")]
+    pub fov: f32,
+    /// Near clipping depth (eye-space z), > 0.
+    #[serde(default = "default_hither")]
+    pub hither: f32,
+    /// Far clipping depth, > hither.
+    #[serde(default = "default_yon")]
+    pub yon: f32,
+    /// Shutter interval.
+    #[serde(default)]
+    pub shutter: Shutter,
+    /// Thin lens for depth of field; `None` is a pinhole camera.
+    #[serde(default)]
+    pub lens: Option<Lens>,
+}
+
+fn default_up() -> V3 {
+    [0.0, 1.0, 0.0]
+}
+fn default_fov() -> f32 {
+    45.0
+}
+fn default_hither() -> f32 {
+    0.1
+}
+fn default_yon() -> f32 {
+    1000.0
+}
+
+/// Shutter interval in scene time units.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Shutter {
+    /// Opening time.
+    pub open: f32,
+    /// Closing time (>= open).
+    pub close: f32,
+}
+
+impl Default for Shutter {
+    fn default() -> Self {
+        Shutter { open: 0.0, close: 1.0 }
+    }
+}
+
+/// Thin-lens parameters (Appendix A's `VisCamera`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Lens {
+    /// Focal length in world units (> 0).
+    pub focal_length: f32,
+    /// f-number (> 0). Lens radius is `0.5 * focal_length / f_stop`.
+    pub f_stop: f32,
+    /// Distance of the plane in focus, eye-space z (> 0).
+    pub focal_distance: f32,
+}
+
+/// Sampling, filtering and bucketing.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Hider {
+    /// Samples per pixel as (nx, ny): NS = nx * ny strata per pixel.
+    pub pixel_samples: (u32, u32),
+    /// Appendix A's `jitter on/off`. `false` is the regular grid of FIG. 3 and overrides `pattern`.
+    pub jitter: bool,
+    /// Which jittered spatial pattern (FIGS. 5-7) to use when `jitter` is on.
+    pub pattern: SpatialPattern,
+    /// Reconstruction filter.
+    pub filter: Filter,
+    /// Bucket size in pixels (x, y).
+    pub bucket_size: (u32, u32),
+    /// Target micropolygon area in pixels (> 0).
+    pub shading_rate: f32,
+    /// Seed of every pseudo-random choice.
+    pub seed: u64,
+    /// Largest number of micropolygons in one diced grid; bigger primitives are split.
+    pub max_grid_size: u32,
+    /// Switches that reproduce the original 1985 behaviour where it differs from ours.
+    pub original: Original,
+}
+
+impl Default for Hider {
+    fn default() -> Self {
+        Hider {
+            pixel_samples: (4, 4),
+            jitter: true,
+            pattern: SpatialPattern::default(),
+            filter: Filter::default(),
+            bucket_size: (16, 16),
+            shading_rate: 1.0,
+            seed: 0,
+            max_grid_size: 256,
+            original: Original::default(),
+        }
+    }
+}
+
+/// Jittered spatial sampling patterns of the patent (FIG. 3 is `jitter: false`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub enum SpatialPattern {
+    /// FIG. 5: one jittered pattern (one point anywhere in each cell), repeated in every pixel.
+    Fig5,
+    /// FIG. 6: each cell's point anywhere in the cell, new in every pixel (Appendix A's jitter).
+    #[default]
+    Fig6,
+    /// FIG. 7: a FIG. 5 reference pattern plus a bounded random offset in every pixel.
+    Fig7,
+}
+
+/// Reconstruction filter (`VisFilter`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Filter {
+    /// Kernel.
+    pub kind: FilterKind,
+    /// Full width in pixels (> 0).
+    pub width: f32,
+}
+
+impl Default for Filter {
+    fn default() -> Self {
+        Filter { kind: FilterKind::Gaussian, width: 2.0 }
+    }
+}
+
+/// The five filter kernels of Appendix A.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum FilterKind {
+    /// Box.
+    Box,
+    /// Truncated Gaussian `exp(-r^2) - exp(-(w/2)^2)`.
+    Gaussian,
+    /// Separable sinc, truncated to the footprint.
+    Sinc,
+    /// Separable tent.
+    Bartlett,
+    /// Jinc `J1(2r)/r`, truncated to the footprint.
+    Bessel,
+}
+
+/// Reproduce the original Appendix A behaviour where we deliberately differ
+/// (see docs/appendix-a.md). All `false` by default.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Original {
+    /// Use the original `permute`, which is not a permutation for some NS (3.4).
+    pub permute: bool,
+    /// Five 512-entry jitter tables laid out back to back, read past their ends as the C did (3.2).
+    pub jitter_tables: bool,
+    /// Box kernel cut on signed offsets at the full width (3.16).
+    pub box_filter: bool,
+    /// Bartlett kernel with the full width as half-width (3.16).
+    pub bartlett_filter: bool,
+    /// Sinc kernel centre value 1 instead of its limit 2 (2.3).
+    pub sinc_filter: bool,
+}
+
+/// A light source.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum Light {
+    /// Light arriving equally from everywhere.
+    Ambient {
+        /// Colour.
+        #[serde(default = "white")]
+        color: Rgb,
+        /// Scale on colour.
+        #[serde(default = "one")]
+        intensity: f32,
+    },
+    /// Parallel light travelling from `from` towards `to`.
+    Distant {
+        /// A point the light comes from.
+        from: V3,
+        /// A point the light goes to.
+        #[serde(default)]
+        to: V3,
+        /// Colour.
+        #[serde(default = "white")]
+        color: Rgb,
+        /// Scale on colour.
+        #[serde(default = "one")]
+        intensity: f32,
+    },
+    /// A point light with inverse-square fall-off.
+    Point {
+        /// Position in world space.
+        from: V3,
+        /// Colour.
+        #[serde(default = "white")]
+        color: Rgb,
+        /// Scale on colour: radiance arriving at distance d is `intensity * color / d^2`.
+        #[serde(default = "one")]
+        intensity: f32,
+    },
+}
+
+pub(crate) fn white() -> Rgb {
+    [1.0, 1.0, 1.0]
+}
+pub(crate) fn one() -> f32 {
+    1.0
+}
+fn deg360() -> f32 {
+    360.0
+}
+
+/// A geometric object.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Object {
+    /// Name, for messages (and later for `measure` and CSG).
+    #[serde(default)]
+    pub name: String,
+    /// The surface.
+    pub shape: Shape,
+    /// Object-to-world transforms, applied to the object in list order (first item first).
+    #[serde(default)]
+    pub transform: Vec<Transform>,
+    /// Surface material.
+    pub material: Material,
+    /// Appendix A matte: hides what is behind, contributes no colour and no alpha.
+    #[serde(default)]
+    pub matte: bool,
+}
+
+/// Shapes. Quadrics follow RenderMan: they sweep around the object's z axis.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum Shape {
+    /// Sphere of `radius`, cut to `zmin..zmax`, swept through `thetamax` degrees.
+    Sphere {
+        /// Radius (> 0).
+        radius: f32,
+        /// Lower cut (default `-radius`).
+        #[serde(default)]
+        zmin: Option<f32>,
+        /// Upper cut (default `radius`).
+        #[serde(default)]
+        zmax: Option<f32>,
+        /// Sweep angle in degrees, (0, 360].
+        #[serde(default = "deg360")]
+        thetamax: f32,
+    },
+    /// Open cylinder of `radius` from `zmin` to `zmax`.
+    Cylinder {
+        /// Radius (> 0).
+        radius: f32,
+        /// Bottom.
+        zmin: f32,
+        /// Top (> zmin).
+        zmax: f32,
+        /// Sweep angle in degrees, (0, 360].
+        #[serde(default = "deg360")]
+        thetamax: f32,
+    },
+    /// Cone with base of `radius` at z = 0 and apex at z = `height`.
+    Cone {
+        /// Height (!= 0).
+        height: f32,
+        /// Base radius (> 0).
+        radius: f32,
+        /// Sweep angle in degrees, (0, 360].
+        #[serde(default = "deg360")]
+        thetamax: f32,
+    },
+    /// Disk of `radius` in the plane z = `height`, facing +z.
+    Disk {
+        /// Plane offset.
+        #[serde(default)]
+        height: f32,
+        /// Radius (> 0).
+        radius: f32,
+        /// Sweep angle in degrees, (0, 360].
+        #[serde(default = "deg360")]
+        thetamax: f32,
+    },
+    /// Torus around the z axis.
+    Torus {
+        /// Distance from the z axis to the tube centre (> 0).
+        major_radius: f32,
+        /// Tube radius (> 0).
+        minor_radius: f32,
+        /// Start of the tube angle, degrees.
+        #[serde(default)]
+        phimin: f32,
+        /// End of the tube angle, degrees (> phimin, at most phimin + 360).
+        #[serde(default = "deg360")]
+        phimax: f32,
+        /// Sweep angle in degrees, (0, 360].
+        #[serde(default = "deg360")]
+        thetamax: f32,
+    },
+    /// Bilinear patch. Corners in RenderMan order: (u,v) = (0,0), (1,0), (0,1), (1,1).
+    BilinearPatch {
+        /// The four corners.
+        points: [V3; 4],
+    },
+    /// Polygon mesh of triangles and quads (planar or not).
+    Mesh {
+        /// Vertex positions.
+        points: Vec<V3>,
+        /// Faces: 3 or 4 indices into `points`, in order around the face.
+        faces: Vec<Vec<u32>>,
+        /// Optional per-vertex colours (same length as `points`), multiplying the material colour.
+        #[serde(default)]
+        colors: Option<Vec<Rgb>>,
+    },
+}
+
+/// One step of an object's transform.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum Transform {
+    /// Move by a vector.
+    Translate(V3),
+    /// Rotate by `angle` degrees about `axis` (right-hand rule in a left-handed world, as RenderMan).
+    Rotate {
+        /// Degrees.
+        angle: f32,
+        /// Axis (non-zero).
+        axis: V3,
+    },
+    /// Scale per axis (no zero factor).
+    Scale(V3),
+    /// A 4x4 matrix, rows written top to bottom, acting on column vectors `(x, y, z, 1)`.
+    Matrix([[f32; 4]; 4]),
+}
+
+/// Surface materials. Colours and opacities are per channel in [0, 1].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum Material {
+    /// Unlit colour.
+    Constant {
+        /// Colour.
+        color: Rgb,
+        /// Opacity per channel.
+        #[serde(default = "white")]
+        opacity: Rgb,
+    },
+    /// Lambertian.
+    Matte {
+        /// Colour.
+        color: Rgb,
+        /// Opacity per channel.
+        #[serde(default = "white")]
+        opacity: Rgb,
+        /// Ambient coefficient.
+        #[serde(default = "one")]
+        ka: f32,
+        /// Diffuse coefficient.
+        #[serde(default = "one")]
+        kd: f32,
+    },
+    /// RenderMan plastic: ambient + diffuse in the surface colour, specular in `specular_color`.
+    Plastic {
+        /// Colour.
+        color: Rgb,
+        /// Opacity per channel.
+        #[serde(default = "white")]
+        opacity: Rgb,
+        /// Ambient coefficient.
+        #[serde(default = "one")]
+        ka: f32,
+        /// Diffuse coefficient.
+        #[serde(default = "half")]
+        kd: f32,
+        /// Specular coefficient.
+        #[serde(default = "half")]
+        ks: f32,
+        /// Specular roughness (> 0): exponent is `1 / roughness`.
+        #[serde(default = "tenth")]
+        roughness: f32,
+        /// Specular colour.
+        #[serde(default = "white")]
+        specular_color: Rgb,
+    },
+}
+
+fn half() -> f32 {
+    0.5
+}
+fn tenth() -> f32 {
+    0.1
+}
