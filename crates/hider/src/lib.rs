@@ -3,13 +3,220 @@
 //! Stage: takes one bucket's micropolygons, samples them at jittered positions, times and
 //! lens positions, keeps per-sample visible-point lists, resolves them front to back, and
 //! hands per-sample composites to the film stage. Single-threaded; the caller runs buckets
-//! in parallel, each with its own [`Scratch`].
+//! in parallel, each with its own [`Scratch`]. The hot loop is in `bucket.rs`.
+//!
+//! Map of Appendix A functions to this crate: see docs/appendix-a.md.
 #![deny(missing_docs)]
 
+mod bucket;
 pub mod frame;
+pub mod inside;
 pub mod lens;
 pub mod mpoly;
+pub mod permute;
+pub mod rng;
+pub mod samples;
+pub mod tables;
 
+pub use bucket::gouraud;
 pub use frame::{Frame, border_for_filter_width};
 pub use lens::LensSetup;
 pub use mpoly::{Micropolygon, flags};
+pub use reyes_csg::MatteRule;
+pub use samples::{BucketSamples, LensShape, Pairing, Pattern, SampleSpec};
+pub use tables::Tables;
+
+/// Everything the hider needs to know about a frame (the arguments of `VisParam`,
+/// `VisCamera` and `VisNewFrame`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HiderConfig {
+    /// Strata across a pixel (`NxGrid`).
+    pub nx: u32,
+    /// Strata down a pixel (`NyGrid`).
+    pub ny: u32,
+    /// Spatial pattern; [`Pattern::Regular`] is Appendix A's `jitter off`.
+    pub pattern: Pattern,
+    /// Time and lens pairing.
+    pub pairing: Pairing,
+    /// Lens sample shape.
+    pub lens_shape: LensShape,
+    /// Thin lens, or `None` for a pinhole (`PinHoleCamera`).
+    pub lens: Option<LensSetup>,
+    /// Near clipping depth.
+    pub hither: f32,
+    /// Far clipping depth.
+    pub yon: f32,
+    /// Seed of the jitter tables and the per-bucket offsets.
+    pub seed: u64,
+    /// Use the original (non-bijective) `permute`.
+    pub original_permute: bool,
+    /// Use five 512-entry jitter tables read past their ends, as the C did.
+    pub original_jitter_tables: bool,
+    /// Reject moving hither/yon-crossing micropolygons per sample instead of clipping them.
+    pub original_moving_clip: bool,
+    /// Matte compositing rule.
+    pub matte: MatteRule,
+    /// Test every sample of the bucket against every micropolygon, with no bound culling.
+    /// For tests and study: the image must not change, only the sample-test count.
+    pub scan_all: bool,
+}
+
+impl Default for HiderConfig {
+    fn default() -> Self {
+        HiderConfig {
+            nx: 4,
+            ny: 4,
+            pattern: Pattern::Fig6,
+            pairing: Pairing::Decorrelated,
+            lens_shape: LensShape::Disk,
+            lens: None,
+            hither: 0.1,
+            yon: 1000.0,
+            seed: 0,
+            original_permute: false,
+            original_jitter_tables: false,
+            original_moving_clip: false,
+            matte: MatteRule::Holdout,
+            scan_all: false,
+        }
+    }
+}
+
+/// The per-frame hider: tables built once (`VisNewFrame` / `tablesinit`), shared read-only by
+/// every bucket.
+#[derive(Debug, Clone)]
+pub struct Hider {
+    config: HiderConfig,
+    frame: Frame,
+    tables: Tables,
+    spec: SampleSpec,
+}
+
+/// Hider statistics (Appendix A `VisPrint("stat")`), summed over buckets.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Stats {
+    /// Sample tests that created a visible point (`Hit`).
+    pub hits: u64,
+    /// Sample tests that did not (`Miss`).
+    pub misses: u64,
+    /// Exact-depth interpolations (`Lerp`).
+    pub lerps: u64,
+    /// Micropolygon-in-bucket visits.
+    pub micropolygons: u64,
+    /// Largest number of visible points alive in one bucket (`NVisMaxUsed`).
+    pub peak_points: u64,
+    /// Visible points created in all.
+    pub points: u64,
+}
+
+impl Stats {
+    /// Add another bucket's (or thread's) statistics; peaks take the maximum.
+    pub fn merge(&mut self, o: &Stats) {
+        self.hits += o.hits;
+        self.misses += o.misses;
+        self.lerps += o.lerps;
+        self.micropolygons += o.micropolygons;
+        self.peak_points = self.peak_points.max(o.peak_points);
+        self.points += o.points;
+    }
+}
+
+/// Per-thread working memory, reused from bucket to bucket so the sampling loop does not
+/// allocate once warmed up.
+#[derive(Debug, Default, Clone)]
+pub struct Scratch {
+    samples: BucketSamples,
+    heads: Vec<u32>,
+    points: Vec<reyes_csg::VisPoint>,
+    rgba: Vec<[f32; 4]>,
+    z: Vec<f32>,
+    /// Statistics accumulated by every bucket this scratch has rendered.
+    pub stats: Stats,
+}
+
+impl Scratch {
+    /// Empty scratch.
+    pub fn new() -> Scratch {
+        Scratch::default()
+    }
+}
+
+/// One bucket's per-sample result, indexed `pixel*NS + s` with `pixel = y*XPerBucket + x`.
+#[derive(Debug, Clone, Copy)]
+pub struct BucketOutput<'a> {
+    /// Premultiplied colour and alpha per sample (zeros where nothing is visible).
+    pub rgba: &'a [[f32; 4]],
+    /// Depth of the opaque surface that ended each sample's composite, or +inf.
+    pub z: &'a [f32],
+}
+
+impl Hider {
+    /// Set up a frame: builds the tables (`tablesinit`).
+    pub fn new(config: HiderConfig, frame: Frame) -> Hider {
+        let tables = Tables::new(
+            config.nx,
+            config.ny,
+            frame.pixels_per_bucket(),
+            config.pattern != Pattern::Regular,
+            config.seed,
+            config.original_jitter_tables,
+            config.original_permute,
+        );
+        let spec = SampleSpec {
+            pattern: config.pattern,
+            pairing: config.pairing,
+            lens_shape: config.lens_shape,
+            seed: config.seed,
+        };
+        Hider { config, frame, tables, spec }
+    }
+
+    /// The frame geometry.
+    pub fn frame(&self) -> &Frame {
+        &self.frame
+    }
+
+    /// The configuration.
+    pub fn config(&self) -> &HiderConfig {
+        &self.config
+    }
+
+    /// The tables (`Location` feeds the filter table).
+    pub fn tables(&self) -> &Tables {
+        &self.tables
+    }
+
+    /// Samples per pixel.
+    pub fn ns(&self) -> usize {
+        self.tables.ns as usize
+    }
+
+    /// Port of `VisEndBucket` (sampling and `CSGResolve`; the film stage does `filter`).
+    /// `list` indexes the micropolygons of `mpolys` that touch bucket `bucket`.
+    pub fn render_bucket<'s>(
+        &self,
+        bucket: usize,
+        mpolys: &[Micropolygon],
+        list: &[u32],
+        scratch: &'s mut Scratch,
+    ) -> BucketOutput<'s> {
+        self.sample_bucket(bucket, mpolys, list, scratch);
+        BucketOutput { rgba: &scratch.rgba, z: &scratch.z }
+    }
+
+    /// The samples of bucket `bucket` (positions bucket-local), for study and tests.
+    pub fn bucket_samples(&self, bucket: usize) -> BucketSamples {
+        let (left, top) = self.frame.bucket_origin(bucket);
+        let mut s = BucketSamples::default();
+        s.generate(
+            &self.tables,
+            &self.spec,
+            bucket,
+            left,
+            top,
+            self.frame.bucket_w,
+            self.frame.bucket_h,
+        );
+        s
+    }
+}

@@ -1,0 +1,209 @@
+//! Front-to-back compositing of one sample's visible points: the body of Appendix A
+//! `CSGResolve` for surfaces that are not in a CSG tree.
+//!
+//! Invariant: colours are premultiplied by opacity and `trans` is per-channel transmittance,
+//! so compositing a point behind an accumulated `(C, T)` is `C += T*c`, `T *= t`.
+
+use crate::visible::{LERP_DONE, NIL, VisPoint, lerpz, sortfront};
+
+/// Flag bits read here; they are the micropolygon's (`reyes_hider::flags`), repeated so this
+/// crate does not depend on the hider.
+const OPAQUE: u32 = 1 << 1;
+const MATTE: u32 = 1 << 3;
+const GLASS: u32 = 1 << 9;
+
+/// How a matte (holdout) surface is composited.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum MatteRule {
+    /// A matte surface adds no colour and no alpha and attenuates everything behind it by its
+    /// transmittance; surfaces in front of it composite normally.
+    #[default]
+    Holdout,
+    /// Appendix A as printed (appendix-a.md 3.14): the sample takes its `matte` and `opaque`
+    /// flags from the deepest composited surface, so a matte behind a transparent surface
+    /// drops the whole sample, and a non-opaque matte surface adds its colour like any other.
+    Original,
+}
+
+/// The resolved value of one sample.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Composite {
+    /// Premultiplied colour.
+    pub rgb: [f32; 3],
+    /// Coverage.
+    pub alpha: f32,
+    /// Exact depth of the opaque surface that ended the composite, or +inf.
+    pub z: f32,
+}
+
+impl Composite {
+    /// Nothing visible.
+    pub const EMPTY: Composite = Composite { rgb: [0.0; 3], alpha: 0.0, z: f32::INFINITY };
+}
+
+/// Port of `CSGResolve` for one sample (no CSG trees): repeatedly take the nearest remaining
+/// point (`sortfront`) and composite it behind what is already accumulated, stopping at the
+/// first opaque surface. `lerps` counts exact-depth interpolations.
+///
+/// Appendix A's `glasshack`: right after compositing a glass surface, if another surface
+/// remains, the accumulated colour is tinted by the raw colour directly behind,
+/// `C *= a + (1 - a) * c_behind` with `a` the glass's `glasshackopacity`.
+pub fn resolve_sample(
+    points: &mut [VisPoint],
+    mut head: u32,
+    rule: MatteRule,
+    lerps: &mut u64,
+) -> Composite {
+    let mut c = [0.0f32; 3];
+    let mut t = [1.0f32; 3];
+    // Coverage accumulated from non-matte surfaces, per channel (Holdout rule).
+    let mut a = [0.0f32; 3];
+    let mut any = false;
+    let mut last_flags = 0;
+    let mut z = f32::INFINITY;
+    loop {
+        let front = sortfront(points, &mut head, lerps);
+        if front == NIL {
+            break;
+        }
+        let p = points[front as usize];
+        head = p.next;
+        any = true;
+        last_flags = p.flags;
+        let holdout = rule == MatteRule::Holdout && p.flags & MATTE != 0;
+        for k in 0..3 {
+            if !holdout {
+                c[k] += t[k] * p.color[k];
+                a[k] += t[k] * (1.0 - p.trans[k]);
+            }
+            t[k] *= p.trans[k];
+        }
+        if p.flags & GLASS != 0 && head != NIL {
+            let behind = sortfront(points, &mut head, lerps);
+            let g = p.glass_opacity;
+            let cb = points[behind as usize].color;
+            for k in 0..3 {
+                c[k] *= g + (1.0 - g) * cb[k];
+            }
+        }
+        if p.flags & OPAQUE != 0 {
+            z = if p.flags & LERP_DONE != 0 {
+                p.minz
+            } else {
+                *lerps += 1;
+                lerpz(&p.v)
+            };
+            break;
+        }
+    }
+    if !any {
+        return Composite::EMPTY;
+    }
+    match rule {
+        MatteRule::Original => {
+            if last_flags & MATTE != 0 {
+                return Composite { rgb: [0.0; 3], alpha: 0.0, z };
+            }
+            let alpha =
+                if last_flags & OPAQUE != 0 { 1.0 } else { 1.0 - (t[0] + t[1] + t[2]) / 3.0 };
+            Composite { rgb: c, alpha, z }
+        }
+        MatteRule::Holdout => {
+            let alpha = if last_flags & OPAQUE != 0 && last_flags & MATTE == 0 {
+                1.0
+            } else {
+                (a[0] + a[1] + a[2]) / 3.0
+            };
+            Composite { rgb: c, alpha, z }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn surface(z: f32, color: [f32; 3], opacity: f32, flags: u32) -> VisPoint {
+        let v = [[-0.5, -0.5, z], [0.5, -0.5, z], [0.5, 0.5, z], [-0.5, 0.5, z]];
+        let o = opacity;
+        VisPoint {
+            v,
+            minz: z,
+            maxz: z,
+            color: [color[0] * o, color[1] * o, color[2] * o],
+            trans: [1.0 - o; 3],
+            flags: flags | if o == 1.0 { OPAQUE } else { 0 },
+            csg_tree: 0,
+            csg_node: 0,
+            glass_opacity: 0.0,
+            next: NIL,
+        }
+    }
+
+    fn list(mut pts: Vec<VisPoint>) -> (Vec<VisPoint>, u32) {
+        let n = pts.len();
+        for (i, p) in pts.iter_mut().enumerate() {
+            p.next = if i + 1 < n { (i + 1) as u32 } else { NIL };
+        }
+        (pts, if n == 0 { NIL } else { 0 })
+    }
+
+    #[test]
+    fn empty_sample() {
+        let mut lerps = 0;
+        assert_eq!(resolve_sample(&mut [], NIL, MatteRule::Holdout, &mut lerps), Composite::EMPTY);
+    }
+
+    #[test]
+    fn half_transparent_over_opaque_in_any_insertion_order() {
+        let red = surface(2.0, [1.0, 0.0, 0.0], 0.5, 0);
+        let blue = surface(5.0, [0.0, 0.0, 1.0], 1.0, 0);
+        let far = surface(9.0, [0.0, 1.0, 0.0], 1.0, 0);
+        for order in [[0, 1, 2], [2, 1, 0], [1, 2, 0]] {
+            let all = [red, blue, far];
+            let (mut pts, head) = list(order.iter().map(|&i| all[i]).collect());
+            let mut lerps = 0;
+            let r = resolve_sample(&mut pts, head, MatteRule::Holdout, &mut lerps);
+            assert_eq!(r.rgb, [0.5, 0.0, 0.5], "order {order:?}");
+            assert_eq!(r.alpha, 1.0);
+            assert_eq!(r.z, 5.0);
+        }
+    }
+
+    #[test]
+    fn transparent_alone_has_partial_alpha() {
+        let (mut pts, head) = list(vec![surface(2.0, [1.0, 1.0, 1.0], 0.25, 0)]);
+        let mut lerps = 0;
+        let r = resolve_sample(&mut pts, head, MatteRule::Holdout, &mut lerps);
+        assert_eq!(r.alpha, 0.25);
+        assert_eq!(r.z, f32::INFINITY);
+    }
+
+    #[test]
+    fn matte_holdout_keeps_what_is_in_front() {
+        let glass = surface(2.0, [1.0, 0.0, 0.0], 0.5, 0);
+        let matte = surface(4.0, [0.0, 1.0, 0.0], 1.0, MATTE);
+        let behind = surface(6.0, [0.0, 0.0, 1.0], 1.0, 0);
+        let (mut pts, head) = list(vec![behind, matte, glass]);
+        let mut lerps = 0;
+        let r = resolve_sample(&mut pts.clone(), head, MatteRule::Holdout, &mut lerps);
+        assert_eq!(r.rgb, [0.5, 0.0, 0.0]);
+        assert_eq!(r.alpha, 0.5);
+        // The original drops the whole sample because its deepest surface is matte.
+        let o = resolve_sample(&mut pts, head, MatteRule::Original, &mut lerps);
+        assert_eq!((o.rgb, o.alpha), ([0.0; 3], 0.0));
+    }
+
+    #[test]
+    fn glass_tints_by_the_colour_behind() {
+        let mut glass = surface(1.0, [1.0, 1.0, 1.0], 1.0, GLASS);
+        glass.glass_opacity = 0.25;
+        let behind = surface(3.0, [0.0, 1.0, 0.5], 1.0, 0);
+        let (mut pts, head) = list(vec![behind, glass]);
+        let mut lerps = 0;
+        let r = resolve_sample(&mut pts, head, MatteRule::Holdout, &mut lerps);
+        // C = 1 * (0.25 + 0.75 * c_behind); the opaque glass then ends the sample.
+        assert_eq!(r.rgb, [0.25, 1.0, 0.625]);
+        assert_eq!(r.z, 1.0);
+    }
+}

@@ -1,0 +1,346 @@
+//! The hider's hot loop: port of `VisEndBucket` and `sample` (Appendix A 2.5, 2.10).
+//!
+//! For each micropolygon of the bucket, one of three paths (as in Appendix A) tests it
+//! against every sample whose scan range its bound reaches:
+//! - **P** static, pinhole: vertices translated to the sample;
+//! - **D** static, finite aperture: each vertex also shifted by the lens offset over its depth;
+//! - **M** moving (with or without lens): vertices moved to the sample's time first, scanning
+//!   time slice by time slice with Appendix A's sliding bound (`speedbox / NS`).
+//!
+//! A sample inside the quad (and, for a hither/yon-crossing quad, with its interpolated depth
+//! between hither and yon) gets a visible point pushed on its list. Then every sample's list is
+//! resolved front to back (`CSGResolve`). Invariants: nothing here allocates once the scratch
+//! buffers have grown to the bucket's needs; results depend only on the bucket's inputs.
+
+use reyes_csg::{Composite, LERP_DONE, NIL, VisPoint, lerpz, resolve_sample, shepard_weights};
+
+use crate::inside::inside;
+use crate::mpoly::{Micropolygon, flags};
+use crate::samples::BucketSamples;
+use crate::{Hider, Scratch};
+
+/// Port of `bound`: the x, y, z bounding box of four points. (The original's two-compare
+/// sorting network is an optimisation of exactly this.)
+#[inline]
+fn bound(v: &[[f32; 3]; 4]) -> ([f32; 3], [f32; 3]) {
+    let mut lo = v[0];
+    let mut hi = v[0];
+    for p in &v[1..] {
+        for a in 0..3 {
+            lo[a] = lo[a].min(p[a]);
+            hi[a] = hi[a].max(p[a]);
+        }
+    }
+    (lo, hi)
+}
+
+/// Inclusive pixel range (bucket-local) whose samples, lying at pixel + `[rmin, rmax]`, can
+/// fall in `[lo, hi]`; empty when `first > last`.
+#[inline]
+fn scan(lo: f32, hi: f32, rmin: f32, rmax: f32, n: u32) -> (i32, i32) {
+    let first = (lo - rmax).floor().max(0.0);
+    let last = (hi - rmin).floor().min(n as f32 - 1.0);
+    // NaN bounds give an empty range.
+    if first <= last { (first as i32, last as i32) } else { (1, 0) }
+}
+
+/// What one micropolygon contributes to every visible point it creates.
+struct Surface<'a> {
+    mp: &'a Micropolygon,
+    zmin: f32,
+    zmax: f32,
+    crossing: bool,
+}
+
+impl Hider {
+    /// Scan range of one axis, or the whole bucket when bound culling is off.
+    #[inline]
+    fn scan(&self, lo: f32, hi: f32, rmin: f32, rmax: f32, n: u32) -> (i32, i32) {
+        if self.config.scan_all { (0, n as i32 - 1) } else { scan(lo, hi, rmin, rmax, n) }
+    }
+
+    /// Port of `sample`: test one sample (at the origin of `v`) against a micropolygon and
+    /// push a visible point on list `nsample` if it is hit.
+    #[inline(always)]
+    fn sample(&self, nsample: usize, s: &Surface, v: &[[f32; 3]; 4], scratch: &mut Scratch) {
+        if s.crossing && self.config.original_moving_clip && s.mp.has(flags::MOVING) {
+            // Appendix A: a moving micropolygon straddling hither or yon at this sample's time
+            // is rejected outright instead of clipped (appendix-a.md 3.6).
+            let zlo = v[0][2].min(v[1][2]).min(v[2][2]).min(v[3][2]);
+            let zhi = v[0][2].max(v[1][2]).max(v[2][2]).max(v[3][2]);
+            if zlo < self.config.hither || zhi > self.config.yon {
+                scratch.stats.misses += 1;
+                return;
+            }
+        }
+        if !inside(v) {
+            scratch.stats.misses += 1;
+            return;
+        }
+        let (minz, maxz, lerped) = if s.crossing {
+            let z = lerpz(v);
+            scratch.stats.lerps += 1;
+            if !(z >= self.config.hither && z <= self.config.yon) {
+                scratch.stats.misses += 1;
+                return;
+            }
+            (z, z, LERP_DONE)
+        } else {
+            (s.zmin, s.zmax, 0)
+        };
+        let mp = s.mp;
+        let (color, trans) =
+            if mp.has(flags::GOURAUD) { gouraud(v, mp) } else { (mp.color[0], mp.trans[0]) };
+        let index = scratch.points.len() as u32;
+        scratch.points.push(VisPoint {
+            v: *v,
+            minz,
+            maxz,
+            color,
+            trans,
+            flags: (mp.flags & !LERP_DONE) | lerped,
+            csg_tree: mp.csg_tree,
+            csg_node: mp.csg_node,
+            glass_opacity: mp.glass_opacity,
+            next: scratch.heads[nsample],
+        });
+        scratch.heads[nsample] = index;
+        scratch.stats.hits += 1;
+    }
+
+    /// Port of `VisEndBucket` up to `CSGResolve`: sample every micropolygon of the bucket
+    /// (`list` indexes `mpolys`) and resolve each sample. Leaves per-sample composites in
+    /// `scratch.rgba` / `scratch.z`, indexed `pixel*NS + s`.
+    pub(crate) fn sample_bucket(
+        &self,
+        bucket: usize,
+        mpolys: &[Micropolygon],
+        list: &[u32],
+        scratch: &mut Scratch,
+    ) {
+        let frame = &self.frame;
+        let (left, top) = frame.bucket_origin(bucket);
+        let (bw, bh) = (frame.bucket_w, frame.bucket_h);
+        let p_count = frame.pixels_per_bucket();
+        let ns = self.tables.ns as usize;
+        let n = p_count * ns;
+        scratch.heads.clear();
+        scratch.heads.resize(n, NIL);
+        scratch.points.clear();
+        let mut samples = std::mem::take(&mut scratch.samples);
+        samples.generate(&self.tables, &self.spec, bucket, left, top, bw, bh);
+        for &m in list {
+            let mp = &mpolys[m as usize];
+            scratch.stats.micropolygons += 1;
+            let mut vertex = mp.v;
+            for p in vertex.iter_mut() {
+                p[0] -= left as f32;
+                p[1] -= top as f32;
+            }
+            let (mut lo, mut hi) = bound(&vertex);
+
+            let surface_z = |lo: [f32; 3], hi: [f32; 3]| Surface {
+                mp,
+                zmin: lo[2],
+                zmax: hi[2],
+                crossing: mp.has(flags::HITHER_YON_CROSSING),
+            };
+            if mp.has(flags::MOVING) {
+                self.path_moving(&samples, &vertex, mp, lo, hi, ns, bw, bh, scratch);
+            } else if let Some(lens) = &self.config.lens {
+                let s = surface_z(lo, hi);
+                lens.grow(&mut lo, &mut hi, self.config.hither, self.config.yon);
+                self.path_lens(&samples, &vertex, &s, lo, hi, ns, bw, bh, scratch);
+            } else {
+                let s = surface_z(lo, hi);
+                self.path_pinhole(&samples, &vertex, &s, lo, hi, ns, bw, bh, scratch);
+            }
+        }
+        scratch.stats.peak_points = scratch.stats.peak_points.max(scratch.points.len() as u64);
+        scratch.stats.points += scratch.points.len() as u64;
+        // CSGResolve: every sample, front to back.
+        scratch.rgba.clear();
+        scratch.z.clear();
+        let mut lerps = 0;
+        for nsample in 0..n {
+            let head = scratch.heads[nsample];
+            let c = if head == NIL {
+                Composite::EMPTY
+            } else {
+                resolve_sample(&mut scratch.points, head, self.config.matte, &mut lerps)
+            };
+            scratch.rgba.push([c.rgb[0], c.rgb[1], c.rgb[2], c.alpha]);
+            scratch.z.push(c.z);
+        }
+        scratch.stats.lerps += lerps;
+        scratch.samples = samples;
+    }
+
+    /// Path P: static micropolygon, pinhole camera.
+    #[allow(clippy::too_many_arguments)]
+    fn path_pinhole(
+        &self,
+        smp: &BucketSamples,
+        vertex: &[[f32; 3]; 4],
+        surf: &Surface,
+        lo: [f32; 3],
+        hi: [f32; 3],
+        ns: usize,
+        bw: u32,
+        bh: u32,
+        scratch: &mut Scratch,
+    ) {
+        let p_count = (bw * bh) as usize;
+        for s in 0..ns {
+            let r = smp.reach_space[s];
+            let (x0, x1) = self.scan(lo[0], hi[0], r[0], r[1], bw);
+            let (y0, y1) = self.scan(lo[1], hi[1], r[2], r[3], bh);
+            for y in y0..=y1 {
+                for x in x0..=x1 {
+                    let pixel = y as usize * bw as usize + x as usize;
+                    let k = s * p_count + pixel;
+                    let (rx, ry) = (smp.x[k], smp.y[k]);
+                    let v = vertex.map(|p| [p[0] - rx, p[1] - ry, p[2]]);
+                    self.sample(pixel * ns + s, surf, &v, scratch);
+                }
+            }
+        }
+    }
+
+    /// Path D: static micropolygon, finite aperture. Each vertex moves by
+    /// `l * (Dof_a / z + Dof_b)`; the depth-independent `l * Dof_b` is folded into the sample.
+    #[allow(clippy::too_many_arguments)]
+    fn path_lens(
+        &self,
+        smp: &BucketSamples,
+        vertex: &[[f32; 3]; 4],
+        surf: &Surface,
+        lo: [f32; 3],
+        hi: [f32; 3],
+        ns: usize,
+        bw: u32,
+        bh: u32,
+        scratch: &mut Scratch,
+    ) {
+        let Some(lens) = self.config.lens else { return };
+        let p_count = (bw * bh) as usize;
+        let inv_z = vertex.map(|p| 1.0 / p[2]);
+        for s in 0..ns {
+            let r = smp.reach_space[s];
+            let (x0, x1) = self.scan(lo[0], hi[0], r[0], r[1], bw);
+            let (y0, y1) = self.scan(lo[1], hi[1], r[2], r[3], bh);
+            for y in y0..=y1 {
+                for x in x0..=x1 {
+                    let pixel = y as usize * bw as usize + x as usize;
+                    let k = s * p_count + pixel;
+                    let (lx, ly) = (smp.lx[k], smp.ly[k]);
+                    let (ax, ay) = (lx * lens.x_a, ly * lens.y_a);
+                    let rx = smp.x[k] - lx * lens.x_b;
+                    let ry = smp.y[k] - ly * lens.y_b;
+                    let mut v = [[0.0f32; 3]; 4];
+                    for j in 0..4 {
+                        v[j] = [
+                            vertex[j][0] - rx + ax * inv_z[j],
+                            vertex[j][1] - ry + ay * inv_z[j],
+                            vertex[j][2],
+                        ];
+                    }
+                    self.sample(pixel * ns + s, surf, &v, scratch);
+                }
+            }
+        }
+    }
+
+    /// Path M: moving micropolygon (with the lens if there is one). Time slice `tau` holds
+    /// one sample per pixel with time in `[tau/NS, (tau+1)/NS)`, so the box of the vertices
+    /// over that interval is the start box slid by `tau * speedbox / NS` and grown by one
+    /// step on the side the motion goes (appendix-a.md 3.5).
+    #[allow(clippy::too_many_arguments)]
+    fn path_moving(
+        &self,
+        smp: &BucketSamples,
+        vertex: &[[f32; 3]; 4],
+        mp: &Micropolygon,
+        mut lo: [f32; 3],
+        mut hi: [f32; 3],
+        ns: usize,
+        bw: u32,
+        bh: u32,
+        scratch: &mut Scratch,
+    ) {
+        let p_count = (bw * bh) as usize;
+        let (slo, shi) = bound(&mp.speed);
+        // z range over the whole shutter: the visible points' depth range.
+        lo[2] += slo[2].min(0.0);
+        hi[2] += shi[2].max(0.0);
+        let surf =
+            Surface { mp, zmin: lo[2], zmax: hi[2], crossing: mp.has(flags::HITHER_YON_CROSSING) };
+        let lens = self.config.lens;
+        if let Some(l) = &lens {
+            l.grow(&mut lo, &mut hi, self.config.hither, self.config.yon);
+        }
+        let step = [slo[0] / ns as f32, shi[0] / ns as f32, slo[1] / ns as f32, shi[1] / ns as f32];
+        lo[0] += step[0].min(0.0);
+        hi[0] += step[1].max(0.0);
+        lo[1] += step[2].min(0.0);
+        hi[1] += step[3].max(0.0);
+        for tau in 0..ns {
+            let r = smp.reach_time[tau];
+            let (x0, x1) = self.scan(lo[0], hi[0], r[0], r[1], bw);
+            let (y0, y1) = self.scan(lo[1], hi[1], r[2], r[3], bh);
+            for y in y0..=y1 {
+                for x in x0..=x1 {
+                    let pixel = y as usize * bw as usize + x as usize;
+                    let s = smp.by_time[tau * p_count + pixel] as usize;
+                    let k = s * p_count + pixel;
+                    let alpha = smp.t[k];
+                    let mut v = [[0.0f32; 3]; 4];
+                    for j in 0..4 {
+                        v[j] = [
+                            vertex[j][0] + alpha * mp.speed[j][0],
+                            vertex[j][1] + alpha * mp.speed[j][1],
+                            vertex[j][2] + alpha * mp.speed[j][2],
+                        ];
+                    }
+                    let (rx, ry) = match &lens {
+                        Some(l) => {
+                            let (lx, ly) = (smp.lx[k], smp.ly[k]);
+                            let (ax, ay) = (lx * l.x_a, ly * l.y_a);
+                            for p in v.iter_mut() {
+                                p[0] += ax / p[2];
+                                p[1] += ay / p[2];
+                            }
+                            (smp.x[k] - lx * l.x_b, smp.y[k] - ly * l.y_b)
+                        }
+                        None => (smp.x[k], smp.y[k]),
+                    };
+                    for p in v.iter_mut() {
+                        p[0] -= rx;
+                        p[1] -= ry;
+                    }
+                    self.sample(pixel * ns + s, &surf, &v, scratch);
+                }
+            }
+            lo[0] += step[0];
+            hi[0] += step[1];
+            lo[1] += step[2];
+            hi[1] += step[3];
+        }
+    }
+}
+
+/// Port of `gouraud`: the vertex colours and transmittances weighted by the Shepard weights of
+/// `lerpz` at the sample point.
+#[inline]
+pub fn gouraud(v: &[[f32; 3]; 4], mp: &Micropolygon) -> ([f32; 3], [f32; 3]) {
+    let w = shepard_weights(v);
+    let mut c = [0.0; 3];
+    let mut t = [0.0; 3];
+    for k in 0..4 {
+        for a in 0..3 {
+            c[a] += w[k] * mp.color[k][a];
+            t[a] += w[k] * mp.trans[k][a];
+        }
+    }
+    (c, t)
+}

@@ -1,0 +1,111 @@
+//! `permute`: the order in which spatial strata are paired with sample indices (and so with
+//! time and lens strata). Appendix A: "bit reversal, but mapped back onto 0-n".
+//!
+//! Invariant: [`permute`] is a bijection on `0..n` for every `n >= 1`.
+
+/// Port of the original `permute(i, n)` as printed (reading `j = a + 1 - j`, appendix-a.md 2.11).
+/// It is *not* a permutation for n in {12, 14, 20, 21, 24, 25, ...} (3.4); kept for study and
+/// behind `Original::permute`. Results may fall outside `0..n`; callers must check.
+pub fn permute_original(i: u32, n: u32) -> i64 {
+    let mut i = i as i64;
+    let n = n as i64;
+    let mut j: i64 = 0;
+    let mut b: i64 = 1;
+    while b + b < n {
+        b += b;
+    }
+    let mut a: i64 = 1;
+    while b >= 1 {
+        if i - b >= 0 {
+            i -= b;
+            j += a;
+        }
+        a += a;
+        b /= 2;
+    }
+    if j >= n {
+        j = a + 1 - j;
+    }
+    j
+}
+
+/// Bit-reversal order restricted to `0..n`: the `i`-th value of the sequence
+/// `bitrev_k(0), bitrev_k(1), ...` (k = bits of the smallest power of two >= n) with the
+/// values `>= n` skipped. For n a power of two this is plain k-bit reversal, the same as the
+/// original; for other n it keeps the original's intent (successive indices land far apart)
+/// and is a true permutation.
+pub fn permute(i: u32, n: u32) -> u32 {
+    assert!(i < n, "permute({i}, {n}) out of range");
+    let k = n.next_power_of_two().trailing_zeros();
+    let mut seen = 0;
+    for q in 0..(1u32 << k) {
+        let r = if k == 0 { 0 } else { q.reverse_bits() >> (32 - k) };
+        if r < n {
+            if seen == i {
+                return r;
+            }
+            seen += 1;
+        }
+    }
+    unreachable!("bit reversal is a bijection on 0..2^k, which contains 0..n")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn permute_is_a_permutation_for_every_n_to_256() {
+        for n in 1..=256 {
+            let mut hit = vec![false; n as usize];
+            for i in 0..n {
+                let j = permute(i, n) as usize;
+                assert!(!hit[j], "n = {n}: {j} twice");
+                hit[j] = true;
+            }
+        }
+    }
+
+    #[test]
+    fn permute_equals_original_for_powers_of_two() {
+        for k in 0..8 {
+            let n = 1 << k;
+            for i in 0..n {
+                assert_eq!(permute(i, n) as i64, permute_original(i, n), "n = {n}");
+            }
+        }
+    }
+
+    #[test]
+    fn original_is_not_a_permutation_where_appendix_a_says() {
+        let is_perm = |n: u32| {
+            let mut hit = vec![false; n as usize];
+            (0..n).all(|i| {
+                let j = permute_original(i, n);
+                (0..n as i64).contains(&j) && !std::mem::replace(&mut hit[j as usize], true)
+            })
+        };
+        for n in [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 15, 16, 18, 32, 64] {
+            assert!(is_perm(n), "n = {n} should be a permutation");
+        }
+        for n in [12, 14, 20, 21, 24, 25, 28, 30, 35, 36, 40, 42, 48, 49, 56] {
+            assert!(!is_perm(n), "n = {n} should not be a permutation");
+        }
+    }
+
+    #[test]
+    fn default_grid_pairing_matches_appendix_a_table() {
+        // 3.3: for 4x4, stratum q = x*4 + y goes to sample permute(q); sample s has
+        // x = bitrev2(s mod 4), y = bitrev2(s div 4).
+        let mut loc = [(0, 0); 16];
+        for x in 0..4 {
+            for y in 0..4 {
+                loc[permute(x * 4 + y, 16) as usize] = (x, y);
+            }
+        }
+        let xs: Vec<u32> = loc.iter().map(|l| l.0).collect();
+        let ys: Vec<u32> = loc.iter().map(|l| l.1).collect();
+        assert_eq!(xs, [0, 2, 1, 3, 0, 2, 1, 3, 0, 2, 1, 3, 0, 2, 1, 3]);
+        assert_eq!(ys, [0, 0, 0, 0, 2, 2, 2, 2, 1, 1, 1, 1, 3, 3, 3, 3]);
+    }
+}

@@ -1,0 +1,322 @@
+//! One bucket's samples: position, time and lens position of sample `s` of every pixel,
+//! computed once per bucket from the tables with Appendix A's indexing (appendix-a.md 3.2):
+//!
+//! ```text
+//! i = 7*s + 2*pixel          (pixel = y*XPerBucket + x, bucket-local)
+//! position = (x + Location[s].x + XJitter[ox+i],  y + Location[s].y + YJitter[oy+i+1])
+//! time     = tau/NS + TJitter[ot+i+2]              (tau: the sample's time stratum)
+//! lens     = lens stratum + (LXJitter[olx+i+3], LYJitter[oly+i+4])
+//! ```
+//!
+//! with `ox..oly` in 0..=22 drawn per bucket. Invariants: arrays are s-major
+//! (`k = s*P + pixel`) so the sampling loops read them contiguously along a row; sample `s`
+//! of every pixel lies in spatial stratum `Location[s]`; the samples of time slice `tau` all
+//! have times in `[tau/NS, (tau+1)/NS)`.
+
+use crate::rng::hash;
+use crate::tables::{Table, Tables};
+
+/// Spatial pattern (FIGS. 3, 5, 6, 7 of the patent).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Pattern {
+    /// FIG. 3: the regular grid of stratum centres (Appendix A `jitter off`).
+    Regular,
+    /// FIG. 5: one random point per stratum, the same pattern in every pixel of the image.
+    Fig5,
+    /// FIG. 6: a new random point anywhere in each stratum of every pixel (Appendix A `jitter on`).
+    #[default]
+    Fig6,
+    /// FIG. 7: the FIG. 5 reference pattern plus a random offset of at most a quarter stratum.
+    Fig7,
+}
+
+/// How sample indices are paired with time and lens strata.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Pairing {
+    /// Each pixel pairs its samples with time and lens strata through its own pseudo-random
+    /// permutations, so time and lens are uncorrelated with sub-pixel position.
+    #[default]
+    Decorrelated,
+    /// Appendix A: sample s has time stratum s and lens stratum `Location[s]`, in every pixel
+    /// (time is tied to sub-pixel rows, lens to sub-pixel position: appendix-a.md 3.3, 3.8).
+    Original,
+}
+
+/// Shape of the lens samples.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum LensShape {
+    /// Stratified lens cells mapped onto the unit disk by the concentric square-to-disk map.
+    #[default]
+    Disk,
+    /// Appendix A's "kludge": the square `[-0.5/NS, 1 - 0.5/NS)^2`, uncentred (3.8).
+    OriginalSquare,
+}
+
+/// A bucket's samples, reused from bucket to bucket.
+#[derive(Debug, Default, Clone)]
+pub struct BucketSamples {
+    /// Bucket-local x of sample k = s*P + pixel.
+    pub x: Vec<f32>,
+    /// Bucket-local y.
+    pub y: Vec<f32>,
+    /// Shutter time in [0, 1).
+    pub t: Vec<f32>,
+    /// Lens x in lens-radius units.
+    pub lx: Vec<f32>,
+    /// Lens y.
+    pub ly: Vec<f32>,
+    /// `by_time[tau*P + pixel]`: the sample index s of that pixel whose time is in slice tau.
+    pub by_time: Vec<u32>,
+    /// Per spatial slice s: (min x offset, max x offset, min y offset, max y offset) of the
+    /// slice's samples from their pixel's corner, for scan ranges.
+    pub reach_space: Vec<[f32; 4]>,
+    /// The same per time slice.
+    pub reach_time: Vec<[f32; 4]>,
+}
+
+/// Offset of a FIG. 7 sample from its reference point, at most this fraction of a stratum.
+const FIG7_REACH: f32 = 0.25;
+
+/// Concentric map of the unit square onto the unit disk (Shirley and Chiu, 1997): keeps
+/// strata compact and area-preserving.
+fn concentric_disk(u: f32, v: f32) -> (f32, f32) {
+    let a = 2.0 * u - 1.0;
+    let b = 2.0 * v - 1.0;
+    if a == 0.0 && b == 0.0 {
+        return (0.0, 0.0);
+    }
+    let (r, phi) = if a.abs() > b.abs() {
+        (a, std::f32::consts::FRAC_PI_4 * (b / a))
+    } else {
+        (b, std::f32::consts::FRAC_PI_2 - std::f32::consts::FRAC_PI_4 * (a / b))
+    };
+    (r * phi.cos(), r * phi.sin())
+}
+
+/// Fill `perm` with a pseudo-random permutation of 0..n determined by `key`.
+fn shuffle(perm: &mut [u32], seed: u64, key: &[u64]) {
+    for (i, p) in perm.iter_mut().enumerate() {
+        *p = i as u32;
+    }
+    let base = hash(seed, key);
+    for i in (1..perm.len()).rev() {
+        let j = (hash(base, &[i as u64]) % (i as u64 + 1)) as usize;
+        perm.swap(i, j);
+    }
+}
+
+/// Everything sample generation needs besides the tables.
+#[derive(Debug, Clone, Copy)]
+pub struct SampleSpec {
+    /// Spatial pattern.
+    pub pattern: Pattern,
+    /// Time/lens pairing.
+    pub pairing: Pairing,
+    /// Lens shape.
+    pub lens_shape: LensShape,
+    /// Seed.
+    pub seed: u64,
+}
+
+impl BucketSamples {
+    /// Compute the samples of bucket number `bucket` whose top-left pixel is raster
+    /// (`left`, `top`) and whose size is `bw` x `bh`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn generate(
+        &mut self,
+        tables: &Tables,
+        spec: &SampleSpec,
+        bucket: usize,
+        left: i32,
+        top: i32,
+        bw: u32,
+        bh: u32,
+    ) {
+        let ns = tables.ns as usize;
+        let p_count = (bw * bh) as usize;
+        let n = ns * p_count;
+        for v in [&mut self.x, &mut self.y, &mut self.t, &mut self.lx, &mut self.ly] {
+            v.clear();
+            v.resize(n, 0.0);
+        }
+        self.by_time.clear();
+        self.by_time.resize(n, 0);
+        let (fx, fy, fns) = (tables.nx as f32, tables.ny as f32, ns as f32);
+        // Per-bucket random start offsets 0..22 into each table (`(int)(23*drand())`).
+        let off: [usize; 5] = std::array::from_fn(|k| {
+            (hash(spec.seed, &[0xb0c7, bucket as u64, k as u64]) % 23) as usize
+        });
+        let mut time_perm = vec![0u32; ns];
+        let mut lens_perm = vec![0u32; ns];
+        for py in 0..bh {
+            for px in 0..bw {
+                let pixel = (py * bw + px) as usize;
+                let gx = (left + px as i32) as i64 as u64;
+                let gy = (top + py as i32) as i64 as u64;
+                match spec.pairing {
+                    Pairing::Original => {
+                        for (s, (tp, lp)) in time_perm.iter_mut().zip(&mut lens_perm).enumerate() {
+                            *tp = s as u32;
+                            *lp = s as u32;
+                        }
+                    }
+                    Pairing::Decorrelated => {
+                        shuffle(&mut time_perm, spec.seed, &[0x7173, gx, gy]);
+                        shuffle(&mut lens_perm, spec.seed, &[0x1e75, gx, gy]);
+                    }
+                }
+                for s in 0..ns {
+                    let i = 7 * s + 2 * pixel;
+                    let k = s * p_count + pixel;
+                    let loc = tables.location[s];
+                    let (jx, jy) = match spec.pattern {
+                        Pattern::Regular | Pattern::Fig6 => {
+                            (tables.get(Table::X, off[0] + i), tables.get(Table::Y, off[1] + i + 1))
+                        }
+                        Pattern::Fig5 => {
+                            (tables.get(Table::X, 7 * s), tables.get(Table::Y, 7 * s + 1))
+                        }
+                        Pattern::Fig7 => {
+                            let r = |refj: f32, jit: f32, cells: f32| {
+                                let refu = refj * cells; // [0, 1) of the stratum
+                                let offu = 2.0 * jit * cells - 1.0; // [-1, 1)
+                                (FIG7_REACH + (1.0 - 2.0 * FIG7_REACH) * refu + FIG7_REACH * offu)
+                                    / cells
+                            };
+                            (
+                                r(
+                                    tables.get(Table::X, 7 * s),
+                                    tables.get(Table::X, off[0] + i),
+                                    fx,
+                                ),
+                                r(
+                                    tables.get(Table::Y, 7 * s + 1),
+                                    tables.get(Table::Y, off[1] + i + 1),
+                                    fy,
+                                ),
+                            )
+                        }
+                    };
+                    self.x[k] = px as f32 + loc[0] + jx;
+                    self.y[k] = py as f32 + loc[1] + jy;
+                    let tau = time_perm[s] as usize;
+                    self.t[k] = tau as f32 / fns + tables.get(Table::T, off[2] + i + 2);
+                    self.by_time[tau * p_count + pixel] = s as u32;
+                    let jlx = tables.get(Table::LensX, off[3] + i + 3);
+                    let jly = tables.get(Table::LensY, off[4] + i + 4);
+                    let lens_cell = tables.location[lens_perm[s] as usize];
+                    let (lx, ly) = match spec.lens_shape {
+                        LensShape::OriginalSquare => {
+                            (lens_cell[0] - 0.5 / fns + jlx, lens_cell[1] - 0.5 / fns + jly)
+                        }
+                        LensShape::Disk => concentric_disk(
+                            (lens_cell[0] + jlx).min(1.0),
+                            (lens_cell[1] + jly).min(1.0),
+                        ),
+                    };
+                    self.lx[k] = lx;
+                    self.ly[k] = ly;
+                }
+            }
+        }
+        self.reach_space.clear();
+        self.reach_time.clear();
+        for slice in 0..ns {
+            let mut rs = [f32::INFINITY, f32::NEG_INFINITY, f32::INFINITY, f32::NEG_INFINITY];
+            let mut rt = rs;
+            for pixel in 0..p_count {
+                let (px, py) = ((pixel as u32 % bw) as f32, (pixel as u32 / bw) as f32);
+                let ks = slice * p_count + pixel;
+                let kt = self.by_time[ks] as usize * p_count + pixel;
+                for (r, k) in [(&mut rs, ks), (&mut rt, kt)] {
+                    let (dx, dy) = (self.x[k] - px, self.y[k] - py);
+                    r[0] = r[0].min(dx);
+                    r[1] = r[1].max(dx);
+                    r[2] = r[2].min(dy);
+                    r[3] = r[3].max(dy);
+                }
+            }
+            self.reach_space.push(rs);
+            self.reach_time.push(rt);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn spec(pattern: Pattern, pairing: Pairing) -> SampleSpec {
+        SampleSpec { pattern, pairing, lens_shape: LensShape::Disk, seed: 5 }
+    }
+
+    fn make(pattern: Pattern, pairing: Pairing, nx: u32, ny: u32) -> (Tables, BucketSamples) {
+        let t = Tables::new(nx, ny, 64, pattern != Pattern::Regular, 5, false, false);
+        let mut b = BucketSamples::default();
+        b.generate(&t, &spec(pattern, pairing), 3, 16, 8, 8, 8);
+        (t, b)
+    }
+
+    #[test]
+    fn every_pattern_puts_one_sample_in_each_stratum_of_every_pixel() {
+        for pattern in [Pattern::Regular, Pattern::Fig5, Pattern::Fig6, Pattern::Fig7] {
+            let (t, b) = make(pattern, Pairing::Decorrelated, 4, 3);
+            for pixel in 0..64usize {
+                let (px, py) = ((pixel % 8) as f32, (pixel / 8) as f32);
+                let mut seen = [false; 12];
+                for s in 0..12 {
+                    let k = s * 64 + pixel;
+                    let cx = ((b.x[k] - px) * 4.0).floor();
+                    let cy = ((b.y[k] - py) * 3.0).floor();
+                    assert!((0.0..4.0).contains(&cx) && (0.0..3.0).contains(&cy), "{pattern:?}");
+                    assert_eq!([cx / 4.0, cy / 3.0], t.location[s]);
+                    let q = (cx * 3.0 + cy) as usize;
+                    assert!(!seen[q]);
+                    seen[q] = true;
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn fig5_repeats_the_pattern_and_fig6_does_not() {
+        let (_, b5) = make(Pattern::Fig5, Pairing::Original, 2, 2);
+        let (_, b6) = make(Pattern::Fig6, Pairing::Original, 2, 2);
+        let frac = |b: &BucketSamples, k: usize, p: usize| b.x[k] - (p % 8) as f32;
+        for s in 0..4 {
+            let first5 = frac(&b5, s * 64, 0);
+            let first6 = frac(&b6, s * 64, 0);
+            // Equal up to the rounding of `x + frac - x` at x < 8 (a few ulps of 8).
+            assert!((1..64).all(|p| (frac(&b5, s * 64 + p, p) - first5).abs() < 4e-6));
+            assert!((1..64).any(|p| (frac(&b6, s * 64 + p, p) - first6).abs() > 1e-3));
+        }
+    }
+
+    #[test]
+    fn time_slices_hold_their_stratum() {
+        for pairing in [Pairing::Original, Pairing::Decorrelated] {
+            let (_, b) = make(Pattern::Fig6, pairing, 4, 4);
+            for tau in 0..16 {
+                for pixel in 0..64 {
+                    let s = b.by_time[tau * 64 + pixel] as usize;
+                    let t = b.t[s * 64 + pixel];
+                    assert!(t >= tau as f32 / 16.0 && t < (tau + 1) as f32 / 16.0);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn disk_lens_is_in_the_unit_disk_and_centred() {
+        let (_, b) = make(Pattern::Fig6, Pairing::Decorrelated, 4, 4);
+        let n = b.lx.len() as f32;
+        let (mut mx, mut my) = (0.0, 0.0);
+        for k in 0..b.lx.len() {
+            assert!(b.lx[k].hypot(b.ly[k]) <= 1.0 + 1e-6);
+            mx += b.lx[k] / n;
+            my += b.ly[k] / n;
+        }
+        // 1024 stratified samples of a centred disk: the mean is far inside 0.05.
+        assert!(mx.abs() < 0.05 && my.abs() < 0.05, "{mx} {my}");
+    }
+}
