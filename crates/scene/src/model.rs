@@ -209,10 +209,14 @@ pub struct Original {
     pub bartlett_filter: bool,
     /// Sinc kernel centre value 1 instead of its limit 2 (2.3).
     pub sinc_filter: bool,
+    /// Matte and opacity of a sample taken from the deepest composited surface, so a matte
+    /// behind a transparent surface drops the whole sample (3.14).
+    pub matte: bool,
 }
 
 /// A light source.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum Light {
     /// Light arriving equally from everywhere.
     Ambient {
@@ -281,6 +285,7 @@ pub struct Object {
 
 /// Shapes. Quadrics follow RenderMan: they sweep around the object's z axis.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum Shape {
     /// Sphere of `radius`, cut to `zmin..zmax`, swept through `thetamax` degrees.
     Sphere {
@@ -364,6 +369,7 @@ pub enum Shape {
 
 /// One step of an object's transform.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum Transform {
     /// Move by a vector.
     Translate(V3),
@@ -382,6 +388,7 @@ pub enum Transform {
 
 /// Surface materials. Colours and opacities are per channel in [0, 1].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum Material {
     /// Unlit colour.
     Constant {

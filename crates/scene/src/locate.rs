@@ -1,0 +1,677 @@
+//! Tolerant RON scanner that maps field paths (`objects[0].shape.radius`) to source positions.
+//!
+//! Invariants: never panics and never recurses, whatever the input (malformed RON, unclosed
+//! strings, comments or brackets included); positions are 1-based lines split on `'\n'` and
+//! 1-based columns counted in `char`s, exactly as ron counts them, so the two can be compared.
+//! Path rules: struct fields by name, list and tuple elements by index, a named body
+//! (`Sphere(..)`, `Some(..)`) is transparent, and a named body holding exactly one positional
+//! element (a newtype variant such as `Translate((..))`) gives that element its own path.
+
+/// A position in the source: 1-based line and 1-based column in `char`s.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub(crate) struct Pos {
+    /// Line, from 1.
+    pub line: usize,
+    /// Column in characters, from 1.
+    pub col: usize,
+}
+
+impl Pos {
+    const START: Pos = Pos { line: 1, col: 1 };
+    /// After any position in any text.
+    pub(crate) const MAX: Pos = Pos { line: usize::MAX, col: usize::MAX };
+}
+
+/// What a token is; only what the path builder needs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Tok<'a> {
+    /// `(`, `[` or `{`, holding the matching closer.
+    Open(char),
+    /// `)`, `]` or `}`.
+    Close(char),
+    /// `:`.
+    Colon,
+    /// `,`.
+    Comma,
+    /// An identifier (raw identifiers without their `r#`).
+    Ident(&'a str),
+    /// A number, string, character or byte literal.
+    Atom,
+    /// Anything else (`#`, `!`, stray punctuation).
+    Other(char),
+}
+
+/// A token with the position of its first and last character.
+#[derive(Debug, Clone, Copy)]
+struct Token<'a> {
+    tok: Tok<'a>,
+    start: Pos,
+    end: Pos,
+}
+
+/// A character cursor that tracks line and column.
+struct Cursor<'a> {
+    src: &'a str,
+    at: usize,
+    pos: Pos,
+    last: Pos,
+}
+
+impl<'a> Cursor<'a> {
+    fn new(src: &'a str) -> Self {
+        Cursor { src, at: 0, pos: Pos::START, last: Pos::START }
+    }
+
+    fn rest(&self) -> &'a str {
+        self.src.get(self.at..).unwrap_or("")
+    }
+
+    fn peek(&self) -> Option<char> {
+        self.rest().chars().next()
+    }
+
+    fn peek_nth(&self, n: usize) -> Option<char> {
+        self.rest().chars().nth(n)
+    }
+
+    fn bump(&mut self) -> Option<char> {
+        let c = self.peek()?;
+        self.at += c.len_utf8();
+        self.last = self.pos;
+        if c == '\n' {
+            self.pos = Pos { line: self.pos.line.saturating_add(1), col: 1 };
+        } else {
+            self.pos.col = self.pos.col.saturating_add(1);
+        }
+        Some(c)
+    }
+
+    fn bump_while(&mut self, keep: impl Fn(char) -> bool) {
+        while let Some(c) = self.peek() {
+            if !keep(c) {
+                break;
+            }
+            self.bump();
+        }
+    }
+
+    /// Skips a (nested) block comment; the cursor is on its `/*`. Stops at end of input.
+    /// Returns false if the comment is not closed.
+    fn block_comment(&mut self) -> bool {
+        self.bump();
+        self.bump();
+        let mut level = 1usize;
+        while level > 0 {
+            match self.bump() {
+                None => return false,
+                Some('/') if self.peek() == Some('*') => {
+                    self.bump();
+                    level += 1;
+                }
+                Some('*') if self.peek() == Some('/') => {
+                    self.bump();
+                    level -= 1;
+                }
+                Some(_) => {}
+            }
+        }
+        true
+    }
+
+    /// Skips a quoted string body with backslash escapes; the cursor is past the opening quote.
+    fn quoted(&mut self, quote: char) {
+        while let Some(c) = self.bump() {
+            if c == '\\' {
+                self.bump();
+            } else if c == quote {
+                return;
+            } else if quote == '\'' && c == '\n' {
+                // A character literal never spans lines: stop so one stray quote
+                // does not swallow the rest of the file.
+                return;
+            }
+        }
+    }
+
+    /// Skips a raw string; the cursor is on the `#`s (if any) before the opening quote.
+    fn raw_string(&mut self, hashes: usize) {
+        for _ in 0..hashes {
+            self.bump();
+        }
+        self.bump(); // opening quote
+        let closer: String = std::iter::once('"').chain(std::iter::repeat_n('#', hashes)).collect();
+        match self.rest().find(closer.as_str()) {
+            Some(len) => {
+                let stop = self.at + len + closer.len();
+                while self.at < stop && self.bump().is_some() {}
+            }
+            None => while self.bump().is_some() {},
+        }
+    }
+
+    /// Number of `#` at character offset `from` of the rest.
+    fn hashes_from(&self, from: usize) -> usize {
+        self.rest().chars().skip(from).take_while(|&c| c == '#').count()
+    }
+}
+
+fn is_ident_start(c: char) -> bool {
+    c == '_' || c.is_alphabetic()
+}
+
+fn is_ident_continue(c: char) -> bool {
+    c == '_' || c.is_alphanumeric()
+}
+
+/// The tokens of a text, with where it ends and where an unclosed block comment starts.
+struct Tokens<'a> {
+    tokens: Vec<Token<'a>>,
+    eof: Pos,
+    unclosed_comment: Option<Pos>,
+}
+
+/// Splits `src` into tokens, skipping whitespace and comments. Total on any input.
+fn tokenize(src: &str) -> Tokens<'_> {
+    let mut cur = Cursor::new(src);
+    let mut out = Vec::new();
+    let mut unclosed_comment = None;
+    while let Some(c) = cur.peek() {
+        if c.is_whitespace() {
+            cur.bump();
+            continue;
+        }
+        let start = cur.pos;
+        let at = cur.at;
+        let tok = match c {
+            '/' if cur.peek_nth(1) == Some('/') => {
+                cur.bump_while(|c| c != '\n');
+                continue;
+            }
+            '/' if cur.peek_nth(1) == Some('*') => {
+                if !cur.block_comment() {
+                    unclosed_comment = Some(start);
+                }
+                continue;
+            }
+            '(' | '[' | '{' => {
+                cur.bump();
+                Tok::Open(match c {
+                    '(' => ')',
+                    '[' => ']',
+                    _ => '}',
+                })
+            }
+            ')' | ']' | '}' => {
+                cur.bump();
+                Tok::Close(c)
+            }
+            ':' => {
+                cur.bump();
+                Tok::Colon
+            }
+            ',' => {
+                cur.bump();
+                Tok::Comma
+            }
+            '"' | '\'' => {
+                cur.bump();
+                cur.quoted(c);
+                Tok::Atom
+            }
+            'b' if matches!(cur.peek_nth(1), Some('"' | '\'')) => {
+                cur.bump();
+                if let Some(q) = cur.bump() {
+                    cur.quoted(q);
+                }
+                Tok::Atom
+            }
+            'b' if cur.peek_nth(1) == Some('r')
+                && cur.peek_nth(2 + cur.hashes_from(2)) == Some('"') =>
+            {
+                let hashes = cur.hashes_from(2);
+                cur.bump();
+                cur.bump();
+                cur.raw_string(hashes);
+                Tok::Atom
+            }
+            'r' if cur.peek_nth(1 + cur.hashes_from(1)) == Some('"') => {
+                let hashes = cur.hashes_from(1);
+                cur.bump();
+                cur.raw_string(hashes);
+                Tok::Atom
+            }
+            'r' if cur.peek_nth(1) == Some('#')
+                && cur
+                    .peek_nth(2)
+                    .is_some_and(|c| is_ident_continue(c) || matches!(c, '.' | '+' | '-')) =>
+            {
+                cur.bump();
+                cur.bump();
+                let from = cur.at;
+                cur.bump_while(|c| is_ident_continue(c) || matches!(c, '.' | '+' | '-'));
+                Tok::Ident(src.get(from..cur.at).unwrap_or(""))
+            }
+            c if c.is_ascii_digit() || matches!(c, '+' | '-' | '.') => {
+                let mut prev = c;
+                cur.bump();
+                while let Some(n) = cur.peek() {
+                    let exponent_sign = matches!(n, '+' | '-') && matches!(prev, 'e' | 'E');
+                    if !(is_ident_continue(n) || n == '.' || exponent_sign) {
+                        break;
+                    }
+                    prev = n;
+                    cur.bump();
+                }
+                Tok::Atom
+            }
+            c if is_ident_start(c) => {
+                cur.bump_while(is_ident_continue);
+                Tok::Ident(src.get(at..cur.at).unwrap_or(""))
+            }
+            other => {
+                cur.bump();
+                Tok::Other(other)
+            }
+        };
+        out.push(Token { tok, start, end: cur.last });
+    }
+    Tokens { tokens: out, eof: cur.pos, unclosed_comment }
+}
+
+/// One step of a path.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Seg<'a> {
+    /// A top-level value.
+    Root,
+    /// A struct field.
+    Field(&'a str),
+    /// A list or tuple element.
+    Index(usize),
+}
+
+/// One value in the source.
+#[derive(Debug, Clone)]
+struct Node<'a> {
+    parent: Option<usize>,
+    seg: Seg<'a>,
+    /// First character of the value.
+    start: Pos,
+    /// Last character of the value (its closing bracket), or end of input if unclosed.
+    end: Pos,
+    depth: usize,
+    /// A named body with exactly one positional element: that element shares this path.
+    newtype: bool,
+}
+
+/// Where the next token goes in an open group.
+#[derive(Debug, Clone, Copy)]
+enum Expect<'a> {
+    /// A new element (after the opener or a comma).
+    Item,
+    /// The value of the named field.
+    Value(&'a str),
+    /// A comma or the closer (an element was just read).
+    Separator,
+}
+
+/// An open `(..)`, `[..]` or `{..}`.
+struct Frame<'a> {
+    node: usize,
+    closer: char,
+    named: bool,
+    positional: usize,
+    fields: usize,
+    expect: Expect<'a>,
+}
+
+/// The values of a RON text, with their paths and positions.
+pub(crate) struct SourceMap<'a> {
+    nodes: Vec<Node<'a>>,
+    tokens: Vec<Token<'a>>,
+    /// Where a block comment that never ends starts.
+    pub unclosed_comment: Option<Pos>,
+}
+
+impl<'a> SourceMap<'a> {
+    /// Scans `src` tolerantly: malformed input yields a best-effort map, never a failure.
+    pub(crate) fn scan(src: &'a str) -> Self {
+        let Tokens { tokens, eof, unclosed_comment } = tokenize(src);
+        let mut nodes: Vec<Node<'a>> = Vec::new();
+        let mut stack: Vec<Frame<'a>> = Vec::new();
+        // Open frames per closer kind, so a stray closer costs O(1), not a scan of the stack.
+        let mut open = OpenCounts::default();
+        let mut k = 0;
+        while let Some(token) = tokens.get(k) {
+            k += 1;
+            let next = tokens.get(k).map(|t| t.tok);
+            match token.tok {
+                // `#![enable(..)]` attributes before the top-level value: skip them.
+                Tok::Other('#') if stack.is_empty() => {
+                    k = skip_attribute(&tokens, k);
+                }
+                Tok::Ident(name)
+                    if next == Some(Tok::Colon)
+                        && stack.last().is_some_and(|f| {
+                            f.closer == ')' && !matches!(f.expect, Expect::Value(_))
+                        }) =>
+                {
+                    k += 1;
+                    if let Some(frame) = stack.last_mut() {
+                        frame.expect = Expect::Value(name);
+                    }
+                }
+                Tok::Ident(_) if next == Some(Tok::Open(')')) => {
+                    k += 1;
+                    let node = push_value(&mut nodes, &mut stack, token.start);
+                    open.add(')');
+                    stack.push(open_frame(node, ')', true));
+                }
+                Tok::Open(closer) => {
+                    let node = push_value(&mut nodes, &mut stack, token.start);
+                    open.add(closer);
+                    stack.push(open_frame(node, closer, false));
+                }
+                Tok::Ident(_) | Tok::Atom => {
+                    let node = push_value(&mut nodes, &mut stack, token.start);
+                    if let Some(n) = nodes.get_mut(node) {
+                        n.end = token.end;
+                    }
+                }
+                // Every frame above the matching one is popped with it, so the scan is
+                // amortised over the pops and the whole loop stays linear.
+                Tok::Close(c) if open.has(c) => {
+                    while let Some(frame) = stack.pop() {
+                        open.remove(frame.closer);
+                        if frame.closer == c {
+                            close_frame(&mut nodes, &frame, token.end);
+                            break;
+                        }
+                        close_frame(&mut nodes, &frame, token.start);
+                    }
+                }
+                Tok::Close(_) => {}
+                Tok::Comma => {
+                    if let Some(frame) = stack.last_mut() {
+                        frame.expect = Expect::Item;
+                    }
+                }
+                Tok::Colon | Tok::Other(_) => {}
+            }
+        }
+        while let Some(frame) = stack.pop() {
+            close_frame(&mut nodes, &frame, eof);
+        }
+        SourceMap { nodes, tokens, unclosed_comment }
+    }
+
+    /// The path of node `index`, e.g. `objects[0].shape.radius` (empty for the top level).
+    fn path_of(&self, index: usize) -> String {
+        let mut segs = Vec::new();
+        let mut at = Some(index);
+        while let Some(i) = at {
+            let Some(node) = self.nodes.get(i) else { break };
+            let transparent =
+                node.parent.and_then(|p| self.nodes.get(p)).is_some_and(|parent| parent.newtype);
+            if !transparent {
+                segs.push(node.seg);
+            }
+            at = node.parent;
+        }
+        let mut path = String::new();
+        for seg in segs.iter().rev() {
+            push_seg(&mut path, *seg);
+        }
+        path
+    }
+
+    /// Position of the value at `path`, else of its nearest ancestor that is written in the
+    /// source (the top level excluded), else `None`.
+    pub(crate) fn find(&self, path: &str) -> Option<Pos> {
+        let mut paths: Vec<String> = Vec::with_capacity(self.nodes.len());
+        for node in &self.nodes {
+            let parent = node.parent.and_then(|p| paths.get(p).map(|s| (s, p)));
+            let path = match parent {
+                None => {
+                    let mut s = String::new();
+                    push_seg(&mut s, node.seg);
+                    s
+                }
+                Some((base, p)) => {
+                    let mut s = base.clone();
+                    if !self.nodes.get(p).is_some_and(|n| n.newtype) {
+                        push_seg(&mut s, node.seg);
+                    }
+                    s
+                }
+            };
+            paths.push(path);
+        }
+        let mut want = path;
+        while !want.is_empty() {
+            if let Some(i) = paths.iter().position(|p| p == want) {
+                return self.nodes.get(i).map(|n| n.start);
+            }
+            want = parent_path(want);
+        }
+        None
+    }
+
+    /// The path of the innermost value whose extent contains `pos` (empty if none).
+    pub(crate) fn path_at(&self, pos: Pos) -> String {
+        let mut best: Option<(usize, usize)> = None;
+        for (i, node) in self.nodes.iter().enumerate() {
+            if node.start <= pos && pos <= node.end && best.is_none_or(|(d, _)| node.depth > d) {
+                best = Some((node.depth, i));
+            }
+        }
+        best.map(|(_, i)| self.path_of(i)).unwrap_or_default()
+    }
+
+    /// True if no token ends at or after `pos` (only whitespace and comments remain).
+    pub(crate) fn is_past_last_token(&self, pos: Pos) -> bool {
+        self.tokens.last().is_none_or(|t| t.end < pos)
+    }
+
+    /// Moves `start` forward over whitespace and comments to the next token, without passing
+    /// `limit` (when `limit` is after `start`). A position inside a token is kept.
+    pub(crate) fn snap(&self, start: Pos, limit: Pos) -> Pos {
+        let first_after = self.tokens.iter().find(|t| t.end >= start);
+        match first_after {
+            Some(t) if t.start <= start => start,
+            Some(t) if t.start <= limit.max(start) => t.start,
+            _ => start,
+        }
+    }
+}
+
+/// Skips the rest of an attribute whose `#` was just read: `!`, then one bracketed group.
+/// Returns the index of the first token after it.
+fn skip_attribute(tokens: &[Token<'_>], mut k: usize) -> usize {
+    if tokens.get(k).map(|t| t.tok) == Some(Tok::Other('!')) {
+        k += 1;
+    }
+    if tokens.get(k).map(|t| t.tok) != Some(Tok::Open(']')) {
+        return k;
+    }
+    let mut depth = 0usize;
+    while let Some(t) = tokens.get(k) {
+        k += 1;
+        match t.tok {
+            Tok::Open(_) => depth += 1,
+            Tok::Close(_) => {
+                depth = depth.saturating_sub(1);
+                if depth == 0 {
+                    break;
+                }
+            }
+            _ => {}
+        }
+    }
+    k
+}
+
+/// How many frames of each kind are open.
+#[derive(Default)]
+struct OpenCounts {
+    paren: usize,
+    bracket: usize,
+    brace: usize,
+}
+
+impl OpenCounts {
+    fn slot(&mut self, closer: char) -> &mut usize {
+        match closer {
+            ')' => &mut self.paren,
+            ']' => &mut self.bracket,
+            _ => &mut self.brace,
+        }
+    }
+
+    fn add(&mut self, closer: char) {
+        *self.slot(closer) += 1;
+    }
+
+    fn remove(&mut self, closer: char) {
+        let n = self.slot(closer);
+        *n = n.saturating_sub(1);
+    }
+
+    fn has(&mut self, closer: char) -> bool {
+        *self.slot(closer) > 0
+    }
+}
+
+fn open_frame<'a>(node: usize, closer: char, named: bool) -> Frame<'a> {
+    Frame { node, closer, named, positional: 0, fields: 0, expect: Expect::Item }
+}
+
+fn close_frame(nodes: &mut [Node<'_>], frame: &Frame<'_>, end: Pos) {
+    if let Some(node) = nodes.get_mut(frame.node) {
+        node.end = end.max(node.start);
+        node.newtype = frame.named && frame.positional == 1 && frame.fields == 0;
+    }
+}
+
+/// Records a value starting at `start` as the next element of the innermost open group.
+fn push_value<'a>(nodes: &mut Vec<Node<'a>>, stack: &mut [Frame<'a>], start: Pos) -> usize {
+    let (parent, seg, depth) = match stack.last_mut() {
+        None => (None, Seg::Root, 0),
+        Some(frame) => {
+            let seg = match frame.expect {
+                Expect::Value(name) => {
+                    frame.fields += 1;
+                    Seg::Field(name)
+                }
+                Expect::Item | Expect::Separator => {
+                    frame.positional += 1;
+                    Seg::Index(frame.positional - 1)
+                }
+            };
+            frame.expect = Expect::Separator;
+            let depth = nodes.get(frame.node).map_or(0, |n| n.depth + 1);
+            (Some(frame.node), seg, depth)
+        }
+    };
+    nodes.push(Node { parent, seg, start, end: start, depth, newtype: false });
+    nodes.len() - 1
+}
+
+fn push_seg(path: &mut String, seg: Seg<'_>) {
+    match seg {
+        Seg::Root => {}
+        Seg::Field(name) => {
+            if !path.is_empty() {
+                path.push('.');
+            }
+            path.push_str(name);
+        }
+        Seg::Index(i) => {
+            path.push('[');
+            path.push_str(&i.to_string());
+            path.push(']');
+        }
+    }
+}
+
+/// `a.b[2]` -> `a.b`, `a.b` -> `a`, `a` -> ``.
+pub(crate) fn parent_path(path: &str) -> &str {
+    let cut = if path.ends_with(']') { path.rfind('[') } else { path.rfind('.') };
+    cut.and_then(|i| path.get(..i)).unwrap_or("")
+}
+
+/// Appends a field name to a path (`""` + `a` is `a`).
+pub(crate) fn join(base: &str, field: &str) -> String {
+    if base.is_empty() { field.to_string() } else { format!("{base}.{field}") }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn at(line: usize, col: usize) -> Option<Pos> {
+        Some(Pos { line, col })
+    }
+
+    #[test]
+    fn fields_lists_tuples_and_variants() {
+        let src = "Scene(\n  image: (width: 1, height: 2),\n  objects: [(shape: Sphere(radius: -1.0)),\n    (shape: Mesh(faces: [[0, 1, 2], [3, 4, 5, 6, 7]]))],\n  hider: (pixel_samples: (4, 0)),\n)";
+        let map = SourceMap::scan(src);
+        assert_eq!(map.find("image.height"), at(2, 29));
+        assert_eq!(map.find("objects[0].shape.radius"), at(3, 36));
+        assert_eq!(map.find("objects[1].shape.faces[1][4]"), at(4, 50));
+        assert_eq!(map.find("hider.pixel_samples[1]"), at(5, 30));
+        // Missing: the nearest ancestor written in the source.
+        assert_eq!(map.find("objects[0].shape.zmin"), at(3, 21));
+        assert_eq!(map.find("camera.fov"), None);
+    }
+
+    #[test]
+    fn newtypes_are_transparent() {
+        let src = "(t: [Translate((1, 2, 3)), Scale((1, 0, 1))], lens: Some((f_stop: 2)))";
+        let map = SourceMap::scan(src);
+        assert_eq!(map.find("t[0]"), at(1, 6));
+        assert_eq!(map.find("t[1][1]"), at(1, 38));
+        assert_eq!(map.find("lens.f_stop"), at(1, 67));
+    }
+
+    #[test]
+    fn strings_comments_and_raw_literals_are_skipped() {
+        let src = "#![enable(implicit_some)]\n( /* a: (1) /* nested */ */ a: \"x:(\\\"\", // b: 9\n b: r#\"]\"#, c: 'x', d: r#e, f: [1e-3, -inf])";
+        let map = SourceMap::scan(src);
+        assert_eq!(map.find("a"), at(2, 32));
+        assert_eq!(map.find("b"), at(3, 5));
+        assert_eq!(map.find("c"), at(3, 16));
+        assert_eq!(map.find("d"), at(3, 24));
+        assert_eq!(map.find("f[1]"), at(3, 39));
+        assert_eq!(map.find("e"), None);
+    }
+
+    #[test]
+    fn innermost_value_at_a_position() {
+        let src = "(a: (b: [1, 2], c: 3), d: 4)";
+        let map = SourceMap::scan(src);
+        assert_eq!(map.path_at(Pos { line: 1, col: 13 }), "a.b[1]");
+        assert_eq!(map.path_at(Pos { line: 1, col: 14 }), "a.b");
+        assert_eq!(map.path_at(Pos { line: 1, col: 15 }), "a");
+        assert_eq!(map.path_at(Pos { line: 1, col: 17 }), "a");
+        assert_eq!(map.path_at(Pos { line: 1, col: 2 }), "");
+    }
+
+    #[test]
+    fn malformed_input_is_tolerated() {
+        for src in ["", "(", ")", "((a: [", "\"unclosed", "/* open", "r#\"x", "a: : ,, ]] (", "#"] {
+            let map = SourceMap::scan(src);
+            let _ = map.find("a.b[0]");
+            let _ = map.path_at(Pos { line: 1, col: 1 });
+        }
+    }
+
+    #[test]
+    fn parent_paths() {
+        assert_eq!(parent_path("a.b[2]"), "a.b");
+        assert_eq!(parent_path("a.b"), "a");
+        assert_eq!(parent_path("a"), "");
+        assert_eq!(join("", "x"), "x");
+        assert_eq!(join("a", "x"), "a.x");
+    }
+}

@@ -1,0 +1,393 @@
+//! Semantic validation of a deserialised [`Scene`]: ranges, finiteness and consistency.
+//!
+//! Invariants: checks run in a fixed order (image, camera, hider, lights, objects, each in
+//! field order) and stop at the first failure, so the reported error is stable; each failure
+//! names the path of the offending value as the source map spells it (`objects[0].shape.radius`).
+//! Every `f32` is checked finite before any range test on it. No check can panic: geometric
+//! tests are done in `f64`, where products of finite `f32`s cannot overflow.
+
+use glam::{DMat4, DVec3, DVec4};
+
+use crate::model::{
+    Camera, Hider, Image, Light, Material, Object, Rgb, Scene, Shape, Transform, V3,
+};
+
+/// A validation failure: the path of the value at fault and what is wrong with it.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(crate) struct Issue {
+    pub path: String,
+    pub message: String,
+}
+
+type Check = Result<(), Issue>;
+
+fn fail(path: impl Into<String>, message: impl Into<String>) -> Check {
+    Err(Issue { path: path.into(), message: message.into() })
+}
+
+/// The first rule `scene` breaks, if any.
+pub(crate) fn check(scene: &Scene) -> Option<Issue> {
+    check_scene(scene).err()
+}
+
+fn check_scene(scene: &Scene) -> Check {
+    image(&scene.image)?;
+    camera(&scene.camera)?;
+    hider(&scene.hider)?;
+    for (i, light) in scene.lights.iter().enumerate() {
+        self::light(&format!("lights[{i}]"), light)?;
+    }
+    for (i, object) in scene.objects.iter().enumerate() {
+        self::object(&format!("objects[{i}]"), object)?;
+    }
+    Ok(())
+}
+
+/// `value` must be finite.
+fn finite(path: &str, value: f32) -> Check {
+    if value.is_finite() { Ok(()) } else { fail(path, format!("must be finite, got {value}")) }
+}
+
+/// Every component finite.
+fn finite_all(path: &str, values: &[f32]) -> Check {
+    for (i, v) in values.iter().enumerate() {
+        finite(&format!("{path}[{i}]"), *v)?;
+    }
+    Ok(())
+}
+
+/// Finite and `> 0`.
+fn positive(path: &str, value: f32) -> Check {
+    finite(path, value)?;
+    if value > 0.0 { Ok(()) } else { fail(path, format!("must be > 0, got {value}")) }
+}
+
+/// Finite and `>= 0`.
+fn non_negative(path: &str, value: f32) -> Check {
+    finite(path, value)?;
+    if value >= 0.0 { Ok(()) } else { fail(path, format!("must be >= 0, got {value}")) }
+}
+
+/// Integer in `lo..=hi`.
+fn int_in(path: &str, value: u32, lo: u32, hi: u32) -> Check {
+    if (lo..=hi).contains(&value) {
+        Ok(())
+    } else {
+        fail(path, format!("must be in {lo}..={hi}, got {value}"))
+    }
+}
+
+/// A sweep angle in `(0, 360]` degrees.
+fn sweep(path: &str, degrees: f32) -> Check {
+    finite(path, degrees)?;
+    if degrees > 0.0 && degrees <= 360.0 {
+        Ok(())
+    } else {
+        fail(path, format!("must be in (0, 360] degrees, got {degrees}"))
+    }
+}
+
+/// A colour or opacity: every channel finite and in `[0, 1]`.
+fn unit_rgb(path: &str, rgb: &Rgb) -> Check {
+    for (i, v) in rgb.iter().enumerate() {
+        let p = format!("{path}[{i}]");
+        finite(&p, *v)?;
+        if !(0.0..=1.0).contains(v) {
+            return fail(p, format!("must be in [0, 1], got {v}"));
+        }
+    }
+    Ok(())
+}
+
+fn dvec(v: &V3) -> DVec3 {
+    DVec3::new(f64::from(v[0]), f64::from(v[1]), f64::from(v[2]))
+}
+
+fn image(image: &Image) -> Check {
+    int_in("image.width", image.width, 1, 65536)?;
+    int_in("image.height", image.height, 1, 65536)
+}
+
+fn camera(cam: &Camera) -> Check {
+    finite_all("camera.eye", &cam.eye)?;
+    finite_all("camera.look_at", &cam.look_at)?;
+    finite_all("camera.up", &cam.up)?;
+    finite("camera.fov", cam.fov)?;
+    if !(cam.fov > 0.0 && cam.fov < 180.0) {
+        return fail("camera.fov", format!("must be in (0, 180) degrees, got {}", cam.fov));
+    }
+    positive("camera.hither", cam.hither)?;
+    finite("camera.yon", cam.yon)?;
+    if cam.yon <= cam.hither {
+        return fail("camera.yon", format!("must be > hither ({}), got {}", cam.hither, cam.yon));
+    }
+    if cam.eye == cam.look_at {
+        return fail("camera.look_at", "must differ from eye");
+    }
+    let view = dvec(&cam.look_at) - dvec(&cam.eye);
+    let up = dvec(&cam.up);
+    if up == DVec3::ZERO {
+        return fail("camera.up", "must be non-zero");
+    }
+    if up.cross(view).length() <= 1e-6 * up.length() * view.length() {
+        return fail("camera.up", "must not be parallel to the view direction (look_at - eye)");
+    }
+    finite("camera.shutter.open", cam.shutter.open)?;
+    finite("camera.shutter.close", cam.shutter.close)?;
+    if cam.shutter.close < cam.shutter.open {
+        return fail(
+            "camera.shutter.close",
+            format!("must be >= shutter.open ({}), got {}", cam.shutter.open, cam.shutter.close),
+        );
+    }
+    if let Some(lens) = &cam.lens {
+        positive("camera.lens.focal_length", lens.focal_length)?;
+        positive("camera.lens.f_stop", lens.f_stop)?;
+        positive("camera.lens.focal_distance", lens.focal_distance)?;
+    }
+    Ok(())
+}
+
+fn hider(h: &Hider) -> Check {
+    int_in("hider.pixel_samples[0]", h.pixel_samples.0, 1, 64)?;
+    int_in("hider.pixel_samples[1]", h.pixel_samples.1, 1, 64)?;
+    finite("hider.filter.width", h.filter.width)?;
+    if !(h.filter.width > 0.0 && h.filter.width <= 16.0) {
+        return fail(
+            "hider.filter.width",
+            format!("must be in (0, 16] pixels, got {}", h.filter.width),
+        );
+    }
+    int_in("hider.bucket_size[0]", h.bucket_size.0, 1, 1024)?;
+    int_in("hider.bucket_size[1]", h.bucket_size.1, 1, 1024)?;
+    positive("hider.shading_rate", h.shading_rate)?;
+    if h.max_grid_size < 1 {
+        return fail("hider.max_grid_size", format!("must be >= 1, got {}", h.max_grid_size));
+    }
+    Ok(())
+}
+
+fn light(at: &str, light: &Light) -> Check {
+    let (color, intensity) = match light {
+        Light::Ambient { color, intensity } => (color, intensity),
+        Light::Distant { from, to, color, intensity } => {
+            finite_all(&format!("{at}.from"), from)?;
+            finite_all(&format!("{at}.to"), to)?;
+            if from == to {
+                return fail(format!("{at}.to"), "must differ from `from`");
+            }
+            (color, intensity)
+        }
+        Light::Point { from, color, intensity } => {
+            finite_all(&format!("{at}.from"), from)?;
+            (color, intensity)
+        }
+    };
+    for (i, v) in color.iter().enumerate() {
+        non_negative(&format!("{at}.color[{i}]"), *v)?;
+    }
+    non_negative(&format!("{at}.intensity"), *intensity)
+}
+
+fn object(at: &str, object: &Object) -> Check {
+    shape(&format!("{at}.shape"), &object.shape)?;
+    for (i, t) in object.transform.iter().enumerate() {
+        transform(&format!("{at}.transform[{i}]"), t)?;
+    }
+    material(&format!("{at}.material"), &object.material)
+}
+
+fn shape(at: &str, shape: &Shape) -> Check {
+    let field = |name: &str| format!("{at}.{name}");
+    match shape {
+        Shape::Sphere { radius, zmin, zmax, thetamax } => {
+            positive(&field("radius"), *radius)?;
+            if let Some(z) = zmin {
+                finite(&field("zmin"), *z)?;
+            }
+            if let Some(z) = zmax {
+                finite(&field("zmax"), *z)?;
+            }
+            let lo = zmin.unwrap_or(-radius).clamp(-radius, *radius);
+            let hi = zmax.unwrap_or(*radius).clamp(-radius, *radius);
+            if lo >= hi {
+                let culprit = if zmax.is_some() { "zmax" } else { "zmin" };
+                return fail(
+                    field(culprit),
+                    format!(
+                        "zmin must be < zmax once both are clamped to [-radius, radius], \
+                         got zmin {lo} and zmax {hi}"
+                    ),
+                );
+            }
+            sweep(&field("thetamax"), *thetamax)
+        }
+        Shape::Cylinder { radius, zmin, zmax, thetamax } => {
+            positive(&field("radius"), *radius)?;
+            finite(&field("zmin"), *zmin)?;
+            finite(&field("zmax"), *zmax)?;
+            if zmax <= zmin {
+                return fail(field("zmax"), format!("must be > zmin ({zmin}), got {zmax}"));
+            }
+            sweep(&field("thetamax"), *thetamax)
+        }
+        Shape::Cone { height, radius, thetamax } => {
+            finite(&field("height"), *height)?;
+            if *height == 0.0 {
+                return fail(field("height"), "must be non-zero, got 0");
+            }
+            positive(&field("radius"), *radius)?;
+            sweep(&field("thetamax"), *thetamax)
+        }
+        Shape::Disk { height, radius, thetamax } => {
+            finite(&field("height"), *height)?;
+            positive(&field("radius"), *radius)?;
+            sweep(&field("thetamax"), *thetamax)
+        }
+        Shape::Torus { major_radius, minor_radius, phimin, phimax, thetamax } => {
+            positive(&field("major_radius"), *major_radius)?;
+            positive(&field("minor_radius"), *minor_radius)?;
+            finite(&field("phimin"), *phimin)?;
+            finite(&field("phimax"), *phimax)?;
+            if phimax <= phimin {
+                return fail(field("phimax"), format!("must be > phimin ({phimin}), got {phimax}"));
+            }
+            if f64::from(*phimax) - f64::from(*phimin) > 360.0 {
+                return fail(
+                    field("phimax"),
+                    format!(
+                        "must be at most phimin + 360 ({}), got {phimax}",
+                        f64::from(*phimin) + 360.0
+                    ),
+                );
+            }
+            sweep(&field("thetamax"), *thetamax)
+        }
+        Shape::BilinearPatch { points } => {
+            for (i, p) in points.iter().enumerate() {
+                finite_all(&format!("{at}.points[{i}]"), p)?;
+            }
+            Ok(())
+        }
+        Shape::Mesh { points, faces, colors } => {
+            for (i, p) in points.iter().enumerate() {
+                finite_all(&format!("{at}.points[{i}]"), p)?;
+            }
+            if faces.is_empty() {
+                return fail(field("faces"), "must hold at least one face");
+            }
+            for (f, face) in faces.iter().enumerate() {
+                if !(3..=4).contains(&face.len()) {
+                    return fail(
+                        format!("{at}.faces[{f}]"),
+                        format!("a face must have 3 or 4 indices, got {}", face.len()),
+                    );
+                }
+                for (k, &index) in face.iter().enumerate() {
+                    if usize::try_from(index).unwrap_or(usize::MAX) >= points.len() {
+                        return fail(
+                            format!("{at}.faces[{f}][{k}]"),
+                            format!(
+                                "index {index} is out of range: the mesh has {} points",
+                                points.len()
+                            ),
+                        );
+                    }
+                }
+            }
+            if let Some(colors) = colors {
+                if colors.len() != points.len() {
+                    return fail(
+                        field("colors"),
+                        format!(
+                            "must have one colour per point ({}), got {}",
+                            points.len(),
+                            colors.len()
+                        ),
+                    );
+                }
+                for (i, c) in colors.iter().enumerate() {
+                    finite_all(&format!("{at}.colors[{i}]"), c)?;
+                }
+            }
+            Ok(())
+        }
+    }
+}
+
+fn transform(at: &str, t: &Transform) -> Check {
+    match t {
+        Transform::Translate(v) => finite_all(at, v),
+        Transform::Rotate { angle, axis } => {
+            finite(&format!("{at}.angle"), *angle)?;
+            finite_all(&format!("{at}.axis"), axis)?;
+            if axis.iter().all(|&a| a == 0.0) {
+                return fail(format!("{at}.axis"), "must be non-zero");
+            }
+            Ok(())
+        }
+        Transform::Scale(v) => {
+            finite_all(at, v)?;
+            for (i, s) in v.iter().enumerate() {
+                if *s == 0.0 {
+                    return fail(format!("{at}[{i}]"), "a scale factor must be non-zero, got 0");
+                }
+            }
+            Ok(())
+        }
+        Transform::Matrix(rows) => {
+            for (r, row) in rows.iter().enumerate() {
+                finite_all(&format!("{at}[{r}]"), row)?;
+            }
+            if rows[3] != [0.0, 0.0, 0.0, 1.0] {
+                let [a, b, c, d] = rows[3];
+                return fail(
+                    format!("{at}[3]"),
+                    format!(
+                        "the last row must be (0, 0, 0, 1): projective transforms are not \
+                         supported, got ({a}, {b}, {c}, {d})"
+                    ),
+                );
+            }
+            let row = |r: &[f32; 4]| {
+                DVec4::new(f64::from(r[0]), f64::from(r[1]), f64::from(r[2]), f64::from(r[3]))
+            };
+            let det = DMat4::from_cols(row(&rows[0]), row(&rows[1]), row(&rows[2]), row(&rows[3]))
+                .determinant();
+            if det.abs() <= 1e-12 {
+                return fail(
+                    at,
+                    format!(
+                        "the matrix must be invertible (|determinant| > 1e-12), got determinant {det}"
+                    ),
+                );
+            }
+            Ok(())
+        }
+    }
+}
+
+fn material(at: &str, m: &Material) -> Check {
+    let field = |name: &str| format!("{at}.{name}");
+    match m {
+        Material::Constant { color, opacity } => {
+            unit_rgb(&field("color"), color)?;
+            unit_rgb(&field("opacity"), opacity)
+        }
+        Material::Matte { color, opacity, ka, kd } => {
+            unit_rgb(&field("color"), color)?;
+            unit_rgb(&field("opacity"), opacity)?;
+            non_negative(&field("ka"), *ka)?;
+            non_negative(&field("kd"), *kd)
+        }
+        Material::Plastic { color, opacity, ka, kd, ks, roughness, specular_color } => {
+            unit_rgb(&field("color"), color)?;
+            unit_rgb(&field("opacity"), opacity)?;
+            non_negative(&field("ka"), *ka)?;
+            non_negative(&field("kd"), *kd)?;
+            non_negative(&field("ks"), *ks)?;
+            positive(&field("roughness"), *roughness)?;
+            unit_rgb(&field("specular_color"), specular_color)
+        }
+    }
+}

@@ -1,0 +1,97 @@
+//! docs/scene-format.md stays true: every complete example (a ```ron block starting with
+//! `Scene(`) parses and validates, and every fragment is valid in some place of a scene.
+
+use std::path::Path;
+
+use reyes_scene::parse;
+
+const DOC: &str = include_str!("../../../docs/scene-format.md");
+
+/// The ```ron blocks of the document, in order.
+fn ron_blocks() -> Vec<String> {
+    let mut blocks = Vec::new();
+    let mut current: Option<String> = None;
+    for line in DOC.lines() {
+        match current.as_mut() {
+            None if line.trim() == "```ron" => current = Some(String::new()),
+            None => {}
+            Some(_) if line.trim() == "```" => blocks.extend(current.take()),
+            Some(block) => {
+                block.push_str(line);
+                block.push('\n');
+            }
+        }
+    }
+    assert!(current.is_none(), "unterminated ```ron block");
+    blocks
+}
+
+fn is_complete(block: &str) -> bool {
+    block.trim_start().starts_with("Scene(")
+}
+
+#[test]
+fn every_complete_example_parses() {
+    let complete: Vec<String> = ron_blocks().into_iter().filter(|b| is_complete(b)).collect();
+    assert!(complete.len() >= 5, "only {} complete examples", complete.len());
+    for (i, block) in complete.iter().enumerate() {
+        if let Err(e) = parse(block, Path::new("docs/scene-format.md")) {
+            panic!("complete example {i} does not parse: {e}\n{block}");
+        }
+    }
+}
+
+/// Places in a scene where a fragment may belong; `@` stands for the fragment.
+const CONTEXTS: &[&str] = &[
+    "Scene(image: (width: 8, height: 8), camera: (eye: (0.0, 0.0, -5.0), look_at: (0.0, 0.0, 0.0)), @)",
+    "Scene(image: (width: 8, height: 8), @)",
+    "Scene(camera: (eye: (0.0, 0.0, -5.0), look_at: (0.0, 0.0, 0.0)), @)",
+    "Scene(image: (width: 8, height: 8), camera: (eye: (0.0, 0.0, -5.0), look_at: (0.0, 0.0, 0.0)), lights: [@])",
+    "Scene(image: (width: 8, height: 8), camera: (eye: (0.0, 0.0, -5.0), look_at: (0.0, 0.0, 0.0)), objects: [@])",
+    "Scene(image: (width: 8, height: 8), camera: (eye: (0.0, 0.0, -5.0), look_at: (0.0, 0.0, 0.0)), objects: [(shape: @, material: Matte(color: (0.5, 0.5, 0.5)))])",
+    "Scene(image: (width: 8, height: 8), camera: (eye: (0.0, 0.0, -5.0), look_at: (0.0, 0.0, 0.0)), objects: [(shape: Sphere(radius: 1.0), material: @)])",
+    "Scene(image: (width: 8, height: 8), camera: (eye: (0.0, 0.0, -5.0), look_at: (0.0, 0.0, 0.0)), objects: [(shape: Sphere(radius: 1.0), material: Matte(color: (0.5, 0.5, 0.5)), @)])",
+];
+
+#[test]
+fn every_fragment_fits_somewhere() {
+    let fragments: Vec<String> = ron_blocks().into_iter().filter(|b| !is_complete(b)).collect();
+    assert!(fragments.len() >= 15, "only {} fragments", fragments.len());
+    for fragment in &fragments {
+        let errors: Vec<String> = CONTEXTS
+            .iter()
+            .map(|c| parse(&c.replace('@', fragment.trim()), Path::new("fragment.ron")))
+            .filter_map(|r| r.err().map(|e| e.to_string()))
+            .collect();
+        assert!(errors.len() < CONTEXTS.len(), "fragment fits nowhere:\n{fragment}\n{errors:#?}");
+    }
+}
+
+#[test]
+fn the_document_covers_every_variant() {
+    for name in [
+        "Sphere(",
+        "Cylinder(",
+        "Cone(",
+        "Disk(",
+        "Torus(",
+        "BilinearPatch(",
+        "Mesh(",
+        "Ambient(",
+        "Distant(",
+        "Point(",
+        "Constant(",
+        "Matte(",
+        "Plastic(",
+        "Translate(",
+        "Rotate(",
+        "Scale(",
+        "Matrix(",
+        "matte: true",
+        "pattern:",
+        "original:",
+        "lens: Some(",
+    ] {
+        assert!(ron_blocks().iter().any(|b| b.contains(name)), "no ```ron example uses {name}");
+    }
+}

@@ -1,0 +1,256 @@
+//! Bad-input catalogue: every rejected scene yields one line naming the file, the field path and
+//! the line:column of the offending text.
+//!
+//! Each case edits one spot of a valid base scene; `at` is the expected 1-based line and column.
+
+use std::path::Path;
+
+use reyes_scene::{SceneError, parse};
+
+/// A valid scene that every case edits in one place.
+const BASE: &str = r#"Scene(
+  image: (width: 640, height: 480),
+  camera: (eye: (0.0, 1.0, -10.0), look_at: (0.0, 0.0, 0.0), fov: 35.0, hither: 0.1, yon: 100.0),
+  hider: (pixel_samples: (4, 4), filter: (kind: Gaussian, width: 2.0)),
+  lights: [Ambient(intensity: 0.1), Distant(from: (1.0, 1.0, -1.0))],
+  objects: [
+    (name: "ball", shape: Sphere(radius: 1.0), material: Matte(color: (0.8, 0.1, 0.1))),
+  ],
+)
+"#;
+
+/// The file name every error must carry.
+const FILE: &str = "scenes/bad.ron";
+
+/// One bad input: replace `from` (which occurs once in [`BASE`]) by `to`.
+struct Case {
+    name: &'static str,
+    from: &'static str,
+    to: &'static str,
+    field: &'static str,
+    at: Option<(usize, usize)>,
+}
+
+#[rustfmt::skip]
+const CASES: &[Case] = &[
+    Case { name: "malformed: missing comma between fields", from: "480),\n  camera", to: "480)\n  camera", field: "", at: Some((3, 3)) },
+    Case { name: "malformed: unclosed scene", from: "],\n)\n", to: "],\n", field: "", at: Some((8, 5)) },
+    Case { name: "malformed: stray closing bracket", from: "fov: 35.0,", to: "fov: 35.0],", field: "camera", at: Some((3, 71)) },
+    Case { name: "malformed: unclosed string", from: "\"ball\"", to: "\"ball", field: "objects[0].name", at: Some((7, 12)) },
+    Case { name: "malformed: empty file", from: BASE, to: "", field: "", at: Some((1, 1)) },
+    Case { name: "malformed: trailing text", from: "],\n)\n", to: "],\n)\nScene()\n", field: "", at: Some((10, 1)) },
+    Case { name: "malformed: unclosed comment", from: "],\n)\n", to: "],\n)\n/* end\n", field: "", at: Some((10, 1)) },
+    Case { name: "sphere cut without Some", from: "Sphere(radius: 1.0)", to: "Sphere(radius: 1.0, zmin: -0.5)", field: "objects[0].shape.zmin", at: Some((7, 53)) },
+    Case { name: "matrix written with brackets", from: "material:", to: "transform: [Matrix([[1.0, 0.0, 0.0, 0.0]])], material:", field: "objects[0].transform[0]", at: Some((7, 67)) },
+    Case { name: "unknown field", from: "height: 480)", to: "height: 480, depth: 8)", field: "image.depth", at: Some((2, 36)) },
+    Case { name: "unknown field in a shape", from: "Sphere(radius: 1.0)", to: "Sphere(radius: 1.0, radius2: 2.0)", field: "objects[0].shape.radius2", at: Some((7, 47)) },
+    Case { name: "unknown variant", from: "Gaussian", to: "Gauss", field: "hider.filter.kind", at: Some((4, 49)) },
+    Case { name: "missing required field", from: "width: 640, height: 480)", to: "width: 640)", field: "image.height", at: Some((2, 21)) },
+    Case { name: "missing required field in a shape", from: "Sphere(radius: 1.0)", to: "Sphere()", field: "objects[0].shape.radius", at: Some((7, 34)) },
+    Case { name: "missing required section", from: "  camera: (eye: (0.0, 1.0, -10.0), look_at: (0.0, 0.0, 0.0), fov: 35.0, hither: 0.1, yon: 100.0),\n", to: "", field: "camera", at: Some((8, 1)) },
+    Case { name: "duplicate field", from: "height: 480)", to: "height: 480, width: 2)", field: "image.width", at: Some((2, 36)) },
+    Case { name: "wrong type", from: "width: 640", to: "width: \"640\"", field: "image.width", at: Some((2, 18)) },
+    Case { name: "negative integer", from: "width: 640", to: "width: -640", field: "image.width", at: Some((2, 19)) },
+    Case { name: "wrong tuple length", from: "(0.0, 1.0, -10.0)", to: "(0.0, 1.0)", field: "camera.eye", at: Some((3, 26)) },
+    Case { name: "lens without Some", from: "yon: 100.0)", to: "yon: 100.0, lens: (focal_length: 1.0, f_stop: 2.8, focal_distance: 8.0))", field: "camera.lens", at: Some((3, 104)) },
+    Case { name: "width 0", from: "width: 640", to: "width: 0", field: "image.width", at: Some((2, 18)) },
+    Case { name: "height 0", from: "height: 480", to: "height: 0", field: "image.height", at: Some((2, 31)) },
+    Case { name: "width too large", from: "width: 640", to: "width: 70000", field: "image.width", at: Some((2, 18)) },
+    Case { name: "pixel samples 0", from: "(4, 4)", to: "(4, 0)", field: "hider.pixel_samples[1]", at: Some((4, 30)) },
+    Case { name: "pixel samples too many", from: "(4, 4)", to: "(65, 4)", field: "hider.pixel_samples[0]", at: Some((4, 27)) },
+    Case { name: "fov 0", from: "fov: 35.0", to: "fov: 0.0", field: "camera.fov", at: Some((3, 67)) },
+    Case { name: "fov 180", from: "fov: 35.0", to: "fov: 180.0", field: "camera.fov", at: Some((3, 67)) },
+    Case { name: "fov 190", from: "fov: 35.0", to: "fov: 190.0", field: "camera.fov", at: Some((3, 67)) },
+    Case { name: "hither 0", from: "hither: 0.1", to: "hither: 0.0", field: "camera.hither", at: Some((3, 81)) },
+    Case { name: "hither negative", from: "hither: 0.1", to: "hither: -1.0", field: "camera.hither", at: Some((3, 81)) },
+    Case { name: "hither equal to yon", from: "hither: 0.1, yon: 100.0", to: "hither: 100.0, yon: 100.0", field: "camera.yon", at: Some((3, 93)) },
+    Case { name: "hither beyond yon", from: "hither: 0.1, yon: 100.0", to: "hither: 200.0, yon: 100.0", field: "camera.yon", at: Some((3, 93)) },
+    Case { name: "eye at look_at", from: "look_at: (0.0, 0.0, 0.0)", to: "look_at: (0.0, 1.0, -10.0)", field: "camera.look_at", at: Some((3, 45)) },
+    Case { name: "up parallel to view", from: "fov: 35.0", to: "up: (0.0, -0.1, 1.0), fov: 35.0", field: "camera.up", at: Some((3, 66)) },
+    Case { name: "up zero", from: "fov: 35.0", to: "up: (0.0, 0.0, 0.0), fov: 35.0", field: "camera.up", at: Some((3, 66)) },
+    Case { name: "shutter closes before it opens", from: "yon: 100.0)", to: "yon: 100.0, shutter: (open: 1.0, close: 0.5))", field: "camera.shutter.close", at: Some((3, 126)) },
+    Case { name: "lens f_stop 0", from: "yon: 100.0)", to: "yon: 100.0, lens: Some((focal_length: 1.0, f_stop: 0.0, focal_distance: 8.0)))", field: "camera.lens.f_stop", at: Some((3, 137)) },
+    Case { name: "filter width 0", from: "width: 2.0", to: "width: 0.0", field: "hider.filter.width", at: Some((4, 66)) },
+    Case { name: "filter width negative", from: "width: 2.0", to: "width: -2.0", field: "hider.filter.width", at: Some((4, 66)) },
+    Case { name: "filter width too wide", from: "width: 2.0", to: "width: 17.0", field: "hider.filter.width", at: Some((4, 66)) },
+    Case { name: "bucket size 0", from: "(4, 4),", to: "(4, 4), bucket_size: (0, 16),", field: "hider.bucket_size[0]", at: Some((4, 48)) },
+    Case { name: "shading rate 0", from: "(4, 4),", to: "(4, 4), shading_rate: 0.0,", field: "hider.shading_rate", at: Some((4, 48)) },
+    Case { name: "max grid size 0", from: "(4, 4),", to: "(4, 4), max_grid_size: 0,", field: "hider.max_grid_size", at: Some((4, 49)) },
+    Case { name: "NaN fov", from: "fov: 35.0", to: "fov: NaN", field: "camera.fov", at: Some((3, 67)) },
+    Case { name: "inf yon", from: "yon: 100.0", to: "yon: inf", field: "camera.yon", at: Some((3, 91)) },
+    Case { name: "-inf eye", from: "-10.0", to: "-inf", field: "camera.eye[2]", at: Some((3, 28)) },
+    Case { name: "NaN light intensity", from: "intensity: 0.1", to: "intensity: NaN", field: "lights[0].intensity", at: Some((5, 31)) },
+    Case { name: "overflowing float", from: "radius: 1.0", to: "radius: 1e39", field: "objects[0].shape.radius", at: Some((7, 42)) },
+    Case { name: "negative light intensity", from: "intensity: 0.1", to: "intensity: -0.1", field: "lights[0].intensity", at: Some((5, 31)) },
+    Case { name: "negative light colour", from: "Ambient(intensity: 0.1)", to: "Ambient(color: (1.0, -1.0, 1.0))", field: "lights[0].color[1]", at: Some((5, 33)) },
+    Case { name: "distant light from equals to", from: "Distant(from: (1.0, 1.0, -1.0))", to: "Distant(from: (1.0, 1.0, -1.0), to: (1.0, 1.0, -1.0))", field: "lights[1].to", at: Some((5, 73)) },
+    Case { name: "distant light at the default target", from: "Distant(from: (1.0, 1.0, -1.0))", to: "Distant(from: (0.0, 0.0, 0.0))", field: "lights[1].to", at: Some((5, 37)) },
+    Case { name: "negative radius", from: "radius: 1.0", to: "radius: -1.0", field: "objects[0].shape.radius", at: Some((7, 42)) },
+    Case { name: "sphere zmin above radius", from: "Sphere(radius: 1.0)", to: "Sphere(radius: 1.0, zmin: Some(2.0))", field: "objects[0].shape.zmin", at: Some((7, 53)) },
+    Case { name: "sphere zmax at zmin", from: "Sphere(radius: 1.0)", to: "Sphere(radius: 1.0, zmin: Some(0.5), zmax: Some(0.5))", field: "objects[0].shape.zmax", at: Some((7, 70)) },
+    Case { name: "sphere thetamax 0", from: "Sphere(radius: 1.0)", to: "Sphere(radius: 1.0, thetamax: 0.0)", field: "objects[0].shape.thetamax", at: Some((7, 57)) },
+    Case { name: "sphere thetamax above 360", from: "Sphere(radius: 1.0)", to: "Sphere(radius: 1.0, thetamax: 361.0)", field: "objects[0].shape.thetamax", at: Some((7, 57)) },
+    Case { name: "cylinder zmax at zmin", from: "Sphere(radius: 1.0)", to: "Cylinder(radius: 1.0, zmin: 1.0, zmax: 1.0)", field: "objects[0].shape.zmax", at: Some((7, 66)) },
+    Case { name: "cone height 0", from: "Sphere(radius: 1.0)", to: "Cone(height: 0.0, radius: 1.0)", field: "objects[0].shape.height", at: Some((7, 40)) },
+    Case { name: "disk radius 0", from: "Sphere(radius: 1.0)", to: "Disk(radius: 0.0)", field: "objects[0].shape.radius", at: Some((7, 40)) },
+    Case { name: "torus minor radius negative", from: "Sphere(radius: 1.0)", to: "Torus(major_radius: 1.0, minor_radius: -0.25)", field: "objects[0].shape.minor_radius", at: Some((7, 66)) },
+    Case { name: "torus phimax below phimin", from: "Sphere(radius: 1.0)", to: "Torus(major_radius: 1.0, minor_radius: 0.25, phimin: 90.0, phimax: 45.0)", field: "objects[0].shape.phimax", at: Some((7, 94)) },
+    Case { name: "torus tube sweep above 360", from: "Sphere(radius: 1.0)", to: "Torus(major_radius: 1.0, minor_radius: 0.25, phimin: -90.0, phimax: 290.0)", field: "objects[0].shape.phimax", at: Some((7, 95)) },
+    Case { name: "mesh without faces", from: "Sphere(radius: 1.0)", to: "Mesh(points: [(0.0, 0.0, 0.0)], faces: [])", field: "objects[0].shape.faces", at: Some((7, 66)) },
+    Case { name: "mesh index out of range", from: "Sphere(radius: 1.0)", to: "Mesh(points: [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)], faces: [[0, 1, 3]])", field: "objects[0].shape.faces[0][2]", at: Some((7, 108)) },
+    Case { name: "mesh face with 5 indices", from: "Sphere(radius: 1.0)", to: "Mesh(points: [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)], faces: [[0, 1, 2], [0, 1, 2, 0, 1]])", field: "objects[0].shape.faces[1]", at: Some((7, 112)) },
+    Case { name: "mesh face with 2 indices", from: "Sphere(radius: 1.0)", to: "Mesh(points: [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)], faces: [[0, 1]])", field: "objects[0].shape.faces[0]", at: Some((7, 101)) },
+    Case { name: "mesh colours length mismatch", from: "Sphere(radius: 1.0)", to: "Mesh(points: [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)], faces: [[0, 1, 2]], colors: Some([(1.0, 1.0, 1.0)]))", field: "objects[0].shape.colors", at: Some((7, 121)) },
+    Case { name: "mesh NaN point", from: "Sphere(radius: 1.0)", to: "Mesh(points: [(0.0, 0.0, 0.0), (1.0, NaN, 0.0), (0.0, 1.0, 0.0)], faces: [[0, 1, 2]])", field: "objects[0].shape.points[1][1]", at: Some((7, 64)) },
+    Case { name: "rotate about a zero axis", from: "material:", to: "transform: [Rotate(angle: 30.0, axis: (0.0, 0.0, 0.0))], material:", field: "objects[0].transform[0].axis", at: Some((7, 86)) },
+    Case { name: "scale by zero", from: "material:", to: "transform: [Translate((1.0, 0.0, 0.0)), Scale((2.0, 0.0, 2.0))], material:", field: "objects[0].transform[1][1]", at: Some((7, 100)) },
+    Case { name: "projective matrix", from: "material:", to: "transform: [Matrix(((1.0, 0.0, 0.0, 0.0), (0.0, 1.0, 0.0, 0.0), (0.0, 0.0, 1.0, 0.0), (0.0, 0.0, 1.0, 1.0)))], material:", field: "objects[0].transform[0][3]", at: Some((7, 134)) },
+    Case { name: "singular matrix", from: "material:", to: "transform: [Matrix(((1.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 0.0), (0.0, 0.0, 1.0, 0.0), (0.0, 0.0, 0.0, 1.0)))], material:", field: "objects[0].transform[0]", at: Some((7, 60)) },
+    Case { name: "material colour above 1", from: "(0.8, 0.1, 0.1)", to: "(0.8, 1.5, 0.1)", field: "objects[0].material.color[1]", at: Some((7, 77)) },
+    Case { name: "material opacity negative", from: "(0.8, 0.1, 0.1))", to: "(0.8, 0.1, 0.1), opacity: (1.0, 1.0, -0.5))", field: "objects[0].material.opacity[2]", at: Some((7, 108)) },
+    Case { name: "plastic roughness 0", from: "Matte(color: (0.8, 0.1, 0.1))", to: "Plastic(color: (0.8, 0.1, 0.1), roughness: 0.0)", field: "objects[0].material.roughness", at: Some((7, 101)) },
+    Case { name: "negative kd", from: "Matte(color: (0.8, 0.1, 0.1))", to: "Matte(color: (0.8, 0.1, 0.1), kd: -1.0)", field: "objects[0].material.kd", at: Some((7, 92)) },
+];
+
+/// The text of `case` and the error it must produce.
+fn run(case: &Case) -> SceneError {
+    assert_eq!(BASE.matches(case.from).count(), 1, "{}: `from` must occur once", case.name);
+    let text = BASE.replacen(case.from, case.to, 1);
+    match parse(&text, Path::new(FILE)) {
+        Ok(_) => panic!("{}: the scene was accepted:\n{text}", case.name),
+        Err(e) => e,
+    }
+}
+
+#[test]
+fn the_base_scene_is_valid() {
+    let scene = parse(BASE, Path::new(FILE)).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(scene.objects.len(), 1);
+}
+
+#[test]
+fn every_error_is_one_line_with_file_field_and_position() {
+    for case in CASES {
+        let e = run(case);
+        let shown = e.to_string();
+        assert!(!shown.contains('\n') && !shown.contains('\r'), "{}: {shown:?}", case.name);
+        assert!(shown.starts_with(&format!("{FILE}:")), "{}: {shown}", case.name);
+        assert_eq!(e.file, Path::new(FILE), "{}", case.name);
+        assert_eq!(e.field, case.field, "{}: {shown}", case.name);
+        assert_eq!(e.line.zip(e.col), case.at, "{}: {shown}", case.name);
+        assert!(!e.message.is_empty(), "{}", case.name);
+        let (line, col) = case.at.unwrap_or_default();
+        let expected = if case.field.is_empty() {
+            format!("{FILE}:{line}:{col}: {}", e.message)
+        } else {
+            format!("{FILE}:{line}:{col}: {}: {}", case.field, e.message)
+        };
+        assert_eq!(shown, expected, "{}", case.name);
+    }
+}
+
+#[test]
+fn catalogue_snapshot() {
+    let shown: Vec<String> =
+        CASES.iter().map(|case| format!("{}\n  {}", case.name, run(case))).collect();
+    insta::assert_snapshot!("catalogue", shown.join("\n"));
+}
+
+#[test]
+fn the_catalogue_covers_the_required_inputs() {
+    for required in [
+        "malformed: missing comma between fields",
+        "unknown field",
+        "missing required field",
+        "width 0",
+        "height 0",
+        "pixel samples 0",
+        "fov 0",
+        "fov 180",
+        "fov 190",
+        "hither 0",
+        "hither negative",
+        "hither equal to yon",
+        "filter width 0",
+        "filter width negative",
+        "negative radius",
+        "NaN fov",
+        "inf yon",
+        "mesh index out of range",
+        "mesh face with 5 indices",
+        "mesh colours length mismatch",
+    ] {
+        assert!(CASES.iter().any(|c| c.name == required), "missing case {required}");
+    }
+}
+
+/// The exact text of a few errors, independent of the snapshot.
+#[test]
+fn exact_messages() {
+    let shown = |name: &str| {
+        let case =
+            CASES.iter().find(|c| c.name == name).unwrap_or_else(|| panic!("no case {name}"));
+        run(case).to_string()
+    };
+    assert_eq!(
+        shown("negative radius"),
+        "scenes/bad.ron:7:42: objects[0].shape.radius: must be > 0, got -1"
+    );
+    assert_eq!(shown("width 0"), "scenes/bad.ron:2:18: image.width: must be in 1..=65536, got 0");
+    assert_eq!(
+        shown("fov 180"),
+        "scenes/bad.ron:3:67: camera.fov: must be in (0, 180) degrees, got 180"
+    );
+    assert_eq!(shown("NaN fov"), "scenes/bad.ron:3:67: camera.fov: must be finite, got NaN");
+    assert_eq!(shown("inf yon"), "scenes/bad.ron:3:91: camera.yon: must be finite, got inf");
+    assert_eq!(
+        shown("hither equal to yon"),
+        "scenes/bad.ron:3:93: camera.yon: must be > hither (100), got 100"
+    );
+    assert_eq!(
+        shown("pixel samples 0"),
+        "scenes/bad.ron:4:30: hider.pixel_samples[1]: must be in 1..=64, got 0"
+    );
+    assert_eq!(
+        shown("mesh index out of range"),
+        "scenes/bad.ron:7:108: objects[0].shape.faces[0][2]: index 3 is out of range: the mesh has 3 points"
+    );
+    assert_eq!(
+        shown("unknown field"),
+        "scenes/bad.ron:2:36: image.depth: unknown field `depth`, expected `width` or `height`"
+    );
+    assert_eq!(
+        shown("missing required field"),
+        "scenes/bad.ron:2:21: image.height: missing required field `height`"
+    );
+}
+
+/// Every shape, light and material keeps its path when the object is not the first.
+#[test]
+fn paths_index_lists() {
+    let text = BASE.replacen(
+        "  ],",
+        "    (shape: Sphere(radius: 1.0), material: Matte(color: (0.5, 0.5, 0.5))),\n    (shape: Disk(radius: -2.0), material: Matte(color: (0.5, 0.5, 0.5))),\n  ],",
+        1,
+    );
+    let e = parse(&text, Path::new(FILE)).err().map(|e| e.to_string());
+    assert_eq!(
+        e.as_deref(),
+        Some("scenes/bad.ron:9:26: objects[2].shape.radius: must be > 0, got -2")
+    );
+}
+
+/// Comments and strings holding brackets do not disturb positions.
+#[test]
+fn positions_survive_comments_and_strings() {
+    let text = BASE.replacen("(name: \"ball\"", "(name: \"b(a)l[l]\" /* ( [ */", 1).replacen(
+        "radius: 1.0",
+        "// radius: 2.0\n      radius: -3.0",
+        1,
+    );
+    let e = parse(&text, Path::new(FILE)).err().map(|e| e.to_string());
+    assert_eq!(
+        e.as_deref(),
+        Some("scenes/bad.ron:8:15: objects[0].shape.radius: must be > 0, got -3")
+    );
+}

@@ -1,0 +1,211 @@
+//! Robustness laws: `parse` never panics, and every error it returns is one line naming the
+//! file with a position inside the text; plus range laws checked on random values.
+
+use std::path::Path;
+
+use proptest::prelude::*;
+use reyes_scene::{SceneError, parse};
+
+const VALID: &str = r#"Scene(
+  image: (width: 64, height: 48),
+  camera: (eye: (0.0, 1.0, -10.0), look_at: (0.0, 0.0, 0.0), up: (0.0, 1.0, 0.0),
+           fov: 35.0, hither: 0.1, yon: 100.0, shutter: (open: 0.0, close: 1.0),
+           lens: Some((focal_length: 1.0, f_stop: 2.8, focal_distance: 8.0))),
+  hider: (pixel_samples: (4, 4), jitter: true, pattern: Fig7, filter: (kind: Sinc, width: 2.0),
+          bucket_size: (16, 16), shading_rate: 1.0, seed: 7, max_grid_size: 64,
+          original: (permute: true)),
+  lights: [Ambient(color: (1.0, 1.0, 1.0), intensity: 0.1), Point(from: (0.0, 5.0, 0.0)),
+           Distant(from: (1.0, 1.0, -1.0), to: (0.0, 0.0, 0.0), color: (1.0, 1.0, 1.0), intensity: 1.0)],
+  objects: [
+    (name: "ball", shape: Sphere(radius: 1.0, zmin: Some(-0.5), zmax: None, thetamax: 270.0),
+     transform: [Rotate(angle: 30.0, axis: (0.0, 1.0, 0.0)), Scale((1.0, 2.0, 1.0))],
+     material: Plastic(color: (0.8, 0.1, 0.1), opacity: (1.0, 1.0, 1.0), roughness: 0.2)),
+    (shape: Torus(major_radius: 2.0, minor_radius: 0.5, phimin: -90.0, phimax: 90.0),
+     transform: [Matrix(((1.0, 0.0, 0.0, 0.0), (0.0, 1.0, 0.0, 2.0), (0.0, 0.0, 1.0, 0.0), (0.0, 0.0, 0.0, 1.0)))],
+     material: Matte(color: (0.2, 0.2, 0.9)), matte: true),
+    (shape: Mesh(points: [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (1.0, 1.0, 0.0), (0.0, 1.0, 0.0)],
+                 faces: [[0, 1, 2, 3], [0, 2, 3]], colors: Some([(1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0), (1.0, 1.0, 1.0)])),
+     material: Constant(color: (1.0, 1.0, 1.0))),
+  ],
+)
+"#;
+
+/// Snippets likely to upset a RON parser or the scanner.
+const SNIPPETS: &[&str] = &[
+    "(",
+    ")",
+    "[",
+    "]",
+    "{",
+    "}",
+    ",",
+    ":",
+    "\"",
+    "'",
+    "\\",
+    "/*",
+    "*/",
+    "//",
+    "\n",
+    "r#\"",
+    "\"#",
+    "#",
+    "!",
+    "NaN",
+    "inf",
+    "-inf",
+    "-1",
+    "0",
+    "1e39",
+    "1e-45",
+    "0x1F",
+    "99999999999999999999",
+    "Some(",
+    "None",
+    "radius",
+    "Sphere",
+    "é",
+    "\u{2028}",
+    "\u{feff}",
+    "b'",
+    "br\"",
+    "r#x",
+    ".",
+    "..",
+    "#![enable(implicit_some)]",
+    "-",
+    "+",
+    "_",
+    "\t",
+    "\r",
+];
+
+/// Checks the one-line and position laws of an error for `text`.
+fn check_error(text: &str, e: &SceneError) -> Result<(), TestCaseError> {
+    let shown = e.to_string();
+    prop_assert!(!shown.contains('\n') && !shown.contains('\r'), "{:?}", shown);
+    prop_assert!(shown.starts_with("fuzz.ron"), "{}", shown);
+    prop_assert!(!e.message.is_empty());
+    if let (Some(line), Some(col)) = (e.line, e.col) {
+        let lines = text.split('\n').count();
+        prop_assert!(line >= 1 && line <= lines, "line {} of {}: {}", line, lines, shown);
+        let width = text.split('\n').nth(line - 1).map_or(0, |l| l.chars().count());
+        prop_assert!(col >= 1 && col <= width + 1, "col {} of {}: {}", col, width, shown);
+    }
+    Ok(())
+}
+
+fn parse_checked(text: &str) -> Result<(), TestCaseError> {
+    match parse(text, Path::new("fuzz.ron")) {
+        Ok(_) => Ok(()),
+        Err(e) => check_error(text, &e),
+    }
+}
+
+/// One edit of a text: at char offset `at` (mod length), delete `del` chars, insert `ins`.
+fn apply(text: &str, edits: &[(usize, usize, String)]) -> String {
+    let mut chars: Vec<char> = text.chars().collect();
+    for (at, del, ins) in edits {
+        let at = if chars.is_empty() { 0 } else { at % (chars.len() + 1) };
+        let end = (at + del).min(chars.len());
+        chars.splice(at..end, ins.chars());
+    }
+    chars.into_iter().collect()
+}
+
+fn edit() -> impl Strategy<Value = (usize, usize, String)> {
+    let insert = prop_oneof![
+        proptest::sample::select(SNIPPETS).prop_map(str::to_string),
+        "[ -~]{0,6}",
+        any::<char>().prop_map(|c| c.to_string()),
+    ];
+    (any::<usize>(), 0usize..8, insert)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 2000, ..ProptestConfig::default() })]
+
+    #[test]
+    fn mutated_valid_scenes_never_panic(edits in proptest::collection::vec(edit(), 1..5)) {
+        parse_checked(&apply(VALID, &edits))?;
+    }
+
+    #[test]
+    fn arbitrary_strings_never_panic(text in any::<String>()) {
+        parse_checked(&text)?;
+    }
+
+    #[test]
+    fn token_soup_never_panics(parts in proptest::collection::vec(proptest::sample::select(SNIPPETS), 0..60)) {
+        parse_checked(&parts.concat())?;
+    }
+
+    #[test]
+    fn fov_is_accepted_exactly_inside_0_180(fov in prop_oneof![any::<f32>(), -10.0f32..200.0]) {
+        let text = VALID.replace("fov: 35.0", &format!("fov: {fov:?}"));
+        let result = parse(&text, Path::new("fuzz.ron"));
+        if fov > 0.0 && fov < 180.0 {
+            prop_assert!(result.is_ok(), "{:?}", result.err().map(|e| e.to_string()));
+        } else {
+            let e = result.err();
+            prop_assert_eq!(e.as_ref().map(|e| e.field.as_str()), Some("camera.fov"));
+            prop_assert_eq!(e.as_ref().and_then(|e| e.line.zip(e.col)), Some((4, 17)));
+        }
+    }
+
+    #[test]
+    fn radius_is_accepted_exactly_when_positive(radius in prop_oneof![any::<f32>(), -2.0f32..2.0]) {
+        let text = VALID.replace("Sphere(radius: 1.0, zmin: Some(-0.5)", &format!("Sphere(radius: {radius:?}, zmin: None"));
+        let result = parse(&text, Path::new("fuzz.ron"));
+        if radius > 0.0 && radius.is_finite() {
+            prop_assert!(result.is_ok(), "{:?}", result.err().map(|e| e.to_string()));
+        } else {
+            let e = result.err();
+            prop_assert_eq!(e.as_ref().map(|e| e.field.as_str()), Some("objects[0].shape.radius"));
+        }
+    }
+
+    #[test]
+    fn image_size_is_accepted_exactly_in_1_65536(width in any::<u32>()) {
+        let text = VALID.replace("width: 64", &format!("width: {width}"));
+        let result = parse(&text, Path::new("fuzz.ron"));
+        prop_assert_eq!(result.is_ok(), (1..=65536).contains(&width));
+    }
+}
+
+#[test]
+fn the_fuzz_base_is_valid() {
+    let scene = parse(VALID, Path::new("fuzz.ron")).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(scene.objects.len(), 3);
+}
+
+#[test]
+fn deep_nesting_does_not_overflow_the_stack() {
+    for open in ["(", "[", "{", "Some(", "a: ("] {
+        let text = format!("Scene(image: {})", open.repeat(100_000));
+        let e = parse(&text, Path::new("fuzz.ron")).err();
+        assert!(e.is_some_and(|e| !e.to_string().contains('\n')));
+    }
+}
+
+#[test]
+fn mismatched_brackets_stay_fast() {
+    let start = std::time::Instant::now();
+    for (open, close) in [("(", "]"), ("[", ")"), ("{", ")"), ("(", ")")] {
+        let text = format!("Scene(image: {}{})", open.repeat(200_000), close.repeat(200_000));
+        let e = parse(&text, Path::new("fuzz.ron")).err();
+        assert!(e.is_some_and(|e| !e.to_string().contains('\n')));
+    }
+    assert!(start.elapsed().as_secs() < 20, "took {:?}", start.elapsed());
+}
+
+#[test]
+fn huge_tokens_give_short_messages() {
+    let long = "x".repeat(1_000_000);
+    let text = VALID.replace("name: \"ball\"", &format!("{long}: 1"));
+    let e = parse(&text, Path::new("fuzz.ron")).err().unwrap_or_else(|| panic!("accepted"));
+    assert!(e.to_string().chars().count() < 600, "{}", e.to_string().len());
+    let text = VALID.replace("\"ball\"", &format!("({long})"));
+    let e = parse(&text, Path::new("fuzz.ron")).err().unwrap_or_else(|| panic!("accepted"));
+    assert!(e.to_string().chars().count() < 600, "{}", e.to_string().len());
+}

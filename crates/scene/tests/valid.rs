@@ -1,0 +1,214 @@
+//! Valid scenes parse to the expected values, defaults fill omitted sections, and `load`
+//! reports unreadable and bad files with the right error kind and exit code.
+
+use std::path::{Path, PathBuf};
+
+use reyes_scene::{
+    Camera, Filter, FilterKind, Hider, Image, Lens, LoadError, Material, Object, Original, Scene,
+    Shape, Shutter, SpatialPattern, Transform, load, parse,
+};
+
+/// The full example of the task and of docs/scene-format.md.
+const FULL: &str = r#"
+Scene(
+  image: (width: 640, height: 480),
+  camera: (eye: (0.0, 1.0, -10.0), look_at: (0.0, 0.0, 0.0), up: (0.0, 1.0, 0.0),
+           fov: 35.0, hither: 0.1, yon: 100.0, shutter: (open: 0.0, close: 1.0), lens: None),
+  hider: (pixel_samples: (4, 4), jitter: true, filter: (kind: Gaussian, width: 2.0),
+          bucket_size: (16, 16), shading_rate: 1.0, seed: 0),
+  lights: [Ambient(color: (1.0, 1.0, 1.0), intensity: 0.1),
+           Distant(from: (1.0, 1.0, -1.0), to: (0.0, 0.0, 0.0), color: (1.0, 1.0, 1.0), intensity: 1.0)],
+  objects: [(name: "ball", shape: Sphere(radius: 1.0), transform: [Translate((0.0, 0.0, 0.0))],
+             material: Plastic(color: (0.8, 0.1, 0.1), opacity: (1.0, 1.0, 1.0)))],
+)
+"#;
+
+fn ok(text: &str) -> Scene {
+    parse(text, Path::new("test.ron")).unwrap_or_else(|e| panic!("{e}"))
+}
+
+#[test]
+fn the_full_example_parses_with_the_expected_values() {
+    let scene = ok(FULL);
+    let expected = Scene {
+        image: Image { width: 640, height: 480 },
+        camera: Camera {
+            eye: [0.0, 1.0, -10.0],
+            look_at: [0.0, 0.0, 0.0],
+            up: [0.0, 1.0, 0.0],
+            fov: 35.0,
+            hither: 0.1,
+            yon: 100.0,
+            shutter: Shutter { open: 0.0, close: 1.0 },
+            lens: None,
+        },
+        hider: Hider {
+            pixel_samples: (4, 4),
+            jitter: true,
+            pattern: SpatialPattern::Fig6,
+            filter: Filter { kind: FilterKind::Gaussian, width: 2.0 },
+            bucket_size: (16, 16),
+            shading_rate: 1.0,
+            seed: 0,
+            max_grid_size: 256,
+            original: Original::default(),
+        },
+        lights: vec![
+            reyes_scene::Light::Ambient { color: [1.0, 1.0, 1.0], intensity: 0.1 },
+            reyes_scene::Light::Distant {
+                from: [1.0, 1.0, -1.0],
+                to: [0.0, 0.0, 0.0],
+                color: [1.0, 1.0, 1.0],
+                intensity: 1.0,
+            },
+        ],
+        objects: vec![Object {
+            name: "ball".into(),
+            shape: Shape::Sphere { radius: 1.0, zmin: None, zmax: None, thetamax: 360.0 },
+            transform: vec![Transform::Translate([0.0, 0.0, 0.0])],
+            material: Material::Plastic {
+                color: [0.8, 0.1, 0.1],
+                opacity: [1.0, 1.0, 1.0],
+                ka: 1.0,
+                kd: 0.5,
+                ks: 0.5,
+                roughness: 0.1,
+                specular_color: [1.0, 1.0, 1.0],
+            },
+            matte: false,
+        }],
+    };
+    assert_eq!(scene, expected);
+}
+
+#[test]
+fn a_thin_lens_is_written_with_some() {
+    let text = FULL
+        .replace("lens: None", "lens: Some((focal_length: 1.0, f_stop: 2.8, focal_distance: 8.0))");
+    let scene = ok(&text);
+    assert_eq!(
+        scene.camera.lens,
+        Some(Lens { focal_length: 1.0, f_stop: 2.8, focal_distance: 8.0 })
+    );
+}
+
+#[test]
+fn defaults_apply_when_sections_are_omitted() {
+    let scene = ok(
+        "Scene(image: (width: 8, height: 6), camera: (eye: (0.0, 0.0, -5.0), look_at: (0.0, 0.0, 0.0)))",
+    );
+    assert_eq!(scene.hider, Hider::default());
+    assert_eq!(scene.hider.pixel_samples, (4, 4));
+    assert!(scene.hider.jitter);
+    assert_eq!(scene.hider.pattern, SpatialPattern::Fig6);
+    assert_eq!(scene.hider.filter, Filter { kind: FilterKind::Gaussian, width: 2.0 });
+    assert_eq!(scene.hider.bucket_size, (16, 16));
+    assert_eq!(scene.hider.shading_rate, 1.0);
+    assert_eq!(scene.hider.max_grid_size, 256);
+    assert_eq!(scene.hider.original, Original::default());
+    assert!(scene.lights.is_empty());
+    assert!(scene.objects.is_empty());
+    assert_eq!(scene.camera.up, [0.0, 1.0, 0.0]);
+    assert_eq!(scene.camera.fov, 45.0);
+    assert_eq!(scene.camera.hither, 0.1);
+    assert_eq!(scene.camera.yon, 1000.0);
+    assert_eq!(scene.camera.shutter, Shutter { open: 0.0, close: 1.0 });
+    assert_eq!(scene.camera.lens, None);
+}
+
+#[test]
+fn partial_hider_and_object_defaults() {
+    let scene = ok(r#"Scene(
+        image: (width: 8, height: 6),
+        camera: (eye: (0.0, 0.0, -5.0), look_at: (0.0, 0.0, 0.0)),
+        hider: (pixel_samples: (2, 3), original: (permute: true)),
+        lights: [Distant(from: (0.0, 1.0, 0.0)), Point(from: (1.0, 2.0, 3.0))],
+        objects: [(shape: Disk(radius: 1.0), material: Matte(color: (0.5, 0.5, 0.5)))],
+    )"#);
+    assert_eq!(scene.hider.pixel_samples, (2, 3));
+    assert_eq!(scene.hider.bucket_size, (16, 16));
+    assert!(scene.hider.original.permute && !scene.hider.original.jitter_tables);
+    assert_eq!(
+        scene.lights[0],
+        reyes_scene::Light::Distant {
+            from: [0.0, 1.0, 0.0],
+            to: [0.0, 0.0, 0.0],
+            color: [1.0, 1.0, 1.0],
+            intensity: 1.0
+        }
+    );
+    let object = &scene.objects[0];
+    assert_eq!(object.name, "");
+    assert!(object.transform.is_empty());
+    assert!(!object.matte);
+    assert_eq!(object.shape, Shape::Disk { height: 0.0, radius: 1.0, thetamax: 360.0 });
+    assert_eq!(
+        object.material,
+        Material::Matte { color: [0.5, 0.5, 0.5], opacity: [1.0, 1.0, 1.0], ka: 1.0, kd: 1.0 }
+    );
+}
+
+#[test]
+fn comments_byte_order_mark_and_anonymous_root_are_accepted() {
+    let text = "\u{feff}// a scene\n(/* no name */ image: (width: 8, height: 6),\n camera: (eye: (0.0, 0.0, -5.0), look_at: (0.0, 0.0, 0.0)))";
+    assert_eq!(ok(text).image, Image { width: 8, height: 6 });
+}
+
+#[test]
+fn what_ron_writes_reads_back() {
+    let scene = ok(FULL);
+    let text = ron::ser::to_string_pretty(&scene, ron::ser::PrettyConfig::default())
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(ok(&text), scene);
+}
+
+/// A fresh path under cargo's per-target temporary directory.
+fn temp_file(name: &str, bytes: &[u8]) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("reyes-scene-tests");
+    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+    let path = dir.join(name);
+    std::fs::write(&path, bytes).unwrap_or_else(|e| panic!("{e}"));
+    path
+}
+
+#[test]
+fn load_reads_a_valid_file() {
+    let path = temp_file("valid.ron", FULL.as_bytes());
+    let scene = load(&path).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(scene, ok(FULL));
+}
+
+#[test]
+fn load_reports_an_unreadable_file_with_exit_code_1() {
+    let path = Path::new(env!("CARGO_TARGET_TMPDIR")).join("no-such-dir/missing.ron");
+    let err = load(&path).err().unwrap_or_else(|| panic!("loaded a missing file"));
+    assert!(matches!(err, LoadError::Io { .. }), "{err:?}");
+    assert_eq!(err.exit_code(), 1);
+    let shown = err.to_string();
+    assert!(shown.starts_with(&format!("{}: cannot read the scene file: ", path.display())));
+    assert!(!shown.contains('\n'));
+}
+
+#[test]
+fn load_reports_a_bad_scene_with_exit_code_2() {
+    let path = temp_file("bad.ron", FULL.replace("radius: 1.0", "radius: -1.0").as_bytes());
+    let err = load(&path).err().unwrap_or_else(|| panic!("loaded a bad scene"));
+    assert_eq!(err.exit_code(), 2);
+    let LoadError::Scene(scene_err) = &err else { panic!("{err:?}") };
+    assert_eq!(scene_err.file, path);
+    assert_eq!(scene_err.field, "objects[0].shape.radius");
+    assert_eq!((scene_err.line, scene_err.col), (Some(10), Some(50)));
+    assert_eq!(err.to_string(), scene_err.to_string());
+}
+
+#[test]
+fn load_reports_invalid_utf8_as_a_bad_scene() {
+    let mut bytes = b"Scene(\n  image: (width: 8, hei".to_vec();
+    bytes.push(0xff);
+    let path = temp_file("latin1.ron", &bytes);
+    let err = load(&path).err().unwrap_or_else(|| panic!("loaded invalid UTF-8"));
+    assert_eq!(err.exit_code(), 2);
+    let LoadError::Scene(e) = err else { panic!("not a scene error") };
+    assert_eq!((e.line, e.col), (Some(2), Some(24)));
+    assert_eq!(e.message, "the file is not valid UTF-8");
+}
