@@ -1,1 +1,26 @@
-//! placeholder
+//! reyes-film: reconstruction filtering and image output.
+//!
+//! Stage: after the hider. Per frame, [`FilterTable::new`] builds the normalised filter table
+//! (Appendix A `tablesinit`); per bucket, [`splat`] filters the per-sample composites into a
+//! bordered [`Window`] (Appendix A `filter` / `applyboxfilter`); [`Film::add`] sums the
+//! overlapping windows into the image in a fixed bucket order (3.17); [`write()`] stores the
+//! image atomically as OpenEXR or PNG.
+//!
+//! Invariants: colour is premultiplied linear light throughout; filter tables sum to 1, so a
+//! fully covered interior pixel has unit gain; our kernel fixes are the default and the
+//! original 1985 shapes are behind [`reyes_scene::Original`].
+#![deny(missing_docs)]
+
+pub mod error;
+pub mod image;
+pub mod kernel;
+pub mod output;
+pub mod table;
+pub mod window;
+
+pub use self::image::Film;
+pub use error::FilmError;
+pub use kernel::{bessel_j1, weight};
+pub use output::{read_exr, srgb_decode, srgb_encode, write};
+pub use table::{FilterTable, border_for_width};
+pub use window::{Window, splat};

@@ -1,0 +1,360 @@
+//! The per-frame filter table (stage: film, built once per frame before any bucket is splatted).
+//!
+//! Invariants: `weights().len() == ns() * footprint()²`, laid out `[(s * fw + j) * fw + i]`
+//! (sample-major, then row `j`, then column `i`), all finite, and summing to 1 (up to float
+//! rounding). Every interior output pixel therefore receives each entry exactly once from its
+//! neighbourhood: unit gain for full opaque coverage (Appendix A 3.16).
+
+use reyes_scene::{FilterKind, Original};
+
+use crate::FilmError;
+use crate::kernel;
+
+/// Refuse tables with more entries than this (256 MiB of weights): such a filter width is a
+/// scene error, not something to allocate.
+const MAX_TABLE_ENTRIES: usize = 1 << 26;
+
+/// Appendix A's `Border` for a filter of full width `width`: `(int)(width/2 + 0.499)`, computed
+/// exactly as the hider computes its extended screen (f32, truncation toward zero).
+pub fn border_for_width(width: f32) -> u32 {
+    (width / 2.0 + 0.499).max(0.0) as u32
+}
+
+/// Filter weights of every sample stratum for every pixel of its `fw x fw` neighbourhood.
+///
+/// Port of the filter part of `tablesinit` (Appendix A 2.11), with `BoxFilterFlag` (2.8).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FilterTable {
+    kind: FilterKind,
+    width: f32,
+    border: u32,
+    footprint: u32,
+    ns: usize,
+    weights: Vec<f32>,
+    box_fast: bool,
+}
+
+impl FilterTable {
+    /// Build the normalised table for kernel `kind` of full width `width`, an `nx x ny` stratum
+    /// grid, and `location[s]` = Appendix A's `Location[s]`: the lower-left corner of sample
+    /// `s`'s stratum in `[0,1)²` (`nx * ny` entries).
+    ///
+    /// Port of `tablesinit` (Appendix A 2.11, "Create filter table" and "Normalize filter"):
+    /// `w[s][j][i] = kernel(dx, dy)` with `dx = location[s].x + 0.5/nx - (i - border + 0.5)`,
+    /// `dy = location[s].y + 0.5/ny - (j - border + 0.5)`, divided by the sum of all entries.
+    /// The offsets use the stratum centre, never the jittered sample position. The sum is
+    /// accumulated in `f64` (the C used `float`).
+    ///
+    /// # Errors
+    ///
+    /// [`FilmError::DegenerateFilter`] if `width` is not finite and positive, `nx` or `ny` is 0,
+    /// `location.len() != nx * ny`, the table would be unreasonably large, or the weights sum
+    /// to zero or a non-finite value.
+    pub fn new(
+        kind: FilterKind,
+        width: f32,
+        nx: u32,
+        ny: u32,
+        location: &[[f32; 2]],
+        original: &Original,
+    ) -> Result<FilterTable, FilmError> {
+        let degenerate = |reason: String| FilmError::DegenerateFilter { kind, width, reason };
+        if !(width.is_finite() && width > 0.0) {
+            return Err(degenerate("the width must be finite and positive".into()));
+        }
+        if nx == 0 || ny == 0 {
+            return Err(degenerate(format!("empty {nx}x{ny} sample grid")));
+        }
+        let ns = (nx as usize)
+            .checked_mul(ny as usize)
+            .ok_or_else(|| degenerate(format!("{nx}x{ny} sample grid is too large")))?;
+        if location.len() != ns {
+            return Err(degenerate(format!(
+                "{} stratum locations for a {nx}x{ny} grid (expected {ns})",
+                location.len()
+            )));
+        }
+        let border = border_for_width(width);
+        let footprint = 2 * border + 1;
+        let fw = footprint as usize;
+        let entries = fw
+            .checked_mul(fw)
+            .and_then(|a| a.checked_mul(ns))
+            .filter(|&n| n <= MAX_TABLE_ENTRIES)
+            .ok_or_else(|| {
+                degenerate(format!(
+                    "a {fw}x{fw} footprint with {ns} samples exceeds {MAX_TABLE_ENTRIES} weights"
+                ))
+            })?;
+
+        let half_x = 0.5 / f64::from(nx);
+        let half_y = 0.5 / f64::from(ny);
+        let b = f64::from(border);
+        let mut weights = Vec::with_capacity(entries);
+        let mut sum = 0.0_f64;
+        for loc in location {
+            let cx = f64::from(loc[0]) + half_x;
+            let cy = f64::from(loc[1]) + half_y;
+            for j in 0..fw {
+                let dy = (cy - (j as f64 - b + 0.5)) as f32;
+                for i in 0..fw {
+                    let dx = (cx - (i as f64 - b + 0.5)) as f32;
+                    let w = kernel::weight(kind, width, dx, dy, original);
+                    sum += f64::from(w);
+                    weights.push(w);
+                }
+            }
+        }
+        if !sum.is_finite() || sum == 0.0 {
+            return Err(degenerate(format!("the filter weights sum to {sum}")));
+        }
+        for w in &mut weights {
+            *w = (f64::from(*w) / sum) as f32;
+        }
+        Ok(FilterTable {
+            kind,
+            width,
+            border,
+            footprint,
+            ns,
+            weights,
+            box_fast: kind == FilterKind::Box && width == 1.0,
+        })
+    }
+
+    /// The kernel.
+    pub fn kind(&self) -> FilterKind {
+        self.kind
+    }
+
+    /// The full filter width in pixels.
+    pub fn width(&self) -> f32 {
+        self.width
+    }
+
+    /// Appendix A's `Border`: how far (pixels) a sample's weights reach beyond its own pixel.
+    pub fn border(&self) -> u32 {
+        self.border
+    }
+
+    /// The footprint side `fw = 2 * border + 1` (Appendix A's `width` in `tablesinit`).
+    pub fn footprint(&self) -> u32 {
+        self.footprint
+    }
+
+    /// Samples per pixel, `NS = nx * ny`.
+    pub fn ns(&self) -> usize {
+        self.ns
+    }
+
+    /// All weights, `[(s * fw + j) * fw + i]`: sample `s`'s weight for the output pixel
+    /// `(i - border, j - border)` relative to the sample's own pixel. Sums to 1.
+    pub fn weights(&self) -> &[f32] {
+        &self.weights
+    }
+
+    /// The `fw * fw` weights of sample stratum `s` (row-major, `[j * fw + i]`).
+    ///
+    /// # Panics
+    ///
+    /// If `s >= ns()`.
+    pub fn sample_weights(&self, s: usize) -> &[f32] {
+        let n = (self.footprint as usize).pow(2);
+        &self.weights[s * n..(s + 1) * n]
+    }
+
+    /// Appendix A's `BoxFilterFlag`: box of width exactly 1 (border 0), where the splat adds
+    /// `1/NS` of each sample to its own pixel (`applyboxfilter`).
+    pub fn box_fast(&self) -> bool {
+        self.box_fast
+    }
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+
+    pub(crate) const KINDS: [FilterKind; 5] = [
+        FilterKind::Box,
+        FilterKind::Gaussian,
+        FilterKind::Sinc,
+        FilterKind::Bartlett,
+        FilterKind::Bessel,
+    ];
+    pub(crate) const WIDTHS: [f32; 5] = [1.0, 1.5, 2.0, 3.0, 4.0];
+    pub(crate) const GRIDS: [u32; 5] = [1, 2, 3, 4, 8];
+
+    pub(crate) fn all_original() -> Original {
+        Original {
+            box_filter: true,
+            bartlett_filter: true,
+            sinc_filter: true,
+            ..Original::default()
+        }
+    }
+
+    /// The regular stratum corners `(x/nx, y/ny)`, in a scrambled (but fixed) order: the
+    /// x-major enumeration rotated by a third and reversed.
+    pub(crate) fn grid_locations(nx: u32, ny: u32) -> Vec<[f32; 2]> {
+        let mut cells: Vec<[f32; 2]> = (0..nx)
+            .flat_map(|x| (0..ny).map(move |y| [x as f32 / nx as f32, y as f32 / ny as f32]))
+            .collect();
+        let third = cells.len() / 3;
+        cells.rotate_left(third);
+        cells.reverse();
+        cells
+    }
+
+    #[test]
+    fn tables_sum_to_one() {
+        for original in [Original::default(), all_original()] {
+            for kind in KINDS {
+                for width in WIDTHS {
+                    for n in GRIDS {
+                        let loc = grid_locations(n, n);
+                        let t = FilterTable::new(kind, width, n, n, &loc, &original)
+                            .unwrap_or_else(|e| panic!("{e}"));
+                        let fw = t.footprint() as usize;
+                        assert_eq!(t.weights().len(), t.ns() * fw * fw);
+                        assert!(t.weights().iter().all(|w| w.is_finite()));
+                        let sum: f64 = t.weights().iter().map(|&w| f64::from(w)).sum();
+                        assert!(
+                            (sum - 1.0).abs() < 1e-5,
+                            "{kind:?} W={width} {n}x{n} {original:?}: sum {sum}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn border_and_footprint() {
+        // Appendix A 3.17: W = 1 -> 0, 1.5 -> 1, 2 -> 1, 3 -> 1, 3.01 -> 2, 4 -> 2.
+        for (w, b) in [(1.0, 0), (1.5, 1), (2.0, 1), (3.0, 1), (3.01, 2), (4.0, 2)] {
+            let t = FilterTable::new(
+                FilterKind::Gaussian,
+                w,
+                2,
+                2,
+                &grid_locations(2, 2),
+                &Original::default(),
+            )
+            .unwrap_or_else(|e| panic!("{e}"));
+            assert_eq!((t.border(), t.footprint()), (b, 2 * b + 1), "width {w}");
+        }
+    }
+
+    #[test]
+    fn box_fast_flag() {
+        let o = Original::default();
+        let loc = grid_locations(4, 4);
+        let fast = FilterTable::new(FilterKind::Box, 1.0, 4, 4, &loc, &o).unwrap();
+        assert!(fast.box_fast());
+        assert_eq!(fast.border(), 0);
+        assert!(fast.weights().iter().all(|&w| w == 1.0 / 16.0));
+        assert!(!FilterTable::new(FilterKind::Box, 1.5, 4, 4, &loc, &o).unwrap().box_fast());
+        assert!(!FilterTable::new(FilterKind::Gaussian, 1.0, 4, 4, &loc, &o).unwrap().box_fast());
+    }
+
+    /// Index of the stratum whose corner mirrors `loc` through the pixel centre.
+    fn mirror_index(loc: &[[f32; 2]], s: usize, nx: u32, ny: u32) -> usize {
+        let mx = 1.0 - 1.0 / nx as f32 - loc[s][0];
+        let my = 1.0 - 1.0 / ny as f32 - loc[s][1];
+        loc.iter()
+            .position(|l| (l[0] - mx).abs() < 1e-6 && (l[1] - my).abs() < 1e-6)
+            .unwrap_or_else(|| panic!("no mirror for stratum {s}"))
+    }
+
+    /// Is the table point-symmetric: w[s][j][i] == w[mirror s][fw-1-j][fw-1-i]? Equality is up
+    /// to 1e-6 of the largest weight, because corners such as 1/3 are not exact in f32.
+    fn point_symmetric(t: &FilterTable, loc: &[[f32; 2]], nx: u32, ny: u32) -> bool {
+        let fw = t.footprint() as usize;
+        let tol = 1e-6 * t.weights().iter().fold(0.0_f32, |m, w| m.max(w.abs()));
+        (0..t.ns()).all(|s| {
+            let m = mirror_index(loc, s, nx, ny);
+            (0..fw).all(|j| {
+                (0..fw).all(|i| {
+                    let a = t.sample_weights(s)[j * fw + i];
+                    let b = t.sample_weights(m)[(fw - 1 - j) * fw + (fw - 1 - i)];
+                    (a - b).abs() <= tol
+                })
+            })
+        })
+    }
+
+    #[test]
+    fn original_box_table_is_asymmetric_fixed_symmetric() {
+        // Appendix A 3.16's example: W = 1.2, nx = 4 (border 1, offsets up to 1.375).
+        let loc = grid_locations(4, 4);
+        let fixed = FilterTable::new(FilterKind::Box, 1.2, 4, 4, &loc, &Original::default())
+            .unwrap_or_else(|e| panic!("{e}"));
+        let orig = FilterTable::new(FilterKind::Box, 1.2, 4, 4, &loc, &all_original())
+            .unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(fixed.border(), 1);
+        assert!(point_symmetric(&fixed, &loc, 4, 4));
+        assert!(!point_symmetric(&orig, &loc, 4, 4));
+        // The original cuts exactly the entries at a positive offset > 1.2, i.e. 1.375: the
+        // stratum at x = 3/4 (or y = 3/4) towards the pixel on its left (or above), i = 0.
+        let fw = 3;
+        for (s, l) in loc.iter().enumerate() {
+            for j in 0..fw {
+                for i in 0..fw {
+                    let dx = l[0] + 0.125 - (i as f32 - 0.5);
+                    let dy = l[1] + 0.125 - (j as f32 - 0.5);
+                    let cut = dx > 1.2 || dy > 1.2;
+                    let w = orig.sample_weights(s)[j * fw + i];
+                    assert_eq!(w == 0.0, cut, "s={s} i={i} j={j} dx={dx} dy={dy}");
+                }
+            }
+        }
+        // The fixed box keeps only the sample's own pixel at this width: |d| <= 0.6.
+        for s in 0..16 {
+            let w = fixed.sample_weights(s);
+            for (k, &v) in w.iter().enumerate() {
+                assert_eq!(v != 0.0, k == 4, "s={s} k={k}");
+            }
+        }
+    }
+
+    #[test]
+    fn fixed_tables_are_symmetric() {
+        for kind in KINDS {
+            for width in WIDTHS {
+                for n in GRIDS {
+                    let loc = grid_locations(n, n);
+                    let t = FilterTable::new(kind, width, n, n, &loc, &Original::default())
+                        .unwrap_or_else(|e| panic!("{e}"));
+                    assert!(point_symmetric(&t, &loc, n, n), "{kind:?} W={width} {n}x{n}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn degenerate_inputs_are_errors() {
+        let o = Original::default();
+        let loc = grid_locations(2, 2);
+        let is_degenerate = |r: Result<FilterTable, FilmError>| {
+            matches!(r, Err(FilmError::DegenerateFilter { .. }))
+        };
+        assert!(is_degenerate(FilterTable::new(FilterKind::Box, 0.0, 2, 2, &loc, &o)));
+        assert!(is_degenerate(FilterTable::new(FilterKind::Box, f32::NAN, 2, 2, &loc, &o)));
+        assert!(is_degenerate(FilterTable::new(FilterKind::Box, 1.0, 0, 2, &[], &o)));
+        assert!(is_degenerate(FilterTable::new(FilterKind::Box, 1.0, 2, 2, &loc[..3], &o)));
+        assert!(is_degenerate(FilterTable::new(FilterKind::Box, 1e6, 2, 2, &loc, &o)));
+        // Locations far outside [0,1)²: every fixed-box weight is 0.
+        let far = [[5.0_f32, 5.0]; 4];
+        let e = FilterTable::new(FilterKind::Box, 1.0, 2, 2, &far, &o);
+        assert!(is_degenerate(e));
+        // A NaN location makes the sum NaN.
+        let nan = [[f32::NAN, 0.0], [0.5, 0.0], [0.0, 0.5], [0.5, 0.5]];
+        assert!(is_degenerate(FilterTable::new(FilterKind::Gaussian, 2.0, 2, 2, &nan, &o)));
+        // One line, naming the kernel.
+        let msg = FilterTable::new(FilterKind::Box, 1.0, 2, 2, &far, &o)
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default();
+        assert!(msg.contains("Box") && !msg.contains('\n'), "{msg}");
+    }
+}
