@@ -1,1 +1,228 @@
-//! placeholder
+//! reyes-dice: bound, split, dice, shade and bucket a scene's primitives into micropolygons.
+//!
+//! Stage: second in the pipeline, between the scene model and the hider. Single-threaded
+//! and deterministic: the same scene and frame give bit-identical output (no hash-map
+//! iteration, no threads; objects, faces, patches and grid cells are visited in order).
+//!
+//! Pipeline per object (in scene order): build the object-to-world matrix
+//! ([`object_to_world`]), turn the shape into parametric surfaces (quadrics, bilinear
+//! patches, one patch per mesh face), then REYES bound/split/dice per surface:
+//!
+//! * **Bound.** A patch is judged on an 8x8 test grid of camera-space points. It is culled
+//!   if all test points are in front of hither or beyond yon, or (when all are in front of
+//!   the eye) its projected bound misses the bucket grid, or (pinhole camera, some points at
+//!   or behind the eye) all points lie outside one side plane of the view frustum. Every
+//!   bound is grown by a safety margin, 25% of its extent plus 2 pixels, because test points
+//!   do not bound a curved surface: between samples it bulges outward by up to its sagitta.
+//!   With a lens the projected bound also grows by the blur (`LensSetup::grow`).
+//! * **Split.** A patch straddling hither (some test z below it) is halved along its longer
+//!   camera-space direction, at most 20 times; then it is diced anyway. Otherwise the
+//!   projected lengths of its longest row and column give `nu = ceil(len_u / sqrt(rate))`,
+//!   `nv` likewise; above `max_grid_size` micropolygons the patch is halved along the
+//!   longer projected direction (at most 40 splits deep, beyond which the grid is shrunk).
+//! * **Dice.** The `(nu+1) x (nv+1)` vertex grid is evaluated, shaded in world space at
+//!   shutter open, projected, and emitted as `nu x nv` micropolygons.
+//!
+//! Eye plane: no vertex with `z <= 0` is projected. A micropolygon with a vertex nearer
+//! than `hither / 2` is dropped: the hider's `bounddof` assumes nothing nearer, splitting
+//! has made such quads tiny in parameter space, and at `z < hither/2` a micropolygon that
+//! also reaches past hither would span a depth range huge compared to its size, i.e. it is
+//! seen nearly edge-on and covers almost nothing. One with some vertex outside
+//! `[hither, yon]` (but not all in front of hither, nor all beyond yon) is flagged
+//! `HITHER_YON_CROSSING` for per-sample clipping in the hider.
+//!
+//! Bucketing: `buckets[b]` lists, in increasing order, every micropolygon whose screen bound
+//! ([`screen_bound`]) touches bucket `b` ([`reyes_hider::Frame::buckets_touched`]).
+//! Neighbouring grids may be diced at different rates, so T-junction cracks are possible.
+#![deny(missing_docs)]
+
+mod bucket;
+mod camera;
+mod dice;
+mod shade;
+mod shapes;
+mod split;
+mod xform;
+
+pub use bucket::screen_bound;
+pub use camera::CameraSetup;
+pub use xform::{object_to_world, transform_matrix};
+
+use reyes_hider::{Frame, Micropolygon};
+use reyes_scene::Scene;
+
+use crate::bucket::Bucketer;
+use crate::dice::Emitter;
+use crate::split::{Decision, Patch, Splitter};
+
+/// The diced scene: micropolygons and, per bucket, the indices of those that touch it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Diced {
+    /// Every emitted micropolygon, in emission order.
+    pub mpolys: Vec<Micropolygon>,
+    /// One list per bucket (raster order of buckets): increasing indices into `mpolys`.
+    pub buckets: Vec<Vec<u32>>,
+    /// Counts.
+    pub stats: DiceStats,
+}
+
+/// Counts from dicing a scene.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct DiceStats {
+    /// Surfaces entering bound/split/dice: one per quadric or patch, one per mesh face
+    /// (one per fan triangle for faces of more than four vertices).
+    pub primitives: u64,
+    /// Patches split in two (for any reason).
+    pub splits: u64,
+    /// Of `splits`, those made because the patch straddled the hither plane.
+    pub hither_splits: u64,
+    /// Patches culled before dicing (behind hither, beyond yon, off the bucket grid).
+    pub patches_culled: u64,
+    /// Grids diced at a split limit (straddling hither, or too deep), possibly shrunk.
+    pub depth_limited: u64,
+    /// Grids diced.
+    pub grids: u64,
+    /// Micropolygons emitted (`mpolys.len()`).
+    pub micropolygons: u64,
+    /// Diced micropolygons dropped: a vertex nearer than hither/2 or not finite, entirely
+    /// in front of hither or beyond yon, or touching no bucket.
+    pub culled: u64,
+    /// Emitted micropolygons flagged `HITHER_YON_CROSSING`.
+    pub crossing: u64,
+    /// Total entries over all bucket lists.
+    pub bucket_entries: u64,
+}
+
+/// Why a scene could not be diced.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum DiceError {
+    /// The camera's eye and look-at points coincide.
+    #[error("camera eye and look_at coincide, so there is no view direction")]
+    EyeAtLookAt,
+    /// The camera's up vector is parallel to the view direction.
+    #[error("camera up vector is parallel to the view direction")]
+    UpParallelToView,
+    /// The frame is not the bucket layout of the scene's image.
+    #[error(
+        "frame {frame_width}x{frame_height} (buckets {bucket_w}x{bucket_h}) is not a valid bucket layout of the {width}x{height} image"
+    )]
+    FrameMismatch {
+        /// Frame width.
+        frame_width: u32,
+        /// Frame height.
+        frame_height: u32,
+        /// Frame bucket width.
+        bucket_w: u32,
+        /// Frame bucket height.
+        bucket_h: u32,
+        /// Scene image width.
+        width: u32,
+        /// Scene image height.
+        height: u32,
+    },
+    /// More micropolygons than bucket lists can index.
+    #[error("more than {limit} micropolygons; raise the shading rate or simplify the scene")]
+    TooManyMicropolygons {
+        /// The limit.
+        limit: u64,
+    },
+}
+
+/// Check that `frame` is what `Frame::new` lays out for the scene's image.
+fn check_frame(scene: &Scene, frame: &Frame) -> Result<(), DiceError> {
+    let ok = frame.bucket_w > 0
+        && frame.bucket_h > 0
+        && *frame
+            == Frame::new(
+                scene.image.width,
+                scene.image.height,
+                frame.border,
+                frame.bucket_w,
+                frame.bucket_h,
+            );
+    if ok {
+        Ok(())
+    } else {
+        Err(DiceError::FrameMismatch {
+            frame_width: frame.width,
+            frame_height: frame.height,
+            bucket_w: frame.bucket_w,
+            bucket_h: frame.bucket_h,
+            width: scene.image.width,
+            height: scene.image.height,
+        })
+    }
+}
+
+/// Dice every object of `scene` into shaded micropolygons and sort them into the buckets
+/// of `frame` (which must be the layout of the scene's image).
+pub fn dice_scene(scene: &Scene, frame: &Frame) -> Result<Diced, DiceError> {
+    check_frame(scene, frame)?;
+    camera::check_camera(&scene.camera)?;
+    let camera = CameraSetup::new(scene);
+    let hider = &scene.hider;
+    let splitter = Splitter::new(&camera, frame, hider.shading_rate, hider.max_grid_size);
+    let bucketer = Bucketer::new(frame, camera.lens(), camera.hither(), camera.yon());
+    let mut out = Emitter::new(bucketer, camera.hither(), camera.yon(), splitter.near());
+    let world_to_camera = camera.world_to_camera();
+    let mut stats = DiceStats::default();
+    let mut stack = Vec::new();
+    for object in &scene.objects {
+        let ctx = dice::object_context(object, &scene.lights, camera.eye_world());
+        let object_to_camera = world_to_camera * ctx.to_world;
+        for surface in shapes::surfaces(object) {
+            stats.primitives += 1;
+            stack.clear();
+            stack.push(Patch::root());
+            while let Some(patch) = stack.pop() {
+                match splitter.decide(&surface, &object_to_camera, &patch) {
+                    Decision::Cull => stats.patches_culled += 1,
+                    Decision::Split { along_u, hither } => {
+                        stats.splits += 1;
+                        stats.hither_splits += u64::from(hither);
+                        let [first, second] = patch.split(along_u, hither);
+                        // Depth first, lower half first.
+                        stack.push(second);
+                        stack.push(first);
+                    }
+                    Decision::Dice { nu, nv, limited } => {
+                        stats.grids += 1;
+                        stats.depth_limited += u64::from(limited);
+                        out.dice(&camera, &ctx, &surface, &patch, (nu, nv))?;
+                    }
+                }
+            }
+        }
+    }
+    stats.micropolygons = out.mpolys.len() as u64;
+    stats.culled = out.culled;
+    stats.crossing = out.crossing;
+    stats.bucket_entries = out.bucketer.entries;
+    Ok(Diced { mpolys: out.mpolys, buckets: out.bucketer.buckets, stats })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn errors_display_on_one_line() {
+        let errors = [
+            DiceError::EyeAtLookAt,
+            DiceError::UpParallelToView,
+            DiceError::FrameMismatch {
+                frame_width: 1,
+                frame_height: 2,
+                bucket_w: 3,
+                bucket_h: 4,
+                width: 5,
+                height: 6,
+            },
+            DiceError::TooManyMicropolygons { limit: 7 },
+        ];
+        for e in errors {
+            let s = e.to_string();
+            assert!(!s.is_empty() && !s.contains('\n'), "{s:?}");
+        }
+    }
+}

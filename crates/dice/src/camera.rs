@@ -1,0 +1,267 @@
+//! Camera stage: world -> camera (eye) space and eye -> raster projection (`EyeToScreenXY`).
+//!
+//! Invariants: camera space is +x right, +y up, +z forward (eye depth), built from an
+//! orthonormal basis; raster space is pixels with y down, pixel (x, y) covering
+//! `[x, x+1) x [y, y+1)`, and the field of view spans the shorter image side. Projection
+//! is only meaningful for `z > 0`; callers never project a point with `z <= 0`.
+
+use glam::{Mat4, Vec2, Vec3, Vec4};
+use reyes_hider::LensSetup;
+use reyes_scene::{Camera, Lens, Scene};
+
+use crate::DiceError;
+
+/// Relative size below which `cross(up, forward)` counts as zero (up parallel to the view).
+const PARALLEL_EPS: f32 = 1e-7;
+
+/// An orthonormal camera basis in world space.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Basis {
+    right: Vec3,
+    up: Vec3,
+    forward: Vec3,
+}
+
+/// The camera basis of `camera`, or why it has none (eye at look_at, up along the view).
+fn basis(camera: &Camera) -> Result<Basis, DiceError> {
+    let eye = Vec3::from(camera.eye);
+    let forward =
+        (Vec3::from(camera.look_at) - eye).try_normalize().ok_or(DiceError::EyeAtLookAt)?;
+    let up_in = Vec3::from(camera.up);
+    let side = up_in.cross(forward);
+    if side.length() <= PARALLEL_EPS * up_in.length() {
+        return Err(DiceError::UpParallelToView);
+    }
+    let right = side.try_normalize().ok_or(DiceError::UpParallelToView)?;
+    let up = forward.cross(right);
+    Ok(Basis { right, up, forward })
+}
+
+/// Check that the scene's camera has a well-defined view basis.
+pub(crate) fn check_camera(camera: &Camera) -> Result<(), DiceError> {
+    basis(camera).map(|_| ())
+}
+
+/// World-to-camera transform and raster projection of a scene's camera.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CameraSetup {
+    eye_world: Vec3,
+    basis: Basis,
+    /// Image width in pixels.
+    width: f32,
+    /// Image height in pixels.
+    height: f32,
+    /// Raster pixels per unit of `x/z` (and `y/z`): `(S/2) / tan(fov/2)`, `S` the shorter side.
+    pixels_per_unit: f32,
+    hither: f32,
+    yon: f32,
+    lens: Option<Lens>,
+}
+
+impl CameraSetup {
+    /// Set up the camera of `scene`.
+    ///
+    /// A degenerate camera (eye at `look_at`, or `up` parallel to the view) has no basis;
+    /// [`crate::dice_scene`] reports it as an error, and here it falls back to looking
+    /// down +z with +y up (or +x right when the view is along y) so that this never panics.
+    pub fn new(scene: &Scene) -> CameraSetup {
+        let cam = &scene.camera;
+        let basis = basis(cam).unwrap_or_else(|_| fallback_basis(cam));
+        let width = scene.image.width as f32;
+        let height = scene.image.height as f32;
+        let half_short = 0.5 * width.min(height);
+        let pixels_per_unit = half_short / (0.5 * cam.fov.to_radians()).tan();
+        CameraSetup {
+            eye_world: Vec3::from(cam.eye),
+            basis,
+            width,
+            height,
+            pixels_per_unit,
+            hither: cam.hither,
+            yon: cam.yon,
+            lens: cam.lens,
+        }
+    }
+
+    /// The world-to-camera matrix (rigid: rows are right, up, forward; the eye maps to 0).
+    pub fn world_to_camera(&self) -> Mat4 {
+        let Basis { right, up, forward } = self.basis;
+        let e = self.eye_world;
+        Mat4::from_cols(
+            Vec4::new(right.x, up.x, forward.x, 0.0),
+            Vec4::new(right.y, up.y, forward.y, 0.0),
+            Vec4::new(right.z, up.z, forward.z, 0.0),
+            Vec4::new(-right.dot(e), -up.dot(e), -forward.dot(e), 1.0),
+        )
+    }
+
+    /// Appendix A's `EyeToScreenXY`: raster position of a camera-space point with `z > 0`.
+    #[inline]
+    pub fn eye_to_raster(&self, p_camera: Vec3) -> Vec2 {
+        let k = self.pixels_per_unit;
+        Vec2::new(
+            0.5 * self.width + k * p_camera.x / p_camera.z,
+            0.5 * self.height - k * p_camera.y / p_camera.z,
+        )
+    }
+
+    /// Port of `VisCameraSetup`: the depth-of-field constants, or `None` for a pinhole camera.
+    pub fn lens(&self) -> Option<LensSetup> {
+        let lens = self.lens?;
+        let radius = 0.5 * lens.focal_length / lens.f_stop;
+        let a_raster = self.eye_to_raster(Vec3::new(0.0, 0.0, 1.0));
+        let b_raster = self.eye_to_raster(Vec3::new(1.0, 1.0, 1.0));
+        Some(LensSetup::new(
+            radius,
+            lens.focal_distance,
+            b_raster.x - a_raster.x,
+            b_raster.y - a_raster.y,
+        ))
+    }
+
+    /// Eye position in world space.
+    pub fn eye_world(&self) -> Vec3 {
+        self.eye_world
+    }
+
+    /// Near clipping depth (camera-space z).
+    pub fn hither(&self) -> f32 {
+        self.hither
+    }
+
+    /// Far clipping depth (camera-space z).
+    pub fn yon(&self) -> f32 {
+        self.yon
+    }
+
+    /// Raster pixels per unit of `x/z`: `(min(width, height)/2) / tan(fov/2)`.
+    pub fn pixels_per_unit(&self) -> f32 {
+        self.pixels_per_unit
+    }
+
+    /// Image size in pixels, `(width, height)`.
+    pub fn image_size(&self) -> Vec2 {
+        Vec2::new(self.width, self.height)
+    }
+}
+
+/// A usable basis for a degenerate camera (see [`CameraSetup::new`]).
+fn fallback_basis(camera: &Camera) -> Basis {
+    let eye = Vec3::from(camera.eye);
+    let forward = (Vec3::from(camera.look_at) - eye).try_normalize().unwrap_or(Vec3::Z);
+    let up_guess = if forward.y.abs() < 0.9 { Vec3::Y } else { Vec3::Z };
+    let right = up_guess.cross(forward).try_normalize().unwrap_or(Vec3::X);
+    Basis { right, up: forward.cross(right), forward }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use reyes_scene::{Hider, Image, Shutter};
+
+    fn scene(eye: [f32; 3], look_at: [f32; 3], up: [f32; 3], fov: f32, w: u32, h: u32) -> Scene {
+        Scene {
+            image: Image { width: w, height: h },
+            camera: Camera {
+                eye,
+                look_at,
+                up,
+                fov,
+                hither: 0.1,
+                yon: 1000.0,
+                shutter: Shutter::default(),
+                lens: None,
+            },
+            hider: Hider::default(),
+            lights: vec![],
+            objects: vec![],
+        }
+    }
+
+    fn close(a: f32, b: f32, tol: f32) -> bool {
+        (a - b).abs() <= tol
+    }
+
+    #[test]
+    fn centre_projects_to_image_centre() {
+        let cam =
+            CameraSetup::new(&scene([0.0; 3], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0], 60.0, 640, 480));
+        let p = cam.eye_to_raster(Vec3::new(0.0, 0.0, 7.0));
+        assert_eq!(p, Vec2::new(320.0, 240.0));
+    }
+
+    #[test]
+    fn field_of_view_edges_hit_the_shorter_sides() {
+        let fov = 35.0_f32;
+        let cam =
+            CameraSetup::new(&scene([0.0; 3], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0], fov, 640, 480));
+        let t = (0.5 * fov.to_radians()).tan();
+        let z = 3.0;
+        // Top and bottom edges of the (shorter) vertical field of view.
+        let top = cam.eye_to_raster(Vec3::new(0.0, t * z, z));
+        let bottom = cam.eye_to_raster(Vec3::new(0.0, -t * z, z));
+        assert!(close(top.y, 0.0, 1e-3) && close(top.x, 320.0, 1e-3), "{top}");
+        assert!(close(bottom.y, 480.0, 1e-3), "{bottom}");
+        // The image corners: the horizontal extent scales by the aspect ratio.
+        let corner = cam.eye_to_raster(Vec3::new(t * z * 640.0 / 480.0, -t * z, z));
+        assert!(close(corner.x, 640.0, 1e-3) && close(corner.y, 480.0, 1e-3), "{corner}");
+        let corner = cam.eye_to_raster(Vec3::new(-t * z * 640.0 / 480.0, t * z, z));
+        assert!(close(corner.x, 0.0, 1e-3) && close(corner.y, 0.0, 1e-3), "{corner}");
+    }
+
+    #[test]
+    fn portrait_image_uses_width_as_the_shorter_side() {
+        let cam =
+            CameraSetup::new(&scene([0.0; 3], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0], 90.0, 200, 400));
+        let p = cam.eye_to_raster(Vec3::new(1.0, 0.0, 1.0));
+        assert!(close(p.x, 200.0, 1e-3), "{p}");
+        assert!(close(cam.pixels_per_unit(), 100.0, 1e-3));
+    }
+
+    #[test]
+    fn world_to_camera_basis() {
+        // Looking from (1,2,3) towards -x with a tilted up vector.
+        let s = scene([1.0, 2.0, 3.0], [-4.0, 2.0, 3.0], [0.3, 1.0, 0.0], 45.0, 100, 100);
+        let cam = CameraSetup::new(&s);
+        let m = cam.world_to_camera();
+        let eye = m.transform_point3(Vec3::new(1.0, 2.0, 3.0));
+        assert!(eye.length() < 1e-6, "{eye}");
+        let look = m.transform_point3(Vec3::new(-4.0, 2.0, 3.0));
+        assert!((look - Vec3::new(0.0, 0.0, 5.0)).length() < 1e-5, "{look}");
+        // World +y is camera up; looking down -x, world +z is to the right (left-handed).
+        let up = m.transform_vector3(Vec3::Y);
+        assert!((up - Vec3::Y).length() < 1e-6, "{up}");
+        let right = m.transform_vector3(Vec3::Z);
+        assert!((right - Vec3::X).length() < 1e-6, "{right}");
+    }
+
+    #[test]
+    fn degenerate_cameras_are_reported_and_do_not_panic() {
+        let s = scene([0.0; 3], [0.0; 3], [0.0, 1.0, 0.0], 45.0, 10, 10);
+        assert_eq!(check_camera(&s.camera), Err(DiceError::EyeAtLookAt));
+        let _ = CameraSetup::new(&s).world_to_camera();
+        let s = scene([0.0; 3], [0.0, -5.0, 0.0], [0.0, 1.0, 0.0], 45.0, 10, 10);
+        assert_eq!(check_camera(&s.camera), Err(DiceError::UpParallelToView));
+        let m = CameraSetup::new(&s).world_to_camera();
+        assert!(m.is_finite());
+    }
+
+    #[test]
+    fn lens_matches_thin_lens_formula() {
+        let mut s = scene([0.0; 3], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0], 40.0, 320, 240);
+        assert!(CameraSetup::new(&s).lens().is_none());
+        s.camera.lens = Some(Lens { focal_length: 0.05, f_stop: 2.8, focal_distance: 4.0 });
+        let cam = CameraSetup::new(&s);
+        let lens = cam.lens().expect("lens");
+        let r = 0.5 * 0.05 / 2.8;
+        let k = cam.pixels_per_unit();
+        for z in [0.5_f32, 1.0, 4.0, 10.0, 100.0] {
+            let expect = r * k * (1.0 / z - 1.0 / 4.0);
+            let (dx, dy) = lens.coc(z);
+            assert!(close(dx, expect, 1e-4 * (1.0 + expect.abs())), "z {z}: {dx} vs {expect}");
+            // Raster y grows downward, so the y displacement has the opposite sign.
+            assert!(close(dy, -expect, 1e-4 * (1.0 + expect.abs())), "z {z}: {dy} vs {}", -expect);
+        }
+        assert!(lens.coc(4.0).0.abs() < 1e-6, "in focus at the focal distance");
+    }
+}

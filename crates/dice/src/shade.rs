@@ -1,0 +1,253 @@
+//! Shading stage: colour and transmittance at grid vertices, in world space, at shutter open.
+//!
+//! Invariants: lighting is two-sided (the normal is face-forwarded toward the eye), the
+//! output colour is premultiplied by opacity (`Os * Ci`) and `trans = 1 - Os`; every output
+//! is finite for finite input (a point light at the shaded point contributes nothing).
+
+use glam::Vec3;
+use reyes_scene::{Light, Material};
+
+/// A light after setup: the ambient ones are summed into [`Shader`]'s ambient term.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum DirectLight {
+    /// Parallel light: unit direction towards the light and colour.
+    Distant { l: Vec3, cl: Vec3 },
+    /// Point light: position and `intensity * color` (divided by d^2 at the surface).
+    Point { from: Vec3, cl: Vec3 },
+}
+
+/// The illumination model of a material.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Model {
+    Constant,
+    Matte { ka: f32, kd: f32 },
+    Plastic { ka: f32, kd: f32, ks: f32, exponent: f32, specular: Vec3 },
+}
+
+/// Shades points of one object.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Shader {
+    model: Model,
+    /// Surface colour `Cs` (before mesh tints).
+    cs: Vec3,
+    /// Opacity `Os`.
+    os: Vec3,
+    /// Sum of the ambient lights.
+    ambient: Vec3,
+    lights: Vec<DirectLight>,
+    eye_world: Vec3,
+}
+
+/// `d^2` below which a point light is taken to sit on the surface and is ignored.
+const MIN_DIST2: f32 = 1e-20;
+
+impl Shader {
+    /// Set up the shading of `material` under `lights`, seen from `eye_world`.
+    pub fn new(material: &Material, lights: &[Light], eye_world: Vec3) -> Shader {
+        let (model, cs, os) = match *material {
+            Material::Constant { color, opacity } => (Model::Constant, color, opacity),
+            Material::Matte { color, opacity, ka, kd } => (Model::Matte { ka, kd }, color, opacity),
+            Material::Plastic { color, opacity, ka, kd, ks, roughness, specular_color } => (
+                Model::Plastic {
+                    ka,
+                    kd,
+                    ks,
+                    exponent: 1.0 / roughness,
+                    specular: Vec3::from(specular_color),
+                },
+                color,
+                opacity,
+            ),
+        };
+        let mut ambient = Vec3::ZERO;
+        let mut direct = Vec::new();
+        for light in lights {
+            match *light {
+                Light::Ambient { color, intensity } => ambient += intensity * Vec3::from(color),
+                Light::Distant { from, to, color, intensity } => {
+                    // A light with from == to has no direction and lights nothing.
+                    if let Some(l) = (Vec3::from(from) - Vec3::from(to)).try_normalize() {
+                        direct.push(DirectLight::Distant { l, cl: intensity * Vec3::from(color) });
+                    }
+                }
+                Light::Point { from, color, intensity } => direct.push(DirectLight::Point {
+                    from: Vec3::from(from),
+                    cl: intensity * Vec3::from(color),
+                }),
+            }
+        }
+        Shader { model, cs: Vec3::from(cs), os: Vec3::from(os), ambient, lights: direct, eye_world }
+    }
+
+    /// True if the material is fully opaque in every channel.
+    pub fn opaque(&self) -> bool {
+        self.os == Vec3::ONE
+    }
+
+    /// Premultiplied colour `Os * Ci` and transmittance `1 - Os` at a world-space point with
+    /// (not necessarily face-forwarded) normal `n_world`; `tint` multiplies `Cs`.
+    pub fn shade(&self, p_world: Vec3, n_world: Vec3, tint: Vec3) -> ([f32; 3], [f32; 3]) {
+        let cs = self.cs * tint;
+        let ci = match self.model {
+            Model::Constant => cs,
+            Model::Matte { ka, kd } => {
+                let (n, _) = self.facing(p_world, n_world);
+                let (diffuse, _) = self.direct(p_world, n, None);
+                cs * (ka * self.ambient + kd * diffuse)
+            }
+            Model::Plastic { ka, kd, ks, exponent, specular } => {
+                let (n, v) = self.facing(p_world, n_world);
+                let (diffuse, spec) = self.direct(p_world, n, Some((v, exponent)));
+                cs * (ka * self.ambient + kd * diffuse) + specular * ks * spec
+            }
+        };
+        ((self.os * ci).to_array(), (Vec3::ONE - self.os).to_array())
+    }
+
+    /// The unit normal face-forwarded toward the eye, and the unit vector to the eye.
+    fn facing(&self, p_world: Vec3, n_world: Vec3) -> (Vec3, Vec3) {
+        let v = (self.eye_world - p_world).normalize_or_zero();
+        let n = n_world.normalize_or_zero();
+        (if n.dot(v) < 0.0 { -n } else { n }, v)
+    }
+
+    /// Sums over the non-ambient lights of `Cl * max(0, N.L)` and, when `specular` gives
+    /// `(V, 1/roughness)`, of `Cl * max(0, N.H)^(1/roughness)` where `N.L > 0`.
+    fn direct(&self, p_world: Vec3, n: Vec3, specular: Option<(Vec3, f32)>) -> (Vec3, Vec3) {
+        let mut diffuse = Vec3::ZERO;
+        let mut spec = Vec3::ZERO;
+        for light in &self.lights {
+            let (l, cl) = match *light {
+                DirectLight::Distant { l, cl } => (l, cl),
+                DirectLight::Point { from, cl } => {
+                    let d = from - p_world;
+                    let d2 = d.length_squared();
+                    if !d2.is_finite() || d2 <= MIN_DIST2 {
+                        continue;
+                    }
+                    (d / d2.sqrt(), cl / d2)
+                }
+            };
+            let n_dot_l = n.dot(l);
+            if n_dot_l <= 0.0 {
+                continue;
+            }
+            diffuse += cl * n_dot_l;
+            if let Some((v, exponent)) = specular {
+                let h = (l + v).normalize_or_zero();
+                spec += cl * n.dot(h).max(0.0).powf(exponent);
+            }
+        }
+        (diffuse, spec)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn close3(a: [f32; 3], b: Vec3) -> bool {
+        (Vec3::from(a) - b).abs().max_element() < 1e-5
+    }
+
+    const EYE: Vec3 = Vec3::new(0.0, 0.0, -10.0);
+
+    #[test]
+    fn constant_is_premultiplied_colour() {
+        let m = Material::Constant { color: [0.5, 1.0, 0.2], opacity: [0.5, 1.0, 0.0] };
+        let s = Shader::new(&m, &[], EYE);
+        let (c, t) = s.shade(Vec3::ZERO, Vec3::Z, Vec3::new(1.0, 0.5, 1.0));
+        assert!(close3(c, Vec3::new(0.25, 0.5, 0.0)), "{c:?}");
+        assert!(close3(t, Vec3::new(0.5, 0.0, 1.0)), "{t:?}");
+        assert!(!s.opaque());
+        assert!(
+            Shader::new(&Material::Constant { color: [1.0; 3], opacity: [1.0; 3] }, &[], EYE)
+                .opaque()
+        );
+    }
+
+    #[test]
+    fn matte_ambient_plus_lambert_two_sided() {
+        let m = Material::Matte { color: [1.0, 0.5, 0.25], opacity: [1.0; 3], ka: 0.5, kd: 2.0 };
+        let lights = [
+            Light::Ambient { color: [0.2, 0.2, 0.2], intensity: 1.0 },
+            // From the eye's side at 60 degrees off the normal: cos = 0.5.
+            Light::Distant {
+                from: [0.0, 3.0_f32.sqrt(), -1.0],
+                to: [0.0, 0.0, 0.0],
+                color: [1.0, 1.0, 1.0],
+                intensity: 0.8,
+            },
+        ];
+        let s = Shader::new(&m, &lights, EYE);
+        let expect = Vec3::new(1.0, 0.5, 0.25) * (0.5 * 0.2 + 2.0 * 0.8 * 0.5);
+        // The normal facing away from the eye is flipped: both sides shade the same.
+        for n in [Vec3::NEG_Z, Vec3::Z] {
+            let (c, _) = s.shade(Vec3::ZERO, n, Vec3::ONE);
+            assert!(close3(c, expect), "n {n}: {c:?} vs {expect}");
+        }
+    }
+
+    #[test]
+    fn point_light_falls_off_with_distance_squared() {
+        let m = Material::Matte { color: [1.0; 3], opacity: [1.0; 3], ka: 1.0, kd: 1.0 };
+        let lights =
+            [Light::Point { from: [0.0, 0.0, -4.0], color: [1.0, 0.5, 1.0], intensity: 8.0 }];
+        let s = Shader::new(&m, &lights, EYE);
+        let (c, _) = s.shade(Vec3::ZERO, Vec3::NEG_Z, Vec3::ONE);
+        assert!(close3(c, Vec3::new(0.5, 0.25, 0.5)), "{c:?}");
+        // A light at the surface point contributes nothing instead of NaN.
+        let (c, _) = s.shade(Vec3::new(0.0, 0.0, -4.0), Vec3::NEG_Z, Vec3::ONE);
+        assert!(close3(c, Vec3::ZERO), "{c:?}");
+        // A light behind the surface (after face-forwarding) contributes nothing.
+        // (The point at z = -5 faces the eye at z = -10; the light is on its far side.)
+        let (c, _) = s.shade(Vec3::new(0.0, 0.0, -5.0), Vec3::Z, Vec3::ONE);
+        assert!(close3(c, Vec3::ZERO), "{c:?}");
+    }
+
+    #[test]
+    fn plastic_specular_peak_and_cut_off() {
+        let m = Material::Plastic {
+            color: [1.0, 0.0, 0.0],
+            opacity: [1.0; 3],
+            ka: 0.0,
+            kd: 0.5,
+            ks: 0.5,
+            roughness: 0.1,
+            specular_color: [1.0, 1.0, 1.0],
+        };
+        // Light straight along the view: N.L = N.H = 1.
+        let lights = [Light::Distant {
+            from: [0.0, 0.0, -1.0],
+            to: [0.0; 3],
+            color: [1.0; 3],
+            intensity: 1.0,
+        }];
+        let s = Shader::new(&m, &lights, EYE);
+        let (c, _) = s.shade(Vec3::ZERO, Vec3::NEG_Z, Vec3::ONE);
+        assert!(close3(c, Vec3::new(1.0, 0.5, 0.5)), "{c:?}");
+        // Off the mirror direction the highlight falls as cos^(1/roughness).
+        let tilted = [Light::Distant {
+            from: [0.0, 1.0, -1.0],
+            to: [0.0; 3],
+            color: [1.0; 3],
+            intensity: 1.0,
+        }];
+        let s = Shader::new(&m, &tilted, EYE);
+        let (c, _) = s.shade(Vec3::ZERO, Vec3::NEG_Z, Vec3::ONE);
+        let n_dot_l = 0.5_f32.sqrt();
+        let n_dot_h = (22.5_f32).to_radians().cos();
+        let spec = 0.5 * n_dot_h.powf(10.0);
+        assert!(close3(c, Vec3::new(0.5 * n_dot_l + spec, spec, spec)), "{c:?}");
+        // Light behind the surface: no diffuse and no specular.
+        let behind = [Light::Distant {
+            from: [0.0, 0.0, 1.0],
+            to: [0.0; 3],
+            color: [1.0; 3],
+            intensity: 1.0,
+        }];
+        let s = Shader::new(&m, &behind, EYE);
+        let (c, _) = s.shade(Vec3::ZERO, Vec3::NEG_Z, Vec3::ONE);
+        assert!(close3(c, Vec3::ZERO), "{c:?}");
+    }
+}

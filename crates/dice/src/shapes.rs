@@ -1,0 +1,438 @@
+//! Shapes stage: each object's surfaces as parametric patches over `(u, v)` in `[0, 1]^2`.
+//!
+//! Invariants: `eval` returns an object-space point on the analytic surface, a unit
+//! geometric normal with the outward orientation of the conventions in the crate docs
+//! (quadrics sweep around object z with `theta = u * thetamax`), and a colour tint (mesh
+//! vertex colours, white elsewhere). Every returned value is finite for finite input.
+
+use glam::Vec3;
+use reyes_scene::{Object, Shape};
+
+/// One evaluated surface point, in object space.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct SurfacePoint {
+    /// Position.
+    pub p: Vec3,
+    /// Unit outward normal.
+    pub n: Vec3,
+    /// Colour multiplying the material colour (mesh vertex colours; white otherwise).
+    pub tint: Vec3,
+}
+
+/// A bilinear patch: `P(u,v) = lerp(lerp(P0,P1,u), lerp(P2,P3,u), v)`.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Bilinear {
+    /// Corners in RenderMan order: (0,0), (1,0), (0,1), (1,1).
+    p: [Vec3; 4],
+    /// Per-corner tint, interpolated the same way.
+    tint: [Vec3; 4],
+    /// A fixed normal (mesh triangles use their flat face normal).
+    flat_normal: Option<Vec3>,
+    /// The patch's average normal, used where the partial derivatives are degenerate.
+    average_normal: Vec3,
+}
+
+impl Bilinear {
+    /// A patch from its corners, tints and an optional fixed normal.
+    fn new(p: [Vec3; 4], tint: [Vec3; 4], flat_normal: Option<Vec3>) -> Bilinear {
+        // The vector area of a bilinear patch is half the cross product of its diagonals.
+        let average_normal = (p[3] - p[0]).cross(p[2] - p[1]).try_normalize().unwrap_or(Vec3::Z);
+        let flat_normal = flat_normal.map(|n| n.try_normalize().unwrap_or(average_normal));
+        Bilinear { p, tint, flat_normal, average_normal }
+    }
+}
+
+/// A parametric surface. Angles are in radians.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum Surface {
+    /// Sphere; `v` runs over latitude `phi_min..phi_max`.
+    Sphere { radius: f32, phi_min: f32, phi_max: f32, theta_max: f32 },
+    /// Open cylinder.
+    Cylinder { radius: f32, zmin: f32, zmax: f32, theta_max: f32 },
+    /// Cone from the base circle (z = 0) to the apex (z = height).
+    Cone { height: f32, radius: f32, theta_max: f32 },
+    /// Disk (annulus-free) in the plane z = height.
+    Disk { height: f32, radius: f32, theta_max: f32 },
+    /// Torus; `v` runs over the tube angle `phi_min..phi_max`.
+    Torus { major: f32, minor: f32, phi_min: f32, phi_max: f32, theta_max: f32 },
+    /// Bilinear patch (also every mesh face).
+    Bilinear(Bilinear),
+}
+
+#[inline]
+fn lerp4(c: &[Vec3; 4], u: f32, v: f32) -> Vec3 {
+    let bottom = c[0].lerp(c[1], u);
+    let top = c[2].lerp(c[3], u);
+    bottom.lerp(top, v)
+}
+
+impl Surface {
+    /// Object-space position at `(u, v)`.
+    pub fn position(&self, u: f32, v: f32) -> Vec3 {
+        match self {
+            Surface::Sphere { radius, phi_min, phi_max, theta_max } => {
+                let (st, ct) = (u * theta_max).sin_cos();
+                let (sp, cp) = (phi_min + v * (phi_max - phi_min)).sin_cos();
+                Vec3::new(radius * cp * ct, radius * cp * st, radius * sp)
+            }
+            Surface::Cylinder { radius, zmin, zmax, theta_max } => {
+                let (st, ct) = (u * theta_max).sin_cos();
+                Vec3::new(radius * ct, radius * st, zmin + v * (zmax - zmin))
+            }
+            Surface::Cone { height, radius, theta_max } => {
+                let (st, ct) = (u * theta_max).sin_cos();
+                let r = radius * (1.0 - v);
+                Vec3::new(r * ct, r * st, v * height)
+            }
+            Surface::Disk { height, radius, theta_max } => {
+                let (st, ct) = (u * theta_max).sin_cos();
+                let r = radius * (1.0 - v);
+                Vec3::new(r * ct, r * st, *height)
+            }
+            Surface::Torus { major, minor, phi_min, phi_max, theta_max } => {
+                let (st, ct) = (u * theta_max).sin_cos();
+                let (sp, cp) = (phi_min + v * (phi_max - phi_min)).sin_cos();
+                let ring = major + minor * cp;
+                Vec3::new(ring * ct, ring * st, minor * sp)
+            }
+            Surface::Bilinear(b) => lerp4(&b.p, u, v),
+        }
+    }
+
+    /// Position, unit outward normal and tint at `(u, v)`.
+    pub fn eval(&self, u: f32, v: f32) -> SurfacePoint {
+        let p = self.position(u, v);
+        let white = Vec3::ONE;
+        let (n, tint) = match self {
+            Surface::Sphere { radius, .. } => {
+                ((p / *radius).try_normalize().unwrap_or(Vec3::Z), white)
+            }
+            Surface::Cylinder { theta_max, .. } => {
+                let (st, ct) = (u * theta_max).sin_cos();
+                (Vec3::new(ct, st, 0.0), white)
+            }
+            Surface::Cone { height, radius, theta_max } => {
+                let (st, ct) = (u * theta_max).sin_cos();
+                // The parametric normal is (h cos, h sin, r); for h < 0 it points into the
+                // cone, so flip it by sign(h) to keep the outward orientation.
+                let s = height.signum();
+                let n = Vec3::new(s * height * ct, s * height * st, s * radius);
+                (n.try_normalize().unwrap_or(Vec3::Z), white)
+            }
+            Surface::Disk { .. } => (Vec3::Z, white),
+            Surface::Torus { phi_min, phi_max, theta_max, .. } => {
+                let (st, ct) = (u * theta_max).sin_cos();
+                let (sp, cp) = (phi_min + v * (phi_max - phi_min)).sin_cos();
+                (Vec3::new(cp * ct, cp * st, sp), white)
+            }
+            Surface::Bilinear(b) => {
+                let n = match b.flat_normal {
+                    Some(n) => n,
+                    None => {
+                        let dpdu = (b.p[1] - b.p[0]).lerp(b.p[3] - b.p[2], v);
+                        let dpdv = (b.p[2] - b.p[0]).lerp(b.p[3] - b.p[1], u);
+                        dpdu.cross(dpdv).try_normalize().unwrap_or(b.average_normal)
+                    }
+                };
+                (n, lerp4(&b.tint, u, v))
+            }
+        };
+        SurfacePoint { p, n, tint }
+    }
+}
+
+/// The surfaces of an object, in a fixed order (mesh faces in list order). Faces with
+/// fewer than three valid indices are skipped; faces with more than four are fanned into
+/// triangles around their first vertex.
+pub(crate) fn surfaces(object: &Object) -> Vec<Surface> {
+    match &object.shape {
+        Shape::Sphere { radius, zmin, zmax, thetamax } => {
+            let r = *radius;
+            let z0 = zmin.unwrap_or(-r).clamp(-r, r);
+            let z1 = zmax.unwrap_or(r).clamp(-r, r);
+            vec![Surface::Sphere {
+                radius: r,
+                phi_min: (z0 / r).clamp(-1.0, 1.0).asin(),
+                phi_max: (z1 / r).clamp(-1.0, 1.0).asin(),
+                theta_max: thetamax.to_radians(),
+            }]
+        }
+        Shape::Cylinder { radius, zmin, zmax, thetamax } => vec![Surface::Cylinder {
+            radius: *radius,
+            zmin: *zmin,
+            zmax: *zmax,
+            theta_max: thetamax.to_radians(),
+        }],
+        Shape::Cone { height, radius, thetamax } => vec![Surface::Cone {
+            height: *height,
+            radius: *radius,
+            theta_max: thetamax.to_radians(),
+        }],
+        Shape::Disk { height, radius, thetamax } => vec![Surface::Disk {
+            height: *height,
+            radius: *radius,
+            theta_max: thetamax.to_radians(),
+        }],
+        Shape::Torus { major_radius, minor_radius, phimin, phimax, thetamax } => {
+            vec![Surface::Torus {
+                major: *major_radius,
+                minor: *minor_radius,
+                phi_min: phimin.to_radians(),
+                phi_max: phimax.to_radians(),
+                theta_max: thetamax.to_radians(),
+            }]
+        }
+        Shape::BilinearPatch { points } => {
+            let p = points.map(Vec3::from);
+            vec![Surface::Bilinear(Bilinear::new(p, [Vec3::ONE; 4], None))]
+        }
+        Shape::Mesh { points, faces, colors } => {
+            let point = |i: u32| points.get(i as usize).map(|p| Vec3::from(*p));
+            let tint = |i: u32| {
+                colors
+                    .as_ref()
+                    .and_then(|c| c.get(i as usize))
+                    .map_or(Vec3::ONE, |c| Vec3::from(*c))
+            };
+            let mut out = Vec::with_capacity(faces.len());
+            for face in faces {
+                if face.iter().any(|&i| point(i).is_none()) {
+                    continue;
+                }
+                let pt = |k: usize| point(face[k]).unwrap_or(Vec3::ZERO);
+                let tn = |k: usize| tint(face[k]);
+                match face.len() {
+                    0..=2 => {}
+                    4 => {
+                        // Around the face a, b, c, d: P0 = a, P1 = b, P2 = d, P3 = c.
+                        let p = [pt(0), pt(1), pt(3), pt(2)];
+                        let t = [tn(0), tn(1), tn(3), tn(2)];
+                        out.push(Surface::Bilinear(Bilinear::new(p, t, None)));
+                    }
+                    n => {
+                        for k in 1..n - 1 {
+                            let (a, b, c) = (pt(0), pt(k), pt(k + 1));
+                            let p = [a, b, c, c];
+                            let t = [tn(0), tn(k), tn(k + 1), tn(k + 1)];
+                            let flat = (b - a).cross(c - a);
+                            out.push(Surface::Bilinear(Bilinear::new(p, t, Some(flat))));
+                        }
+                    }
+                }
+            }
+            out
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use reyes_scene::Material;
+
+    fn object(shape: Shape) -> Object {
+        Object {
+            name: String::new(),
+            shape,
+            transform: vec![],
+            material: Material::Constant { color: [1.0; 3], opacity: [1.0; 3] },
+            matte: false,
+        }
+    }
+
+    fn params() -> impl Iterator<Item = (f32, f32)> {
+        (0..=10).flat_map(|i| (0..=10).map(move |j| (i as f32 / 10.0, j as f32 / 10.0)))
+    }
+
+    /// `dP/du x dP/dv` by central differences (None where degenerate).
+    fn parametric_normal(s: &Surface, u: f32, v: f32) -> Option<Vec3> {
+        let h = 1e-3;
+        let (u0, u1) = ((u - h).max(0.0), (u + h).min(1.0));
+        let (v0, v1) = ((v - h).max(0.0), (v + h).min(1.0));
+        let du = s.position(u1, v) - s.position(u0, v);
+        let dv = s.position(u, v1) - s.position(u, v0);
+        du.cross(dv).try_normalize().filter(|_| du.length() > 1e-5 && dv.length() > 1e-5)
+    }
+
+    fn check_unit_and_consistent(s: &Surface) {
+        for (u, v) in params() {
+            let sp = s.eval(u, v);
+            assert!(
+                (sp.n.length() - 1.0).abs() < 1e-5,
+                "{s:?} at ({u},{v}): |N| = {}",
+                sp.n.length()
+            );
+            if let Some(pn) = parametric_normal(s, u, v) {
+                assert!(pn.dot(sp.n) > 0.99, "{s:?} at ({u},{v}): N {} vs dPdu x dPdv {pn}", sp.n);
+            }
+        }
+    }
+
+    #[test]
+    fn sphere_points_on_surface_with_outward_normals() {
+        let obj =
+            object(Shape::Sphere { radius: 2.0, zmin: Some(-1.0), zmax: None, thetamax: 300.0 });
+        let s = &surfaces(&obj)[0];
+        for (u, v) in params() {
+            let sp = s.eval(u, v);
+            assert!((sp.p.length() - 2.0).abs() < 1e-5);
+            assert!(sp.p.z >= -1.0 - 1e-5 && sp.p.z <= 2.0 + 1e-5);
+            assert!((sp.n - sp.p / 2.0).length() < 1e-5, "outward");
+        }
+        assert!((s.position(0.0, 0.0).z + 1.0).abs() < 1e-5);
+        assert!((s.position(0.3, 1.0) - Vec3::new(0.0, 0.0, 2.0)).length() < 1e-5);
+        let end = s.position(1.0, 0.5);
+        assert!((end.y.atan2(end.x).to_degrees() + 60.0).abs() < 1e-3, "thetamax 300");
+        check_unit_and_consistent(s);
+    }
+
+    #[test]
+    fn cylinder_points_on_surface_with_outward_normals() {
+        let obj = object(Shape::Cylinder { radius: 1.5, zmin: -1.0, zmax: 2.0, thetamax: 360.0 });
+        let s = &surfaces(&obj)[0];
+        for (u, v) in params() {
+            let sp = s.eval(u, v);
+            assert!((sp.p.truncate().length() - 1.5).abs() < 1e-5);
+            assert!((sp.p.z - (-1.0 + 3.0 * v)).abs() < 1e-5);
+            assert!(sp.n.dot(Vec3::new(sp.p.x, sp.p.y, 0.0)) > 0.0 && sp.n.z == 0.0);
+        }
+        check_unit_and_consistent(s);
+    }
+
+    #[test]
+    fn cone_points_on_surface_with_outward_normals() {
+        for height in [2.0_f32, -2.0] {
+            let obj = object(Shape::Cone { height, radius: 1.0, thetamax: 360.0 });
+            let s = &surfaces(&obj)[0];
+            for (u, v) in params() {
+                let sp = s.eval(u, v);
+                // On the cone: radius shrinks linearly to the apex.
+                let r = sp.p.truncate().length();
+                assert!((r - (1.0 - sp.p.z / height)).abs() < 1e-5, "h {height}");
+                // N is perpendicular to the generator (apex - base point) ...
+                let base = Vec3::new(sp.p.x, sp.p.y, 0.0) / (1.0 - v).max(1e-6);
+                let generator = Vec3::new(0.0, 0.0, height) - base;
+                if v < 1.0 {
+                    assert!(sp.n.dot(generator).abs() < 1e-4, "h {height}");
+                }
+                // ... and points away from the axis, and away from the base's inside.
+                let (st, ct) = (u * std::f32::consts::TAU).sin_cos();
+                assert!(sp.n.dot(Vec3::new(ct, st, 0.0)) > 0.0, "h {height}");
+                assert!(sp.n.z * height > 0.0, "h {height}");
+                assert!((sp.n.length() - 1.0).abs() < 1e-5);
+            }
+            if height > 0.0 {
+                check_unit_and_consistent(s);
+            }
+        }
+    }
+
+    #[test]
+    fn disk_points_on_surface_facing_plus_z() {
+        let obj = object(Shape::Disk { height: 0.5, radius: 3.0, thetamax: 180.0 });
+        let s = &surfaces(&obj)[0];
+        for (u, v) in params() {
+            let sp = s.eval(u, v);
+            assert_eq!(sp.p.z, 0.5);
+            assert!((sp.p.truncate().length() - 3.0 * (1.0 - v)).abs() < 1e-5);
+            assert!(sp.p.y >= -1e-5, "half disk");
+            assert_eq!(sp.n, Vec3::Z);
+        }
+        check_unit_and_consistent(s);
+    }
+
+    #[test]
+    fn torus_points_on_surface_with_outward_normals() {
+        let obj = object(Shape::Torus {
+            major_radius: 3.0,
+            minor_radius: 1.0,
+            phimin: -90.0,
+            phimax: 270.0,
+            thetamax: 360.0,
+        });
+        let s = &surfaces(&obj)[0];
+        for (u, v) in params() {
+            let sp = s.eval(u, v);
+            // Distance from the tube's centre circle is the minor radius.
+            let ring = sp.p.truncate().normalize() * 3.0;
+            let centre = Vec3::new(ring.x, ring.y, 0.0);
+            assert!(((sp.p - centre).length() - 1.0).abs() < 1e-5);
+            assert!((sp.n - (sp.p - centre)).length() < 1e-5, "outward from the tube centre");
+        }
+        check_unit_and_consistent(s);
+    }
+
+    #[test]
+    fn bilinear_patch_interpolates_corners() {
+        let pts = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 1.0, 0.5], [2.0, 1.0, -0.5]];
+        let obj = object(Shape::BilinearPatch { points: pts });
+        let s = &surfaces(&obj)[0];
+        for (k, (u, v)) in [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)].into_iter().enumerate()
+        {
+            assert_eq!(s.position(u, v), Vec3::from(pts[k]));
+        }
+        let mid = s.eval(0.5, 0.5);
+        assert!((mid.p - Vec3::new(1.0, 0.5, 0.0)).length() < 1e-6);
+        check_unit_and_consistent(s);
+        // Degenerate: a patch collapsed to a segment falls back to a finite unit normal.
+        let obj = object(Shape::BilinearPatch {
+            points: [[0.0; 3], [1.0, 0.0, 0.0], [0.0; 3], [1.0, 0.0, 0.0]],
+        });
+        let n = surfaces(&obj)[0].eval(0.5, 0.5).n;
+        assert!((n.length() - 1.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn mesh_faces_become_patches_with_tints() {
+        let obj = object(Shape::Mesh {
+            points: vec![
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [1.0, 1.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [2.0, 0.0, 0.0],
+            ],
+            faces: vec![vec![0, 1, 2, 3], vec![1, 4, 2], vec![0, 1], vec![0, 9, 1]],
+            colors: Some(vec![
+                [1.0, 0.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [0.0, 0.0, 1.0],
+                [1.0, 1.0, 0.0],
+                [0.0, 1.0, 1.0],
+            ]),
+        });
+        let s = surfaces(&obj);
+        assert_eq!(s.len(), 2, "the two-index face and the face with a bad index are skipped");
+        // Quad a,b,c,d -> P0=a, P1=b, P2=d, P3=c.
+        let q = &s[0];
+        assert_eq!(q.eval(0.0, 0.0).tint, Vec3::X);
+        assert_eq!(q.eval(1.0, 0.0).tint, Vec3::Y);
+        assert_eq!(q.eval(1.0, 1.0).tint, Vec3::Z);
+        assert_eq!(q.eval(0.0, 1.0).tint, Vec3::new(1.0, 1.0, 0.0));
+        assert_eq!(q.position(0.0, 1.0), Vec3::new(0.0, 1.0, 0.0));
+        assert_eq!(q.eval(0.3, 0.6).n, Vec3::Z);
+        // Triangle a,b,c -> P0=a, P1=b, P2=P3=c, flat normal cross(b-a, c-a).
+        let t = &s[1];
+        assert_eq!(t.eval(0.0, 0.0).tint, Vec3::Y);
+        assert_eq!(t.eval(1.0, 0.0).tint, Vec3::new(0.0, 1.0, 1.0));
+        assert_eq!(t.eval(0.2, 1.0).tint, Vec3::Z);
+        assert_eq!(t.eval(0.2, 1.0).p, Vec3::new(1.0, 1.0, 0.0));
+        assert_eq!(t.eval(0.5, 1.0).n, Vec3::Z);
+    }
+
+    #[test]
+    fn polygons_with_more_than_four_sides_are_fanned() {
+        let obj = object(Shape::Mesh {
+            points: vec![
+                [0.0; 3],
+                [1.0, 0.0, 0.0],
+                [1.5, 1.0, 0.0],
+                [0.5, 2.0, 0.0],
+                [-0.5, 1.0, 0.0],
+            ],
+            faces: vec![vec![0, 1, 2, 3, 4]],
+            colors: None,
+        });
+        assert_eq!(surfaces(&obj).len(), 3);
+    }
+}
