@@ -1,2 +1,75 @@
-//! placeholder
-fn main() {}
+//! Project tasks: `cargo xtask golden` (compare every golden scene with its reference) and
+//! `cargo xtask bless` (rewrite the references; look at the PNGs it writes first!).
+
+use std::process::ExitCode;
+
+use reyes_render::golden::{self, Outcome};
+
+fn usage() -> ExitCode {
+    eprintln!("usage: cargo xtask <golden | bless [SCENE...]>");
+    ExitCode::from(2)
+}
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let root = golden::workspace_root();
+    let cases = match golden::manifest(&root) {
+        Ok(c) => c,
+        Err(e) => {
+            eprintln!("xtask: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    match args.first().map(String::as_str) {
+        Some("golden") => {
+            let mut failed = 0;
+            for case in &cases {
+                match golden::check(&root, case) {
+                    Ok(Outcome::Pass(c)) => println!(
+                        "pass {:<16} mean {:.2e} max {:.2e} (tolerance {:.2e} / {:.2e})",
+                        case.scene,
+                        c.mean.iter().cloned().fold(0.0, f32::max),
+                        c.max.iter().cloned().fold(0.0, f32::max),
+                        c.mean_tolerance,
+                        c.max_tolerance
+                    ),
+                    Ok(Outcome::Fail(c, path)) => {
+                        failed += 1;
+                        println!(
+                            "FAIL {:<16} mean {:?} max {:?} (tolerance {:.2e} / {:.2e}); wrote {}",
+                            case.scene,
+                            c.mean,
+                            c.max,
+                            c.mean_tolerance,
+                            c.max_tolerance,
+                            path.display()
+                        );
+                    }
+                    Ok(Outcome::Missing(path)) => {
+                        failed += 1;
+                        println!("MISSING {:<13} no reference {}", case.scene, path.display());
+                    }
+                    Err(e) => {
+                        failed += 1;
+                        println!("ERROR {:<15} {e}", case.scene);
+                    }
+                }
+            }
+            if failed > 0 { ExitCode::FAILURE } else { ExitCode::SUCCESS }
+        }
+        Some("bless") => {
+            let only = &args[1..];
+            for case in cases.iter().filter(|c| only.is_empty() || only.contains(&c.scene)) {
+                match golden::bless(&root, case) {
+                    Ok(png) => println!("blessed {} (look at {})", case.scene, png.display()),
+                    Err(e) => {
+                        eprintln!("xtask: {}: {e}", case.scene);
+                        return ExitCode::FAILURE;
+                    }
+                }
+            }
+            ExitCode::SUCCESS
+        }
+        _ => usage(),
+    }
+}

@@ -94,9 +94,11 @@ fn make_exact(p: &mut VisPoint, lerps: &mut u64) {
 /// Port of `findfront`: the frontmost point of the list starting at `head`, computing exact
 /// depths (counted in `lerps`) only where z ranges overlap. Returns [`NIL`] for an empty list.
 ///
-/// 1. Take the point with the smallest `minz`. 2. If it is exact, or no other point's `minz`
-/// is below its `maxz`, it is the front. 3. Otherwise make it exact, then every point whose
-/// `minz` is below the current front's depth is made exact and becomes the front if nearer.
+/// 1. Take the point with the smallest `minz`.
+/// 2. If it is exact, or no other point's `minz` is below its `maxz`, it is the front.
+/// 3. Otherwise make it exact; then every point whose `minz` is below the current front's
+///    depth is made exact and becomes the front if nearer.
+///
 /// Points with `minz` at or beyond the front's exact depth can never be nearer, so the result
 /// is exact. Ties keep the earlier point in list order, as the original's strict `<` does.
 pub fn findfront(points: &mut [VisPoint], head: u32, lerps: &mut u64) -> u32 {

@@ -336,10 +336,10 @@ pub fn gouraud(v: &[[f32; 3]; 4], mp: &Micropolygon) -> ([f32; 3], [f32; 3]) {
     let w = shepard_weights(v);
     let mut c = [0.0; 3];
     let mut t = [0.0; 3];
-    for k in 0..4 {
+    for (k, wk) in w.iter().enumerate() {
         for a in 0..3 {
-            c[a] += w[k] * mp.color[k][a];
-            t[a] += w[k] * mp.trans[k][a];
+            c[a] += wk * mp.color[k][a];
+            t[a] += wk * mp.trans[k][a];
         }
     }
     (c, t)

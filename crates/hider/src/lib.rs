@@ -22,7 +22,7 @@ pub use bucket::gouraud;
 pub use frame::{Frame, border_for_filter_width};
 pub use lens::LensSetup;
 pub use mpoly::{Micropolygon, flags};
-pub use reyes_csg::MatteRule;
+pub use reyes_csg::{MatteRule, VisPoint};
 pub use samples::{BucketSamples, LensShape, Pairing, Pattern, SampleSpec};
 pub use tables::Tables;
 

@@ -1,0 +1,209 @@
+//! Golden-image regression: render each scene of `golden/manifest.ron` at its reduced size and
+//! compare with the blessed reference `golden/NAME.exr`.
+//!
+//! Tolerance, from what can legitimately differ: the renderer is deterministic, so on one
+//! machine the render is bit-identical; across machines only floating-point details
+//! (transcendental functions in shading and filters, fused multiply-add) can differ. Such a
+//! difference can at worst flip one sample across an edge, which moves a pixel by at most the
+//! largest filter-table weight times the sample's value. So the per-channel maximum absolute
+//! error allowed is `w_max * max(1, peak)` (one flipped sample in a pixel), and the mean
+//! absolute error allowed is that divided by 100 (such flips in at most 1% of pixels). A real
+//! regression (a shifted edge, a wrong colour, a lost object) exceeds both.
+
+use std::path::{Path, PathBuf};
+
+use reyes_film::{Film, FilterTable};
+use serde::Deserialize;
+
+use crate::{RenderOptions, frame_for, hider_config, render};
+
+/// One golden case.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Case {
+    /// Scene name: `scenes/NAME.ron`, reference `golden/NAME.exr`.
+    pub scene: String,
+    /// Render width (at most about 256).
+    pub width: u32,
+    /// Render height.
+    pub height: u32,
+}
+
+/// Per-channel comparison of two images.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Comparison {
+    /// Mean absolute error of R, G, B, A.
+    pub mean: [f32; 4],
+    /// Maximum absolute error of R, G, B, A.
+    pub max: [f32; 4],
+    /// Allowed mean.
+    pub mean_tolerance: f32,
+    /// Allowed maximum.
+    pub max_tolerance: f32,
+}
+
+impl Comparison {
+    /// Within tolerance.
+    pub fn passed(&self) -> bool {
+        self.mean.iter().all(|&m| m <= self.mean_tolerance)
+            && self.max.iter().all(|&m| m <= self.max_tolerance)
+    }
+}
+
+/// Errors of the golden harness (one line each).
+#[derive(Debug)]
+pub struct GoldenError(pub String);
+
+impl std::fmt::Display for GoldenError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for GoldenError {}
+
+fn err(e: impl std::fmt::Display) -> GoldenError {
+    GoldenError(e.to_string())
+}
+
+/// The workspace root (where `golden/` and `scenes/` are).
+pub fn workspace_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// Read `golden/manifest.ron`.
+pub fn manifest(root: &Path) -> Result<Vec<Case>, GoldenError> {
+    let path = root.join("golden/manifest.ron");
+    let text =
+        std::fs::read_to_string(&path).map_err(|e| err(format!("{}: {e}", path.display())))?;
+    ron::from_str(&text).map_err(|e| err(format!("{}: {e}", path.display())))
+}
+
+/// Render a case: its scene at the case's size (the fov spans the shorter side, so the
+/// framing is kept when the aspect ratio is), on all cores.
+pub fn render_case(root: &Path, case: &Case) -> Result<(Film, f32), GoldenError> {
+    let path = root.join("scenes").join(format!("{}.ron", case.scene));
+    let mut scene = reyes_scene::load(&path).map_err(err)?;
+    scene.image.width = case.width;
+    scene.image.height = case.height;
+    let film = render(&scene, &RenderOptions::default()).map_err(err)?.film;
+    // Largest filter weight, for the tolerance.
+    let frame = frame_for(&scene);
+    let camera = reyes_dice::CameraSetup::new(&scene);
+    let cfg = hider_config(&scene, &camera);
+    let hider = reyes_hider::Hider::new(cfg, frame);
+    let f = scene.hider.filter;
+    let table = FilterTable::new(
+        f.kind,
+        f.width,
+        cfg.nx,
+        cfg.ny,
+        &hider.tables().location,
+        &scene.hider.original,
+    )
+    .map_err(err)?;
+    let w_max = table.weights().iter().fold(0.0f32, |m, &w| m.max(w.abs()));
+    Ok((film, w_max))
+}
+
+/// Compare `actual` with `reference` under the tolerance for filter weight `w_max`.
+pub fn compare(actual: &Film, reference: &Film, w_max: f32) -> Result<Comparison, GoldenError> {
+    if (actual.width(), actual.height()) != (reference.width(), reference.height()) {
+        return Err(err(format!(
+            "size {}x{} differs from the reference's {}x{}",
+            actual.width(),
+            actual.height(),
+            reference.width(),
+            reference.height()
+        )));
+    }
+    let mut mean = [0.0f64; 4];
+    let mut max = [0.0f32; 4];
+    let mut peak = 1.0f32;
+    for (a, r) in actual.rgba().iter().zip(reference.rgba()) {
+        for c in 0..4 {
+            let d = (a[c] - r[c]).abs();
+            let d = if d.is_nan() { f32::INFINITY } else { d };
+            mean[c] += d as f64;
+            max[c] = max[c].max(d);
+            peak = peak.max(r[c].abs());
+        }
+    }
+    let n = actual.rgba().len().max(1) as f64;
+    let max_tolerance = w_max * peak;
+    Ok(Comparison {
+        mean: mean.map(|m| (m / n) as f32),
+        max,
+        mean_tolerance: max_tolerance / 100.0,
+        max_tolerance,
+    })
+}
+
+/// Result of checking one case.
+pub enum Outcome {
+    /// Within tolerance.
+    Pass(Comparison),
+    /// Outside tolerance; the actual image and a difference image were written.
+    Fail(Comparison, PathBuf),
+    /// No reference exists.
+    Missing(PathBuf),
+}
+
+/// Where failures are written.
+pub fn out_dir(root: &Path) -> PathBuf {
+    root.join("target/golden")
+}
+
+/// Check one case against its reference.
+pub fn check(root: &Path, case: &Case) -> Result<Outcome, GoldenError> {
+    let reference_path = root.join("golden").join(format!("{}.exr", case.scene));
+    let (actual, w_max) = render_case(root, case)?;
+    if !reference_path.exists() {
+        return Ok(Outcome::Missing(reference_path));
+    }
+    let reference = reyes_film::read_exr(&reference_path).map_err(err)?;
+    let cmp = compare(&actual, &reference, w_max)?;
+    if cmp.passed() {
+        return Ok(Outcome::Pass(cmp));
+    }
+    let dir = out_dir(root);
+    std::fs::create_dir_all(&dir).map_err(|e| err(format!("{}: {e}", dir.display())))?;
+    let actual_path = dir.join(format!("{}.actual.exr", case.scene));
+    reyes_film::write(&actual_path, &actual).map_err(err)?;
+    let diff = difference(&actual, &reference);
+    reyes_film::write(&dir.join(format!("{}.diff.png", case.scene)), &diff).map_err(err)?;
+    Ok(Outcome::Fail(cmp, actual_path))
+}
+
+/// Absolute difference image, scaled by 10 so small differences show.
+pub fn difference(a: &Film, b: &Film) -> Film {
+    let rgba: Vec<[f32; 4]> = a
+        .rgba()
+        .iter()
+        .zip(b.rgba())
+        .map(|(p, q)| {
+            [
+                10.0 * (p[0] - q[0]).abs(),
+                10.0 * (p[1] - q[1]).abs(),
+                10.0 * (p[2] - q[2]).abs(),
+                1.0,
+            ]
+        })
+        .collect();
+    let z = vec![f32::INFINITY; rgba.len()];
+    Film::from_pixels(a.width(), a.height(), rgba, z)
+        .unwrap_or_else(|| Film::new(a.width(), a.height()))
+}
+
+/// Render a case and write it as the new reference, plus a PNG beside it in `target/golden`
+/// to look at. Returns the PNG path.
+pub fn bless(root: &Path, case: &Case) -> Result<PathBuf, GoldenError> {
+    let (film, _) = render_case(root, case)?;
+    let reference = root.join("golden").join(format!("{}.exr", case.scene));
+    reyes_film::write(&reference, &film).map_err(err)?;
+    let dir = out_dir(root);
+    std::fs::create_dir_all(&dir).map_err(|e| err(format!("{}: {e}", dir.display())))?;
+    let png = dir.join(format!("{}.png", case.scene));
+    reyes_film::write(&png, &film).map_err(err)?;
+    Ok(png)
+}

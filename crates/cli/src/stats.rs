@@ -1,0 +1,141 @@
+//! Render statistics: `--stats`, after Appendix A's `VisPrint("stat")` (hits, misses, lerps,
+//! visible points) plus the dicer's counts and the time per stage.
+
+use std::fmt;
+use std::time::Duration;
+
+use reyes_hider::Frame;
+use reyes_scene::Filter;
+
+/// The dicer's counts.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct DiceSummary {
+    /// Primitives in the scene.
+    pub primitives: u64,
+    /// Split operations.
+    pub splits: u64,
+    /// Grids diced.
+    pub grids: u64,
+    /// Micropolygons or patches culled.
+    pub culled: u64,
+}
+
+/// Everything `--stats` prints.
+#[derive(Debug, Clone)]
+pub struct RenderStats {
+    /// Image width.
+    pub width: u32,
+    /// Image height.
+    pub height: u32,
+    /// Samples per pixel (nx, ny).
+    pub samples: (u32, u32),
+    /// Reconstruction filter.
+    pub filter: Filter,
+    /// Bucket layout.
+    pub frame: Frame,
+    /// Buckets that had micropolygons.
+    pub buckets_rendered: usize,
+    /// Dicer counts.
+    pub dice: DiceSummary,
+    /// Micropolygons emitted.
+    pub micropolygons: u64,
+    /// Hider counts.
+    pub hider: reyes_hider::Stats,
+    /// Time to dice and shade.
+    pub t_dice: Duration,
+    /// Time in the bucket loop (sampling, resolving, filtering).
+    pub t_hide: Duration,
+    /// Time to accumulate bucket windows.
+    pub t_film: Duration,
+    /// Time to write the output file.
+    pub t_write: Duration,
+}
+
+fn pct(a: u64, b: u64) -> f64 {
+    100.0 * a as f64 / (b.max(1)) as f64
+}
+
+impl RenderStats {
+    /// The counts only (no times): stable across runs and machines.
+    pub fn counts(&self) -> String {
+        let h = &self.hider;
+        let f = &self.frame;
+        let mut s = String::new();
+        use std::fmt::Write;
+        let _ = writeln!(
+            s,
+            " Image: {} x {}, {} by {} samples per pixel, {:?} filter {} pixels wide",
+            self.width,
+            self.height,
+            self.samples.0,
+            self.samples.1,
+            self.filter.kind,
+            self.filter.width
+        );
+        let _ = writeln!(
+            s,
+            " Buckets: {} x {} pixels, {} x {} ({} with micropolygons), border {}",
+            f.bucket_w, f.bucket_h, f.buckets_x, f.buckets_y, self.buckets_rendered, f.border
+        );
+        let _ = writeln!(
+            s,
+            " Dicer: {} primitives, {} splits, {} grids, {} micropolygons, {} culled",
+            self.dice.primitives,
+            self.dice.splits,
+            self.dice.grids,
+            self.micropolygons,
+            self.dice.culled
+        );
+        let _ = writeln!(
+            s,
+            " Micropolygons in buckets: {} ({:.2} buckets per micropolygon)",
+            h.micropolygons,
+            h.micropolygons as f64 / self.micropolygons.max(1) as f64
+        );
+        let tests = h.hits + h.misses;
+        let _ = writeln!(
+            s,
+            " Hider samples: {:5.2}% ({} hits and {} misses)",
+            pct(h.hits, tests),
+            h.hits,
+            h.misses
+        );
+        let _ = writeln!(
+            s,
+            " Hider lerps: {:5.2}% ({} lerps out of {} hits)",
+            pct(h.lerps, h.hits),
+            h.lerps,
+            h.hits
+        );
+        let _ = writeln!(
+            s,
+            " Visiblepoints: {} created, {} peak in one bucket ({} kB)",
+            h.points,
+            h.peak_points,
+            h.peak_points * std::mem::size_of::<reyes_hider::VisPoint>() as u64 / 1024
+        );
+        s
+    }
+}
+
+impl fmt::Display for RenderStats {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", self.counts())?;
+        let total = self.t_dice + self.t_hide + self.t_film + self.t_write;
+        let tests = self.hider.hits + self.hider.misses;
+        writeln!(
+            f,
+            " Time: dice {:.3} s, hide {:.3} s, film {:.3} s, write {:.3} s, total {:.3} s",
+            self.t_dice.as_secs_f64(),
+            self.t_hide.as_secs_f64(),
+            self.t_film.as_secs_f64(),
+            self.t_write.as_secs_f64(),
+            total.as_secs_f64()
+        )?;
+        writeln!(
+            f,
+            " Sample tests per second (bucket loop, all threads): {:.1} million",
+            tests as f64 / self.t_hide.as_secs_f64().max(1e-9) / 1e6
+        )
+    }
+}

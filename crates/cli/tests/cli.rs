@@ -1,0 +1,220 @@
+//! The `reyes-render` binary as a user meets it: exit codes, one-line errors, no partial
+//! output, byte-identical output for any thread count, and text that must not drift.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_reyes-render"))
+}
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn run(args: &[&str]) -> Output {
+    bin().args(args).output().expect("run reyes-render")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// A small valid scene (a sphere), with `edit` applied to its text.
+fn scene_with(dir: &Path, name: &str, edit: impl Fn(&str) -> String) -> PathBuf {
+    let text = "Scene(
+  image: (width: 32, height: 24),
+  camera: (eye: (0.0, 0.0, -5.0), look_at: (0.0, 0.0, 0.0), fov: 40.0, hither: 0.1, yon: 100.0),
+  hider: (pixel_samples: (2, 2), filter: (kind: Gaussian, width: 2.0)),
+  lights: [Ambient(intensity: 1.0)],
+  objects: [(name: \"ball\", shape: Sphere(radius: 1.0), material: Matte(color: (1.0, 0.5, 0.2)))],
+)
+";
+    let path = dir.join(name);
+    std::fs::write(&path, edit(text)).unwrap();
+    path
+}
+
+fn files_in(dir: &Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    v.sort();
+    v
+}
+
+#[test]
+fn renders_the_demo_scene_to_exr_and_png() {
+    let dir = tempfile::tempdir().unwrap();
+    for ext in ["exr", "png"] {
+        let out = dir.path().join(format!("spheres.{ext}"));
+        let scene = root().join("scenes/spheres.ron");
+        let o = run(&[scene.to_str().unwrap(), "-o", out.to_str().unwrap(), "--quiet"]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let film = if ext == "exr" { Some(reyes_film::read_exr(&out).unwrap()) } else { None };
+        if let Some(f) = film {
+            assert_eq!((f.width(), f.height()), (640, 480));
+            // The middle of the green sphere is opaque, the sky above the ground is empty.
+            assert_eq!(f.pixel(330, 200).unwrap()[3], 1.0);
+            assert_eq!(f.pixel(320, 10).unwrap()[3], 0.0);
+            assert!(f.depth(330, 200).unwrap().is_finite());
+        }
+    }
+    assert_eq!(files_in(dir.path()), ["spheres.exr", "spheres.png"]);
+}
+
+#[test]
+fn threads_one_and_two_give_identical_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = root().join("scenes/transparency.ron");
+    let mut bytes = Vec::new();
+    for t in ["1", "2"] {
+        let out = dir.path().join(format!("t{t}.exr"));
+        let o = run(&[scene.to_str().unwrap(), "-o", out.to_str().unwrap(), "--threads", t, "-q"]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        bytes.push(std::fs::read(&out).unwrap());
+    }
+    assert_eq!(bytes[0], bytes[1]);
+}
+
+/// Each bad scene: exit 2, one line naming the file, a line:column, the field; no output.
+#[test]
+fn bad_scenes_exit_2_with_one_line_and_no_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases: [(&str, &str, &str, &str); 12] = [
+        ("malformed", "objects: [", "objects: [[", ""),
+        ("unknown-field", "fov: 40.0", "fov: 40.0, zoom: 2.0", "camera"),
+        ("width-0", "width: 32", "width: 0", "image.width"),
+        ("height-0", "height: 24", "height: 0", "image.height"),
+        ("samples-0", "pixel_samples: (2, 2)", "pixel_samples: (0, 2)", "hider.pixel_samples"),
+        ("fov-180", "fov: 40.0", "fov: 180.0", "camera.fov"),
+        ("hither-yon", "hither: 0.1, yon: 100.0", "hither: 5.0, yon: 1.0", "camera.yon"),
+        ("hither-0", "hither: 0.1", "hither: 0.0", "camera.hither"),
+        ("filter-width", "width: 2.0)", "width: -1.0)", "hider.filter.width"),
+        ("radius", "radius: 1.0", "radius: -1.0", "objects[0].shape.radius"),
+        ("nan", "radius: 1.0", "radius: NaN", "objects[0].shape.radius"),
+        ("inf", "fov: 40.0", "fov: inf", "camera.fov"),
+    ];
+    let mut snapshot = String::new();
+    for (name, from, to, field) in cases {
+        let scene = scene_with(dir.path(), &format!("{name}.ron"), |t| {
+            assert!(t.contains(from), "{name}");
+            t.replacen(from, to, 1)
+        });
+        let out = dir.path().join(format!("{name}.exr"));
+        let o = run(&[scene.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{name}: {err}");
+        assert_eq!(err.lines().count(), 1, "{name}: {err}");
+        assert!(err.contains(&format!("{name}.ron:")), "{name}: {err}");
+        assert!(err.contains(field), "{name}: {err}");
+        let pos = err.split(&format!("{name}.ron:")).nth(1).unwrap();
+        let mut parts = pos.split(':');
+        assert!(parts.next().unwrap().parse::<u32>().is_ok(), "{name}: no line in {err}");
+        assert!(parts.next().unwrap().parse::<u32>().is_ok(), "{name}: no column in {err}");
+        assert!(!out.exists(), "{name}: output written");
+        snapshot.push_str(&err.replace(&dir.path().display().to_string(), "DIR"));
+    }
+    insta::assert_snapshot!("bad_scenes", snapshot);
+}
+
+#[test]
+fn mesh_index_out_of_range_is_a_scene_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = scene_with(dir.path(), "mesh.ron", |t| {
+        t.replace(
+            "Sphere(radius: 1.0)",
+            "Mesh(points: [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)], faces: [[0, 1, 3]])",
+        )
+    });
+    let o = run(&[scene.to_str().unwrap(), "-o", dir.path().join("m.exr").to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("objects[0].shape.faces[0][2]"), "{}", stderr(&o));
+}
+
+#[test]
+fn io_errors_exit_1_and_usage_errors_exit_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = scene_with(dir.path(), "ok.ron", |t| t.to_string());
+    let s = scene.to_str().unwrap();
+    // Missing scene file: I/O.
+    let o = run(&[dir.path().join("nope.ron").to_str().unwrap(), "-o", "x.exr"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert_eq!(stderr(&o).lines().count(), 1);
+    // Unwritable output path: I/O, and nothing created.
+    let o = run(&[s, "-o", "/nonexistent-dir/out.exr"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("/nonexistent-dir/out.exr"));
+    // A directory in the output's place: the atomic rename fails, nothing is left behind.
+    let clash = dir.path().join("clash.exr");
+    std::fs::create_dir(&clash).unwrap();
+    let o = run(&[s, "-o", clash.to_str().unwrap(), "-q"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert_eq!(files_in(dir.path()), ["clash.exr", "ok.ron"]);
+    // Usage errors.
+    for args in [
+        vec![s, "-o", "out.tiff"],
+        vec![s, "-o", "out.exr", "--samples", "0x4"],
+        vec![s, "-o", "out.exr", "--samples", "4"],
+        vec![s, "-o", "out.exr", "--threads", "0"],
+        vec![s],
+    ] {
+        let o = run(&args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+    }
+}
+
+#[test]
+fn a_failed_render_leaves_an_existing_output_untouched() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("keep.exr");
+    std::fs::write(&out, b"previous").unwrap();
+    let bad = scene_with(dir.path(), "bad.ron", |t| t.replace("width: 32", "width: 0"));
+    let o = run(&[bad.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(std::fs::read(&out).unwrap(), b"previous");
+    assert_eq!(files_in(dir.path()), ["bad.ron", "keep.exr"]);
+}
+
+#[test]
+fn overrides_change_the_render() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = scene_with(dir.path(), "s.ron", |t| t.to_string());
+    let s = scene.to_str().unwrap();
+    let mut outs = Vec::new();
+    for extra in [vec![], vec!["--seed", "7"], vec!["--samples", "3x3"]] {
+        let out = dir.path().join(format!("o{}.exr", outs.len()));
+        let mut args = vec![s, "-o", out.to_str().unwrap(), "-q"];
+        args.extend(extra);
+        assert!(run(&args).status.success());
+        outs.push(std::fs::read(&out).unwrap());
+    }
+    assert_ne!(outs[0], outs[1], "--seed must change the jitter");
+    assert_ne!(outs[0], outs[2], "--samples must change the sampling");
+}
+
+#[test]
+fn help_text() {
+    let o = run(&["--help"]);
+    assert!(o.status.success());
+    insta::assert_snapshot!("help", String::from_utf8_lossy(&o.stdout));
+}
+
+#[test]
+fn stats_counts() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = root().join("scenes/transparency.ron");
+    let out = dir.path().join("t.exr");
+    let o = run(&[scene.to_str().unwrap(), "-o", out.to_str().unwrap(), "--stats", "-q"]);
+    assert!(o.status.success());
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(text.contains("Hider samples:") && text.contains("Time: dice"), "{text}");
+    // Counts are deterministic; times are not.
+    let counts: String = text
+        .lines()
+        .filter(|l| !l.starts_with(" Time") && !l.starts_with(" Sample tests per second"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    insta::assert_snapshot!("stats_transparency", counts);
+}
