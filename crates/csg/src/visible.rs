@@ -220,6 +220,50 @@ mod tests {
         assert!((lerpz(&v) - 3.0).abs() < 1e-6);
     }
 
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(5000))]
+        /// On a planar quad (depth z = z0 + g.(x, y)) Shepard interpolation is a convex
+        /// combination of the vertex depths, so its error against the plane at the sample is at
+        /// most max_k |g.(v_k - p)| <= |g| * max_k |v_k - p| (Cauchy-Schwarz): the depth change
+        /// across the micropolygon. For a one-pixel micropolygon that is the depth gradient per
+        /// pixel, far below the gaps between distinct surfaces.
+        #[test]
+        fn lerpz_stays_near_the_plane(
+            c in proptest::array::uniform8(-1.0f32..1.0),
+            g in proptest::array::uniform2(-0.5f32..0.5),
+            z0 in 1.0f32..100.0,
+            p in proptest::array::uniform2(0.05f32..0.95),
+        ) {
+            // A convex quad: the unit square's corners jittered by up to 0.2, sample inside.
+            let corners = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)];
+            let v: [[f32; 3]; 4] = std::array::from_fn(|k| {
+                let x = corners[k].0 + 0.2 * c[2 * k] - p[0];
+                let y = corners[k].1 + 0.2 * c[2 * k + 1] - p[1];
+                [x, y, z0 + g[0] * x + g[1] * y]
+            });
+            let plane = z0; // the plane's depth at the sample (the origin)
+            let reach = v.iter().map(|q| q[0].hypot(q[1])).fold(0.0f32, f32::max);
+            let bound = g[0].hypot(g[1]) * reach;
+            let err = (lerpz(&v) - plane).abs();
+            // f32 rounding of depths near z0: a few ulps of z0.
+            proptest::prop_assert!(err <= bound + 4.0 * f32::EPSILON * z0, "{err} > {bound}");
+            // The closed form of appendix-a.md 3.11, inverse-distance weighting of power 1 with
+            // Manhattan distances, evaluated independently in f64.
+            let (mut num, mut den) = (0.0f64, 0.0f64);
+            for q in &v {
+                let d = (q[0].abs() + q[1].abs()) as f64;
+                num += q[2] as f64 / d;
+                den += 1.0 / d;
+            }
+            let reference = num / den;
+            proptest::prop_assert!(((lerpz(&v) as f64) - reference).abs() <= 1e-5 * reference);
+            let lo = v.iter().map(|q| q[2]).fold(f32::INFINITY, f32::min);
+            let hi = v.iter().map(|q| q[2]).fold(f32::NEG_INFINITY, f32::max);
+            let z = lerpz(&v);
+            proptest::prop_assert!(z >= lo - 4.0 * f32::EPSILON * z0 && z <= hi + 4.0 * f32::EPSILON * z0);
+        }
+    }
+
     #[test]
     fn lerpz_degenerate_quad_is_finite() {
         // Two vertices on the sample: Appendix A gives 0/0 = NaN.
