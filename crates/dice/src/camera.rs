@@ -171,6 +171,7 @@ mod tests {
                 yon: 1000.0,
                 shutter: Shutter::default(),
                 lens: None,
+                motion: vec![],
             },
             hider: Hider::default(),
             lights: vec![],

@@ -148,7 +148,7 @@ impl Emitter {
             csg_tree: 0,
             csg_node: 0,
             glass_opacity: 0.0,
-            pad: 0,
+            time: [0.0, 1.0],
         };
         let Some(range) = self.bucketer.range(&mp) else {
             self.culled += 1;

@@ -237,6 +237,8 @@ mod tests {
             transform: vec![],
             material: Material::Constant { color: [1.0; 3], opacity: [1.0; 3] },
             matte: false,
+            motion: vec![],
+            deform: vec![],
         }
     }
 

@@ -323,6 +323,7 @@ mod tests {
                 yon: 100.0,
                 shutter: Shutter::default(),
                 lens,
+                motion: vec![],
             },
             hider: Hider::default(),
             lights: vec![],
@@ -337,6 +338,8 @@ mod tests {
             transform: vec![],
             material: Material::Constant { color: [1.0; 3], opacity: [1.0; 3] },
             matte: false,
+            motion: vec![],
+            deform: vec![],
         }
     }
 

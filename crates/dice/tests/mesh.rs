@@ -32,6 +32,8 @@ fn mesh_object(material: Material, matte: bool) -> Object {
         transform: vec![],
         material,
         matte,
+        motion: Vec::new(),
+        deform: Vec::new(),
     }
 }
 

@@ -77,6 +77,8 @@ fn odd_shapes_and_transforms_do_not_panic() {
                 transform: t.clone(),
                 material: plastic.clone(),
                 matte: false,
+                motion: Vec::new(),
+                deform: Vec::new(),
             });
         }
     }

@@ -44,8 +44,12 @@ pub struct Micropolygon {
     pub csg_node: u16,
     /// Appendix A `glasshackopacity`.
     pub glass_opacity: f32,
-    /// Padding to a multiple of 16 bytes.
-    pub pad: u32,
+    /// The part of the (normalised) shutter during which this micropolygon exists: `v` is its
+    /// position at `time[0]` and `speed` its displacement from `time[0]` to `time[1]`.
+    /// `[0, 1]` for the whole shutter. Piecewise-linear motion (more than two keys) is one
+    /// micropolygon per segment; a micropolygon with a partial segment takes path M even if
+    /// it does not move within it.
+    pub time: [f32; 2],
 }
 
 impl Micropolygon {
@@ -53,6 +57,12 @@ impl Micropolygon {
     #[inline]
     pub fn has(&self, f: u32) -> bool {
         self.flags & f == f
+    }
+
+    /// True if the micropolygon exists for the whole shutter.
+    #[inline]
+    pub fn whole_shutter(&self) -> bool {
+        self.time == [0.0, 1.0]
     }
 
     /// Screen-space bound over the whole shutter: `(min, max)` of x, y, z over the vertex

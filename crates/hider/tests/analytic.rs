@@ -15,7 +15,7 @@ fn quad(p: [[f32; 2]; 4], z: f32, color: [f32; 3]) -> Micropolygon {
         csg_tree: 0,
         csg_node: 0,
         glass_opacity: 0.0,
-        pad: 0,
+        time: [0.0, 1.0],
     }
 }
 

@@ -68,6 +68,27 @@ pub struct Camera {
     /// Thin lens for depth of field; `None` is a pinhole camera.
     #[serde(default)]
     pub lens: Option<Lens>,
+    /// Camera motion: eye, look-at point and up vector at two or more times within the
+    /// shutter, in increasing time order. Empty: the camera is still (`eye`, `look_at`, `up`).
+    /// When given, these keys replace `eye`, `look_at` and `up`; between keys each is
+    /// interpolated linearly, and before the first or after the last key it is held.
+    #[serde(default)]
+    pub motion: Vec<CameraKey>,
+}
+
+/// The camera at one time.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CameraKey {
+    /// Scene time, within the shutter.
+    pub time: f32,
+    /// Eye position.
+    pub eye: V3,
+    /// A point the camera looks at.
+    pub look_at: V3,
+    /// Up direction.
+    #[serde(default = "default_up")]
+    pub up: V3,
 }
 
 fn default_up() -> V3 {
@@ -91,12 +112,31 @@ pub struct Shutter {
     pub open: f32,
     /// Closing time (>= open).
     pub close: f32,
+    /// How the shutter weights time (the density of sample times).
+    #[serde(default)]
+    pub shape: ShutterShape,
 }
 
 impl Default for Shutter {
     fn default() -> Self {
-        Shutter { open: 0.0, close: 1.0 }
+        Shutter { open: 0.0, close: 1.0, shape: ShutterShape::Uniform }
     }
+}
+
+/// Time density of the shutter (patent FIGS. 13-16).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum ShutterShape {
+    /// Fully open for the whole interval: sample times uniform (FIGS. 13-15).
+    #[default]
+    Uniform,
+    /// Opens and closes gradually, weighting the middle of the interval (FIG. 16): the density
+    /// rises linearly over the first `ramp` of the interval, is flat, and falls linearly over
+    /// the last `ramp` (a trapezoid; `ramp` in (0, 0.5], 0.5 is a triangle).
+    Gradual {
+        /// Fraction of the interval taken by the opening (and by the closing).
+        ramp: f32,
+    },
 }
 
 /// Thin-lens parameters (Appendix A's `VisCamera`).
@@ -212,6 +252,14 @@ pub struct Original {
     /// Matte and opacity of a sample taken from the deepest composited surface, so a matte
     /// behind a transparent surface drops the whole sample (3.14).
     pub matte: bool,
+    /// Sample s has time stratum s in every pixel, tying time to sub-pixel position (3.3).
+    pub time_pairing: bool,
+    /// The square, uncentred lens of the original (the "kludge", 3.8), with lens position
+    /// tied to screen position.
+    pub lens: bool,
+    /// Moving micropolygons that straddle hither or yon at a sample's time are rejected for
+    /// that sample instead of clipped (3.6).
+    pub moving_clip: bool,
 }
 
 /// A light source.
@@ -281,6 +329,36 @@ pub struct Object {
     /// Appendix A matte: hides what is behind, contributes no colour and no alpha.
     #[serde(default)]
     pub matte: bool,
+    /// Transform motion: the object's transform at two or more times within the shutter, in
+    /// increasing time order. When given, replaces `transform`. Each vertex moves linearly
+    /// between keys (piecewise-linear motion), and is held before the first and after the last.
+    #[serde(default)]
+    pub motion: Vec<TransformKey>,
+    /// Deformation motion of a `Mesh` or `BilinearPatch`: the shape's points at two or more
+    /// times within the shutter, in increasing time order, each key with as many points as the
+    /// shape. When given, replaces the shape's own points.
+    #[serde(default)]
+    pub deform: Vec<PointsKey>,
+}
+
+/// An object's transform at one time.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TransformKey {
+    /// Scene time, within the shutter.
+    pub time: f32,
+    /// Object-to-world transforms at that time, applied in list order.
+    pub transform: Vec<Transform>,
+}
+
+/// A deforming shape's points at one time.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PointsKey {
+    /// Scene time, within the shutter.
+    pub time: f32,
+    /// The shape's points at that time (same count and order as the shape's `points`).
+    pub points: Vec<V3>,
 }
 
 /// Shapes. Quadrics follow RenderMan: they sweep around the object's z axis.

@@ -39,8 +39,9 @@ fn the_full_example_parses_with_the_expected_values() {
             fov: 35.0,
             hither: 0.1,
             yon: 100.0,
-            shutter: Shutter { open: 0.0, close: 1.0 },
+            shutter: Shutter::default(),
             lens: None,
+            motion: vec![],
         },
         hider: Hider {
             pixel_samples: (4, 4),
@@ -76,6 +77,8 @@ fn the_full_example_parses_with_the_expected_values() {
                 specular_color: [1.0, 1.0, 1.0],
             },
             matte: false,
+            motion: vec![],
+            deform: vec![],
         }],
     };
     assert_eq!(scene, expected);
@@ -112,7 +115,7 @@ fn defaults_apply_when_sections_are_omitted() {
     assert_eq!(scene.camera.fov, 45.0);
     assert_eq!(scene.camera.hither, 0.1);
     assert_eq!(scene.camera.yon, 1000.0);
-    assert_eq!(scene.camera.shutter, Shutter { open: 0.0, close: 1.0 });
+    assert_eq!(scene.camera.shutter, Shutter::default());
     assert_eq!(scene.camera.lens, None);
 }
 

@@ -18,6 +18,7 @@ pub fn camera(eye: [f32; 3], look_at: [f32; 3], fov: f32, lens: Option<Lens>) ->
         yon: 1000.0,
         shutter: Shutter::default(),
         lens,
+        motion: Vec::new(),
     }
 }
 
@@ -48,6 +49,8 @@ pub fn object(shape: Shape, transform: Vec<Transform>) -> Object {
         transform,
         material: Material::Matte { color: [1.0; 3], opacity: [1.0; 3], ka: 1.0, kd: 1.0 },
         matte: false,
+        motion: Vec::new(),
+        deform: Vec::new(),
     }
 }
 
