@@ -15,7 +15,7 @@ use rayon::prelude::*;
 use reyes_dice::{CameraSetup, DiceStats, dice_scene};
 use reyes_film::{Film, FilterTable, Window, splat};
 use reyes_hider::{
-    Frame, Hider, HiderConfig, LensShape, MatteRule, Pairing, Pattern, Scratch,
+    Frame, Hider, HiderConfig, LensShape, MatteRule, Pairing, Pattern, Scratch, ShutterShape,
     border_for_filter_width,
 };
 use reyes_scene::{Scene, SpatialPattern};
@@ -78,15 +78,23 @@ pub fn hider_config(scene: &Scene, camera: &CameraSetup) -> HiderConfig {
         nx: h.pixel_samples.0,
         ny: h.pixel_samples.1,
         pattern,
-        pairing: Pairing::Decorrelated,
-        lens_shape: LensShape::Disk,
+        time_pairing: if h.original.time_pairing {
+            Pairing::Original
+        } else {
+            Pairing::Decorrelated
+        },
+        shutter: match scene.camera.shutter.shape {
+            reyes_scene::ShutterShape::Uniform => ShutterShape::Uniform,
+            reyes_scene::ShutterShape::Gradual { ramp } => ShutterShape::Gradual { ramp },
+        },
+        lens_shape: if h.original.lens { LensShape::OriginalSquare } else { LensShape::Disk },
         lens: camera.lens(),
         hither: scene.camera.hither,
         yon: scene.camera.yon,
         seed: h.seed,
         original_permute: h.original.permute,
         original_jitter_tables: h.original.jitter_tables,
-        original_moving_clip: false,
+        original_moving_clip: h.original.moving_clip,
         matte: if h.original.matte { MatteRule::Original } else { MatteRule::Holdout },
         scan_all: false,
     }

@@ -145,7 +145,7 @@ impl Hider {
                 zmax: hi[2],
                 crossing: mp.has(flags::HITHER_YON_CROSSING),
             };
-            if mp.has(flags::MOVING) {
+            if mp.has(flags::MOVING) || !mp.whole_shutter() {
                 self.path_moving(&samples, &vertex, mp, lo, hi, ns, bw, bh, scratch);
             } else if let Some(lens) = &self.config.lens {
                 let s = surface_z(lo, hi);
@@ -251,10 +251,12 @@ impl Hider {
         }
     }
 
-    /// Path M: moving micropolygon (with the lens if there is one). Time slice `tau` holds
-    /// one sample per pixel with time in `[tau/NS, (tau+1)/NS)`, so the box of the vertices
-    /// over that interval is the start box slid by `tau * speedbox / NS` and grown by one
-    /// step on the side the motion goes (appendix-a.md 3.5).
+    /// Path M: moving micropolygon (with the lens if there is one). Time slice `tau` holds one
+    /// sample per pixel with time in `[ta, tb]` (`slice_times`). Within the micropolygon's
+    /// shutter segment `[t0, t1]` a vertex is at `v + a * speed` with `a = (t - t0)/(t1 - t0)`,
+    /// so over the slice its box is the start box plus `[min(a_a m, a_b m), max(a_a M, a_b M)]`
+    /// per axis (m, M: smallest and largest speed component). For a uniform shutter and a whole
+    /// segment that is exactly Appendix A's box slid by `speedbox / NS` per slice (3.5).
     #[allow(clippy::too_many_arguments)]
     fn path_moving(
         &self,
@@ -270,7 +272,7 @@ impl Hider {
     ) {
         let p_count = (bw * bh) as usize;
         let (slo, shi) = bound(&mp.speed);
-        // z range over the whole shutter: the visible points' depth range.
+        // z range over the whole segment: the visible points' depth range.
         lo[2] += slo[2].min(0.0);
         hi[2] += shi[2].max(0.0);
         let surf =
@@ -279,21 +281,35 @@ impl Hider {
         if let Some(l) = &lens {
             l.grow(&mut lo, &mut hi, self.config.hither, self.config.yon);
         }
-        let step = [slo[0] / ns as f32, shi[0] / ns as f32, slo[1] / ns as f32, shi[1] / ns as f32];
-        lo[0] += step[0].min(0.0);
-        hi[0] += step[1].max(0.0);
-        lo[1] += step[2].min(0.0);
-        hi[1] += step[3].max(0.0);
+        let [t0, t1] = mp.time;
+        if !(t1 > t0) {
+            return;
+        }
+        let inv_len = 1.0 / (t1 - t0);
         for tau in 0..ns {
+            let [ta, tb] = self.slice_times[tau];
+            if tb < t0 || ta >= t1 {
+                continue;
+            }
+            let aa = (ta.max(t0) - t0) * inv_len;
+            let ab = (tb.min(t1) - t0) * inv_len;
+            let bx0 = lo[0] + (aa * slo[0]).min(ab * slo[0]);
+            let bx1 = hi[0] + (aa * shi[0]).max(ab * shi[0]);
+            let by0 = lo[1] + (aa * slo[1]).min(ab * slo[1]);
+            let by1 = hi[1] + (aa * shi[1]).max(ab * shi[1]);
             let r = smp.reach_time[tau];
-            let (x0, x1) = self.scan(lo[0], hi[0], r[0], r[1], bw);
-            let (y0, y1) = self.scan(lo[1], hi[1], r[2], r[3], bh);
+            let (x0, x1) = self.scan(bx0, bx1, r[0], r[1], bw);
+            let (y0, y1) = self.scan(by0, by1, r[2], r[3], bh);
             for y in y0..=y1 {
                 for x in x0..=x1 {
                     let pixel = y as usize * bw as usize + x as usize;
                     let s = smp.by_time[tau * p_count + pixel] as usize;
                     let k = s * p_count + pixel;
-                    let alpha = smp.t[k];
+                    let t = smp.t[k];
+                    if t < t0 || t >= t1 {
+                        continue; // outside this micropolygon's segment: not tested
+                    }
+                    let alpha = (t - t0) * inv_len;
                     let mut v = [[0.0f32; 3]; 4];
                     for j in 0..4 {
                         v[j] = [
@@ -321,10 +337,6 @@ impl Hider {
                     self.sample(pixel * ns + s, &surf, &v, scratch);
                 }
             }
-            lo[0] += step[0];
-            hi[0] += step[1];
-            lo[1] += step[2];
-            hi[1] += step[3];
         }
     }
 }

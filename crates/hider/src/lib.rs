@@ -23,7 +23,7 @@ pub use frame::{Frame, border_for_filter_width};
 pub use lens::LensSetup;
 pub use mpoly::{Micropolygon, flags};
 pub use reyes_csg::{MatteRule, VisPoint};
-pub use samples::{BucketSamples, LensShape, Pairing, Pattern, SampleSpec};
+pub use samples::{BucketSamples, LensShape, Pairing, Pattern, SampleSpec, ShutterShape};
 pub use tables::Tables;
 
 /// Everything the hider needs to know about a frame (the arguments of `VisParam`,
@@ -36,8 +36,10 @@ pub struct HiderConfig {
     pub ny: u32,
     /// Spatial pattern; [`Pattern::Regular`] is Appendix A's `jitter off`.
     pub pattern: Pattern,
-    /// Time and lens pairing.
-    pub pairing: Pairing,
+    /// Time pairing.
+    pub time_pairing: Pairing,
+    /// Shutter shape (time density).
+    pub shutter: ShutterShape,
     /// Lens sample shape.
     pub lens_shape: LensShape,
     /// Thin lens, or `None` for a pinhole (`PinHoleCamera`).
@@ -67,7 +69,8 @@ impl Default for HiderConfig {
             nx: 4,
             ny: 4,
             pattern: Pattern::Fig6,
-            pairing: Pairing::Decorrelated,
+            time_pairing: Pairing::Decorrelated,
+            shutter: ShutterShape::Uniform,
             lens_shape: LensShape::Disk,
             lens: None,
             hither: 0.1,
@@ -90,6 +93,8 @@ pub struct Hider {
     frame: Frame,
     tables: Tables,
     spec: SampleSpec,
+    /// Per time slice tau: the times `[warp(tau/NS), warp((tau+1)/NS)]` its samples lie in.
+    slice_times: Vec<[f32; 2]>,
 }
 
 /// Hider statistics (Appendix A `VisPrint("stat")`), summed over buckets.
@@ -164,11 +169,19 @@ impl Hider {
         );
         let spec = SampleSpec {
             pattern: config.pattern,
-            pairing: config.pairing,
+            time_pairing: config.time_pairing,
+            shutter: config.shutter,
             lens_shape: config.lens_shape,
             seed: config.seed,
         };
-        Hider { config, frame, tables, spec }
+        let ns = tables.ns;
+        let slice_times = (0..ns)
+            .map(|tau| {
+                let (a, b) = (tau as f32 / ns as f32, (tau + 1) as f32 / ns as f32);
+                [config.shutter.warp(a), config.shutter.warp(b)]
+            })
+            .collect();
+        Hider { config, frame, tables, spec, slice_times }
     }
 
     /// The frame geometry.

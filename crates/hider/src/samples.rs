@@ -42,13 +42,63 @@ pub enum Pairing {
     Original,
 }
 
+/// Time density of the shutter (patent FIGS. 13-16). Stratified uniform times `u` are
+/// mapped through the inverse of the shape's cumulative distribution, so every time stratum
+/// keeps equal probability and sample times follow the density.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum ShutterShape {
+    /// Uniform density on [0, 1): the shutter is fully open throughout (FIGS. 13-15).
+    #[default]
+    Uniform,
+    /// Trapezoidal density (FIG. 16: overlapping intervals weighting the middle): rises
+    /// linearly over `[0, r]`, is `1/(1-r)` on `[r, 1-r]`, falls linearly over `[1-r, 1]`.
+    Gradual {
+        /// Ramp fraction `r`, in (0, 0.5].
+        ramp: f32,
+    },
+}
+
+impl ShutterShape {
+    /// Inverse cumulative distribution: the time whose CDF value is `u` in [0, 1].
+    pub fn warp(&self, u: f32) -> f32 {
+        match *self {
+            ShutterShape::Uniform => u,
+            ShutterShape::Gradual { ramp: r } => {
+                let (u, r) = (u as f64, r as f64);
+                let k = 2.0 * r * (1.0 - r);
+                let u1 = r / (2.0 * (1.0 - r)); // CDF at t = r
+                let t = if u < u1 {
+                    (u * k).sqrt()
+                } else if u > 1.0 - u1 {
+                    1.0 - ((1.0 - u) * k).sqrt()
+                } else {
+                    r + (u - u1) * (1.0 - r)
+                };
+                (t as f32).clamp(0.0, 1.0)
+            }
+        }
+    }
+
+    /// Probability density at time `t` (for tests and documentation).
+    pub fn density(&self, t: f32) -> f32 {
+        match *self {
+            ShutterShape::Uniform => 1.0,
+            ShutterShape::Gradual { ramp: r } => {
+                let edge = t.min(1.0 - t);
+                if edge < r { edge / (r * (1.0 - r)) } else { 1.0 / (1.0 - r) }
+            }
+        }
+    }
+}
+
 /// Shape of the lens samples.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum LensShape {
     /// Stratified lens cells mapped onto the unit disk by the concentric square-to-disk map.
     #[default]
     Disk,
-    /// Appendix A's "kludge": the square `[-0.5/NS, 1 - 0.5/NS)^2`, uncentred (3.8).
+    /// Appendix A's "kludge": the square `[-0.5/NS, 1 - 0.5/NS)^2`, uncentred, with sample s
+    /// always in lens cell `Location[s]`, so lens position follows screen position (3.8).
     OriginalSquare,
 }
 
@@ -110,9 +160,11 @@ fn shuffle(perm: &mut [u32], seed: u64, key: &[u64]) {
 pub struct SampleSpec {
     /// Spatial pattern.
     pub pattern: Pattern,
-    /// Time/lens pairing.
-    pub pairing: Pairing,
-    /// Lens shape.
+    /// Time pairing.
+    pub time_pairing: Pairing,
+    /// Shutter shape.
+    pub shutter: ShutterShape,
+    /// Lens shape (and lens pairing: decorrelated for the disk, Appendix A's for the square).
     pub lens_shape: LensShape,
     /// Seed.
     pub seed: u64,
@@ -153,17 +205,21 @@ impl BucketSamples {
                 let pixel = (py * bw + px) as usize;
                 let gx = (left + px as i32) as i64 as u64;
                 let gy = (top + py as i32) as i64 as u64;
-                match spec.pairing {
+                match spec.time_pairing {
                     Pairing::Original => {
-                        for (s, (tp, lp)) in time_perm.iter_mut().zip(&mut lens_perm).enumerate() {
+                        for (s, tp) in time_perm.iter_mut().enumerate() {
                             *tp = s as u32;
+                        }
+                    }
+                    Pairing::Decorrelated => shuffle(&mut time_perm, spec.seed, &[0x7173, gx, gy]),
+                }
+                match spec.lens_shape {
+                    LensShape::OriginalSquare => {
+                        for (s, lp) in lens_perm.iter_mut().enumerate() {
                             *lp = s as u32;
                         }
                     }
-                    Pairing::Decorrelated => {
-                        shuffle(&mut time_perm, spec.seed, &[0x7173, gx, gy]);
-                        shuffle(&mut lens_perm, spec.seed, &[0x1e75, gx, gy]);
-                    }
+                    LensShape::Disk => shuffle(&mut lens_perm, spec.seed, &[0x1e75, gx, gy]),
                 }
                 for s in 0..ns {
                     let i = 7 * s + 2 * pixel;
@@ -200,7 +256,9 @@ impl BucketSamples {
                     self.x[k] = px as f32 + loc[0] + jx;
                     self.y[k] = py as f32 + loc[1] + jy;
                     let tau = time_perm[s] as usize;
-                    self.t[k] = tau as f32 / fns + tables.get(Table::T, off[2] + i + 2);
+                    // Stratified in [tau/NS, (tau+1)/NS), then warped by the shutter shape.
+                    let u = tau as f32 / fns + tables.get(Table::T, off[2] + i + 2);
+                    self.t[k] = spec.shutter.warp(u.min(1.0));
                     self.by_time[tau * p_count + pixel] = s as u32;
                     let jlx = tables.get(Table::LensX, off[3] + i + 3);
                     let jly = tables.get(Table::LensY, off[4] + i + 4);
@@ -247,7 +305,13 @@ mod tests {
     use super::*;
 
     fn spec(pattern: Pattern, pairing: Pairing) -> SampleSpec {
-        SampleSpec { pattern, pairing, lens_shape: LensShape::Disk, seed: 5 }
+        SampleSpec {
+            pattern,
+            time_pairing: pairing,
+            shutter: ShutterShape::Uniform,
+            lens_shape: LensShape::Disk,
+            seed: 5,
+        }
     }
 
     fn make(pattern: Pattern, pairing: Pairing, nx: u32, ny: u32) -> (Tables, BucketSamples) {

@@ -135,7 +135,7 @@ fn render(cfg: HiderConfig, mps: &[Micropolygon]) -> (Vec<[f32; 4]>, reyes_hider
 fn static_lens_and_moving_paths_agree_on_the_same_input() {
     let mps = random_bucket(11, 120);
     for pairing in [Pairing::Original, Pairing::Decorrelated] {
-        let base = HiderConfig { pairing, ..HiderConfig::default() };
+        let base = HiderConfig { time_pairing: pairing, ..HiderConfig::default() };
         let (p_img, p_stats) = render(base, &mps);
         // Path D with a zero-radius lens: every shift is zero.
         let lens0 = HiderConfig { lens: Some(LensSetup::new(0.0, 5.0, 100.0, -100.0)), ..base };

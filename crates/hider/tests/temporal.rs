@@ -1,0 +1,184 @@
+//! Temporal sampling against analytic truth: the space-time coverage of a moving edge, the
+//! distribution of sample times for each shutter shape, decorrelation of time from sub-pixel
+//! position, and piecewise-linear motion segments.
+
+use reyes_hider::{Frame, Hider, HiderConfig, Micropolygon, Pairing, Scratch, ShutterShape, flags};
+
+fn moving_rect(x0: f32, x1: f32, y0: f32, y1: f32, dx: f32, time: [f32; 2]) -> Micropolygon {
+    let v = [[x0, y0, 5.0], [x1, y0, 5.0], [x1, y1, 5.0], [x0, y1, 5.0]];
+    Micropolygon {
+        v,
+        speed: [[dx, 0.0, 0.0]; 4],
+        color: [[1.0; 3]; 4],
+        trans: [[0.0; 3]; 4],
+        flags: flags::OPAQUE | flags::MOVING,
+        csg_tree: 0,
+        csg_node: 0,
+        glass_opacity: 0.0,
+        time,
+    }
+}
+
+/// Per-pixel coverage (mean alpha of the pixel's samples, a one-pixel box filter) of a
+/// 64 x 64 image rendered with one bucket.
+fn coverage(cfg: HiderConfig, mps: &[Micropolygon]) -> Vec<f64> {
+    let frame = Frame::new(64, 64, 0, 64, 64);
+    let hider = Hider::new(cfg, frame);
+    let ns = hider.ns();
+    let list: Vec<u32> = (0..mps.len() as u32).collect();
+    let mut scratch = Scratch::new();
+    let out = hider.render_bucket(0, mps, &list, &mut scratch);
+    (0..64 * 64)
+        .map(|p| {
+            out.rgba[p * ns..(p + 1) * ns].iter().map(|s| s[3] as f64).sum::<f64>() / ns as f64
+        })
+        .collect()
+}
+
+/// Exact time-averaged coverage of pixel column [x, x+1] by the interval [a + d*t, b + d*t],
+/// with t distributed by `shape`: integrate the overlap length against the density with a
+/// fine midpoint rule (the integrand is piecewise linear, so 20,000 steps are exact to ~1e-8).
+fn trapezoid(x: f64, a: f64, b: f64, d: f64, shape: ShutterShape) -> f64 {
+    let n = 20_000;
+    (0..n)
+        .map(|i| {
+            let t = (i as f64 + 0.5) / n as f64;
+            let (lo, hi) = ((a + d * t).max(x), (b + d * t).min(x + 1.0));
+            (hi - lo).max(0.0) * shape.density(t as f32) as f64 / n as f64
+        })
+        .sum()
+}
+
+#[test]
+fn moving_edge_matches_the_space_time_trapezoid() {
+    // A 4-pixel-wide bar moving 8 pixels right over the shutter, covering all 64 rows.
+    // Each pixel's coverage is the time-average of its overlap with the bar: a trapezoid
+    // profile along the row. Every row is an independent estimate of that profile.
+    //
+    // Tolerance: a pixel's estimate is the mean of NS = 64 indicator samples, one per spatial
+    // stratum and one per time stratum (a Latin-hypercube design in (cell, time)), whose
+    // variance is at most NS/(NS-1) times that of NS independent samples (Owen 1997), i.e.
+    // <= 1/(4 (NS-1)). Averaged over 64 rows, the column mean has standard deviation
+    // <= sqrt(1/(4*63))/8 = 0.0079; four standard deviations is 0.0315.
+    for shape in [ShutterShape::Uniform, ShutterShape::Gradual { ramp: 0.3 }] {
+        let cfg = HiderConfig { nx: 8, ny: 8, shutter: shape, ..HiderConfig::default() };
+        let bar = moving_rect(20.25, 24.25, -1.0, 65.0, 8.0, [0.0, 1.0]);
+        let cov = coverage(cfg, &[bar]);
+        for x in 14..38 {
+            let mean: f64 = (0..64).map(|y| cov[y * 64 + x]).sum::<f64>() / 64.0;
+            let exact = trapezoid(x as f64, 20.25, 24.25, 8.0, shape);
+            assert!((mean - exact).abs() < 0.0315, "{shape:?} column {x}: {mean} vs {exact}");
+        }
+    }
+}
+
+/// Kolmogorov-Smirnov distance between the sample times of many buckets and a shutter's CDF.
+fn ks_distance(cfg: HiderConfig, shape: ShutterShape) -> (f64, usize) {
+    let frame = Frame::new(64, 64, 0, 16, 16);
+    let hider = Hider::new(cfg, frame);
+    let mut times: Vec<f64> = Vec::new();
+    for b in 0..frame.bucket_count() {
+        times.extend(hider.bucket_samples(b).t.iter().map(|&t| t as f64));
+    }
+    times.sort_by(f64::total_cmp);
+    let n = times.len();
+    let cdf = |t: f64| {
+        // Integrate the density numerically (piecewise linear: midpoint rule is exact enough).
+        let steps = 2000;
+        (0..steps)
+            .map(|i| {
+                shape.density(((i as f64 + 0.5) / steps as f64 * t) as f32) as f64 * t
+                    / steps as f64
+            })
+            .sum::<f64>()
+    };
+    let mut d: f64 = 0.0;
+    for (i, &t) in times.iter().enumerate().step_by(7) {
+        let f = cdf(t);
+        d = d.max((f - i as f64 / n as f64).abs()).max((f - (i + 1) as f64 / n as f64).abs());
+    }
+    (d, n)
+}
+
+#[test]
+fn sample_times_follow_the_shutter_density() {
+    // KS test at a fixed seed: for n independent samples the 0.1% critical value of the
+    // Kolmogorov distance is 1.95/sqrt(n); stratified samples are closer still. The wrong
+    // density (uniform times tested against the gradual shutter and vice versa) must fail.
+    let shapes = [
+        ShutterShape::Uniform,
+        ShutterShape::Gradual { ramp: 0.25 },
+        ShutterShape::Gradual { ramp: 0.5 },
+    ];
+    for shape in shapes {
+        let cfg = HiderConfig { shutter: shape, ..HiderConfig::default() };
+        let (d, n) = ks_distance(cfg, shape);
+        let critical = 1.95 / (n as f64).sqrt();
+        assert!(d < critical, "{shape:?}: KS distance {d} >= {critical}");
+        let other = if shape == ShutterShape::Uniform { shapes[1] } else { ShutterShape::Uniform };
+        let (d_wrong, _) = ks_distance(cfg, other);
+        assert!(d_wrong > 5.0 * critical, "{shape:?} vs {other:?}: KS {d_wrong} should reject");
+    }
+}
+
+/// Correlation coefficient between sample time and sub-pixel y over one bucket.
+fn time_y_correlation(pairing: Pairing) -> f64 {
+    let cfg = HiderConfig { time_pairing: pairing, ..HiderConfig::default() };
+    let hider = Hider::new(cfg, Frame::new(64, 64, 0, 16, 16));
+    let s = hider.bucket_samples(5);
+    let n = s.t.len() as f64;
+    let ys: Vec<f64> = s.y.iter().map(|&y| y as f64 - (y as f64).floor()).collect();
+    let ts: Vec<f64> = s.t.iter().map(|&t| t as f64).collect();
+    let (my, mt) = (ys.iter().sum::<f64>() / n, ts.iter().sum::<f64>() / n);
+    let cov: f64 = ys.iter().zip(&ts).map(|(y, t)| (y - my) * (t - mt)).sum::<f64>() / n;
+    let sy = (ys.iter().map(|y| (y - my).powi(2)).sum::<f64>() / n).sqrt();
+    let st = (ts.iter().map(|t| (t - mt).powi(2)).sum::<f64>() / n).sqrt();
+    cov / (sy * st)
+}
+
+#[test]
+fn decorrelated_pairing_removes_the_time_position_correlation() {
+    // Appendix A (3.3): with 4x4 samples each quarter of the shutter is confined to one
+    // sub-pixel row (bit-reversed), so time and sub-pixel y are strongly correlated.
+    let original = time_y_correlation(Pairing::Original);
+    // 4096 samples: an uncorrelated pair gives |r| of order 1/sqrt(4096) = 0.016.
+    let decorrelated = time_y_correlation(Pairing::Decorrelated);
+    assert!(original.abs() > 0.3, "original pairing correlation {original}");
+    assert!(decorrelated.abs() < 0.05, "decorrelated pairing correlation {decorrelated}");
+}
+
+#[test]
+fn motion_segments_cover_the_shutter_piecewise() {
+    // The same straight motion as one segment or as two segments [0, 0.5) and [0.5, 1):
+    // every sample sees the bar in the same place, so the images are identical.
+    let cfg = HiderConfig::default();
+    let whole = moving_rect(20.0, 24.0, -1.0, 65.0, 8.0, [0.0, 1.0]);
+    let first = moving_rect(20.0, 24.0, -1.0, 65.0, 4.0, [0.0, 0.5]);
+    let second = moving_rect(24.0, 28.0, -1.0, 65.0, 4.0, [0.5, 1.0]);
+    let a = coverage(cfg, &[whole]);
+    let b = coverage(cfg, &[first, second]);
+    let max_diff = a.iter().zip(&b).map(|(p, q)| (p - q).abs()).fold(0.0, f64::max);
+    // Rounding of v + a*speed differs between the two forms; a sample exactly on an edge may
+    // flip, which changes a pixel by 1/NS at most.
+    assert!(max_diff <= 1.0 / 16.0 + 1e-9, "{max_diff}");
+    let diffs = a.iter().zip(&b).filter(|(p, q)| p != q).count();
+    assert!(diffs <= 4, "{diffs} pixels differ");
+    // A segment alone exists only in its part of the shutter: column 23 sees the bar for
+    // t in [0, 0.5) only, so its coverage is the integral of the overlap over that half.
+    // Tolerance: four standard deviations of a 64-row mean of 16-sample estimates,
+    // 4 * sqrt(1/(4*15))/8 = 0.065 (see moving_edge_matches_the_space_time_trapezoid).
+    let half = coverage(cfg, &[first]);
+    for x in 19..30 {
+        let m: f64 = (0..64).map(|y| half[y * 64 + x]).sum::<f64>() / 64.0;
+        let n = 20_000;
+        let exact: f64 = (0..n / 2)
+            .map(|i| {
+                let t = (i as f64 + 0.5) / n as f64;
+                let (lo, hi) =
+                    ((20.0 + 8.0 * t).max(x as f64), (24.0 + 8.0 * t).min(x as f64 + 1.0));
+                (hi - lo).max(0.0) / n as f64
+            })
+            .sum();
+        assert!((m - exact).abs() < 0.065, "column {x}: {m} vs {exact}");
+    }
+}
