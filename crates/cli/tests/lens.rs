@@ -13,7 +13,9 @@ use reyes_render::{RenderOptions, render};
 
 fn scene(z: f32, lens: Option<(f32, f32, f32)>, original_lens: bool, n: u32) -> Film {
     let lens = match lens {
-        Some((f, stop, fd)) => format!("Some((focal_length: {f}, f_stop: {stop}, focal_distance: {fd}))"),
+        Some((f, stop, fd)) => {
+            format!("Some((focal_length: {f}, f_stop: {stop}, focal_distance: {fd}))")
+        }
         None => "None".to_string(),
     };
     let x0 = 0.1 * z;

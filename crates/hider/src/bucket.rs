@@ -137,7 +137,7 @@ impl Hider {
                 p[0] -= left as f32;
                 p[1] -= top as f32;
             }
-            let (mut lo, mut hi) = bound(&vertex);
+            let (lo, hi) = bound(&vertex);
 
             let surface_z = |lo: [f32; 3], hi: [f32; 3]| Surface {
                 mp,
@@ -147,9 +147,8 @@ impl Hider {
             };
             if mp.has(flags::MOVING) || !mp.whole_shutter() {
                 self.path_moving(&samples, &vertex, mp, lo, hi, ns, bw, bh, scratch);
-            } else if let Some(lens) = &self.config.lens {
+            } else if self.config.lens.is_some() {
                 let s = surface_z(lo, hi);
-                lens.grow(&mut lo, &mut hi, self.config.hither, self.config.yon);
                 self.path_lens(&samples, &vertex, &s, lo, hi, ns, bw, bh, scratch);
             } else {
                 let s = surface_z(lo, hi);
@@ -209,6 +208,13 @@ impl Hider {
 
     /// Path D: static micropolygon, finite aperture. Each vertex moves by
     /// `l * (Dof_a / z + Dof_b)`; the depth-independent `l * Dof_b` is folded into the sample.
+    ///
+    /// Appendix A scans the whole `bounddof` box for every sample index. Here, as path M does
+    /// for time, the samples are taken lens stratum by lens stratum: stratum `lambda`'s samples
+    /// have lens positions in `lens_range[lambda]`, so the micropolygon can only be displaced
+    /// by `l * c(z)` with `l` in that range and `c(z) = Dof_a/z + Dof_b` over its depth range,
+    /// and the box is grown by exactly that. The same samples are tested for a hit; only
+    /// samples that cannot hit are skipped (checked against `scan_all` in the tests).
     #[allow(clippy::too_many_arguments)]
     fn path_lens(
         &self,
@@ -225,13 +231,35 @@ impl Hider {
         let Some(lens) = self.config.lens else { return };
         let p_count = (bw * bh) as usize;
         let inv_z = vertex.map(|p| 1.0 / p[2]);
-        for s in 0..ns {
-            let r = smp.reach_space[s];
-            let (x0, x1) = self.scan(lo[0], hi[0], r[0], r[1], bw);
-            let (y0, y1) = self.scan(lo[1], hi[1], r[2], r[3], bh);
+        // Range of the displacement per unit lens offset over the depth range (clamped to
+        // hither/yon as bounddof does); monotone in 1/z, so the ends hold the extremes.
+        let (z0, z1) = (
+            lo[2].max(self.config.hither),
+            hi[2].min(self.config.yon).max(lo[2].max(self.config.hither)),
+        );
+        let (cx0, cy0) = lens.coc(z0);
+        let (cx1, cy1) = lens.coc(z1);
+        let (cx_lo, cx_hi) = (cx0.min(cx1), cx0.max(cx1));
+        let (cy_lo, cy_hi) = (cy0.min(cy1), cy0.max(cy1));
+        for lambda in 0..ns {
+            let lr = smp.lens_range[lambda];
+            let px = [lr[0] * cx_lo, lr[0] * cx_hi, lr[1] * cx_lo, lr[1] * cx_hi];
+            let py = [lr[2] * cy_lo, lr[2] * cy_hi, lr[3] * cy_lo, lr[3] * cy_hi];
+            let (dx0, dx1) = (
+                px.iter().copied().fold(f32::INFINITY, f32::min),
+                px.iter().copied().fold(f32::NEG_INFINITY, f32::max),
+            );
+            let (dy0, dy1) = (
+                py.iter().copied().fold(f32::INFINITY, f32::min),
+                py.iter().copied().fold(f32::NEG_INFINITY, f32::max),
+            );
+            let r = smp.reach_lens[lambda];
+            let (x0, x1) = self.scan(lo[0] + dx0, hi[0] + dx1, r[0], r[1], bw);
+            let (y0, y1) = self.scan(lo[1] + dy0, hi[1] + dy1, r[2], r[3], bh);
             for y in y0..=y1 {
                 for x in x0..=x1 {
                     let pixel = y as usize * bw as usize + x as usize;
+                    let s = smp.by_lens[lambda * p_count + pixel] as usize;
                     let k = s * p_count + pixel;
                     let (lx, ly) = (smp.lx[k], smp.ly[k]);
                     let (ax, ay) = (lx * lens.x_a, ly * lens.y_a);

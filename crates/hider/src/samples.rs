@@ -117,6 +117,12 @@ pub struct BucketSamples {
     pub ly: Vec<f32>,
     /// `by_time[tau*P + pixel]`: the sample index s of that pixel whose time is in slice tau.
     pub by_time: Vec<u32>,
+    /// `by_lens[lambda*P + pixel]`: the sample index s of that pixel in lens stratum lambda.
+    pub by_lens: Vec<u32>,
+    /// Per lens slice: (min lx, max lx, min ly, max ly) of its samples.
+    pub lens_range: Vec<[f32; 4]>,
+    /// Per lens slice: reach of its samples' positions, as `reach_space`.
+    pub reach_lens: Vec<[f32; 4]>,
     /// Per spatial slice s: (min x offset, max x offset, min y offset, max y offset) of the
     /// slice's samples from their pixel's corner, for scan ranges.
     pub reach_space: Vec<[f32; 4]>,
@@ -193,6 +199,8 @@ impl BucketSamples {
         }
         self.by_time.clear();
         self.by_time.resize(n, 0);
+        self.by_lens.clear();
+        self.by_lens.resize(n, 0);
         let (fx, fy, fns) = (tables.nx as f32, tables.ny as f32, ns as f32);
         // Per-bucket random start offsets 0..22 into each table (`(int)(23*drand())`).
         let off: [usize; 5] = std::array::from_fn(|k| {
@@ -262,7 +270,9 @@ impl BucketSamples {
                     self.by_time[tau * p_count + pixel] = s as u32;
                     let jlx = tables.get(Table::LensX, off[3] + i + 3);
                     let jly = tables.get(Table::LensY, off[4] + i + 4);
-                    let lens_cell = tables.location[lens_perm[s] as usize];
+                    let lambda = lens_perm[s] as usize;
+                    self.by_lens[lambda * p_count + pixel] = s as u32;
+                    let lens_cell = tables.location[lambda];
                     let (lx, ly) = match spec.lens_shape {
                         LensShape::OriginalSquare => {
                             (lens_cell[0] - 0.5 / fns + jlx, lens_cell[1] - 0.5 / fns + jly)
@@ -279,23 +289,32 @@ impl BucketSamples {
         }
         self.reach_space.clear();
         self.reach_time.clear();
+        self.reach_lens.clear();
+        self.lens_range.clear();
+        const EMPTY: [f32; 4] =
+            [f32::INFINITY, f32::NEG_INFINITY, f32::INFINITY, f32::NEG_INFINITY];
+        let grow = |r: &mut [f32; 4], x: f32, y: f32| {
+            r[0] = r[0].min(x);
+            r[1] = r[1].max(x);
+            r[2] = r[2].min(y);
+            r[3] = r[3].max(y);
+        };
         for slice in 0..ns {
-            let mut rs = [f32::INFINITY, f32::NEG_INFINITY, f32::INFINITY, f32::NEG_INFINITY];
-            let mut rt = rs;
+            let (mut rs, mut rt, mut rl, mut lr) = (EMPTY, EMPTY, EMPTY, EMPTY);
             for pixel in 0..p_count {
                 let (px, py) = ((pixel as u32 % bw) as f32, (pixel as u32 / bw) as f32);
                 let ks = slice * p_count + pixel;
                 let kt = self.by_time[ks] as usize * p_count + pixel;
-                for (r, k) in [(&mut rs, ks), (&mut rt, kt)] {
-                    let (dx, dy) = (self.x[k] - px, self.y[k] - py);
-                    r[0] = r[0].min(dx);
-                    r[1] = r[1].max(dx);
-                    r[2] = r[2].min(dy);
-                    r[3] = r[3].max(dy);
-                }
+                let kl = self.by_lens[ks] as usize * p_count + pixel;
+                grow(&mut rs, self.x[ks] - px, self.y[ks] - py);
+                grow(&mut rt, self.x[kt] - px, self.y[kt] - py);
+                grow(&mut rl, self.x[kl] - px, self.y[kl] - py);
+                grow(&mut lr, self.lx[kl], self.ly[kl]);
             }
             self.reach_space.push(rs);
             self.reach_time.push(rt);
+            self.reach_lens.push(rl);
+            self.lens_range.push(lr);
         }
     }
 }

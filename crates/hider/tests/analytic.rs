@@ -2,7 +2,7 @@
 //! paths (static, lens, moving) agreeing on the same input.
 
 use reyes_hider::{
-    Frame, Hider, HiderConfig, LensSetup, Micropolygon, Pairing, Pattern, Scratch, flags,
+    Frame, Hider, HiderConfig, LensSetup, LensShape, Micropolygon, Pairing, Pattern, Scratch, flags,
 };
 
 fn quad(p: [[f32; 2]; 4], z: f32, color: [f32; 3]) -> Micropolygon {
@@ -167,14 +167,19 @@ fn bound_culling_never_drops_a_hit() {
             m
         })
         .collect();
+    let still = random_bucket(5, 80);
     for pattern in [Pattern::Fig6, Pattern::Fig7, Pattern::Regular] {
         for lens in [None, Some(LensSetup::new(0.2, 5.0, 200.0, -200.0))] {
-            let cfg = HiderConfig { pattern, lens, ..HiderConfig::default() };
-            let (a, sa) = render(cfg, &mps);
-            let (b, sb) = render(HiderConfig { scan_all: true, ..cfg }, &mps);
-            assert_eq!(sa.hits, sb.hits, "{pattern:?} lens {}", lens.is_some());
-            assert_eq!(a, b);
-            assert!(sa.hits + sa.misses < sb.hits + sb.misses, "culling must save tests");
+            for lens_shape in [LensShape::Disk, LensShape::OriginalSquare] {
+                for input in [&mps, &still] {
+                    let cfg = HiderConfig { pattern, lens, lens_shape, ..HiderConfig::default() };
+                    let (a, sa) = render(cfg, input);
+                    let (b, sb) = render(HiderConfig { scan_all: true, ..cfg }, input);
+                    assert_eq!(sa.hits, sb.hits, "{pattern:?} lens {}", lens.is_some());
+                    assert_eq!(a, b);
+                    assert!(sa.hits + sa.misses < sb.hits + sb.misses, "culling must save tests");
+                }
+            }
         }
     }
 }
