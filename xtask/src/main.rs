@@ -1,18 +1,32 @@
-//! Project tasks: `cargo xtask golden` (compare every golden scene with its reference) and
-//! `cargo xtask bless` (rewrite the references; look at the PNGs it writes first!).
+//! Project tasks: `cargo xtask golden` (compare every golden scene with its reference),
+//! `cargo xtask bless` (rewrite the references; look at the PNGs it writes first!) and
+//! `cargo xtask bench` (time the benchmark scenes).
+
+mod bench;
 
 use std::process::ExitCode;
 
 use reyes_render::golden::{self, Outcome};
 
 fn usage() -> ExitCode {
-    eprintln!("usage: cargo xtask <golden | bless [SCENE...]>");
+    eprintln!(
+        "usage: cargo xtask <golden | bless [SCENE...] | bench [--runs N] [--threads T] [SCENE...]>"
+    );
     ExitCode::from(2)
 }
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let root = golden::workspace_root();
+    if args.first().map(String::as_str) == Some("bench") {
+        return match bench::run(&root, &args[1..]) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(e) => {
+                eprintln!("xtask bench: {e}");
+                ExitCode::FAILURE
+            }
+        };
+    }
     let cases = match golden::manifest(&root) {
         Ok(c) => c,
         Err(e) => {

@@ -20,7 +20,7 @@ use reyes_hider::{
 };
 use reyes_scene::{Scene, SpatialPattern};
 
-pub use stats::RenderStats;
+pub use stats::{RenderStats, peak_memory};
 
 /// Errors while rendering a valid scene.
 #[derive(Debug)]
@@ -203,6 +203,7 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<Rendered, RenderErr
         t_hide,
         t_film,
         t_write: Default::default(),
+        peak_memory: None,
     };
     Ok(Rendered { film, stats })
 }

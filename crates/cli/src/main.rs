@@ -123,6 +123,7 @@ fn main() -> ExitCode {
         return fail(1, e);
     }
     rendered.stats.t_write = t.elapsed();
+    rendered.stats.peak_memory = reyes_render::peak_memory();
     if args.stats {
         print!("{}", rendered.stats);
     }

@@ -49,6 +49,16 @@ pub struct RenderStats {
     pub t_film: Duration,
     /// Time to write the output file.
     pub t_write: Duration,
+    /// Peak resident memory of the process in bytes, where the platform reports it.
+    pub peak_memory: Option<u64>,
+}
+
+/// Peak resident set size of this process (Linux: `VmHWM` in /proc/self/status).
+pub fn peak_memory() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb * 1024)
 }
 
 fn pct(a: u64, b: u64) -> f64 {
@@ -136,6 +146,10 @@ impl fmt::Display for RenderStats {
             f,
             " Sample tests per second (bucket loop, all threads): {:.1} million",
             tests as f64 / self.t_hide.as_secs_f64().max(1e-9) / 1e6
-        )
+        )?;
+        if let Some(m) = self.peak_memory {
+            writeln!(f, " Memory: peak resident {:.1} MB", m as f64 / 1e6)?;
+        }
+        Ok(())
     }
 }

@@ -213,7 +213,11 @@ fn stats_counts() {
     // Counts are deterministic; times are not.
     let counts: String = text
         .lines()
-        .filter(|l| !l.starts_with(" Time") && !l.starts_with(" Sample tests per second"))
+        .filter(|l| {
+            !l.starts_with(" Time")
+                && !l.starts_with(" Sample tests per second")
+                && !l.starts_with(" Memory")
+        })
         .map(|l| format!("{l}\n"))
         .collect();
     insta::assert_snapshot!("stats_transparency", counts);

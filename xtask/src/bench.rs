@@ -1,0 +1,156 @@
+//! `cargo xtask bench [--runs N] [--threads T] [SCENE...]`: render every scene of
+//! `scenes/bench/` N times with the release binary and report wall time (min, median, max),
+//! peak resident memory, micropolygons, sample tests per second and hits; also written as JSON
+//! to `target/bench.json` so runs can be compared.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::Instant;
+
+/// One scene's measurements.
+struct Row {
+    scene: String,
+    times: Vec<f64>,
+    peak_mb: f64,
+    micropolygons: u64,
+    tests: u64,
+    hits: u64,
+    hide_s: f64,
+}
+
+fn field<'a>(stats: &'a str, prefix: &str) -> Option<&'a str> {
+    stats.lines().find_map(|l| l.trim_start().strip_prefix(prefix))
+}
+
+fn number_after(text: &str, key: &str) -> Option<f64> {
+    let i = text.find(key)? + key.len();
+    text[i..]
+        .split(|c: char| !(c.is_ascii_digit() || c == '.'))
+        .find(|t| !t.is_empty())?
+        .parse()
+        .ok()
+}
+
+fn number_before(text: &str, key: &str) -> Option<f64> {
+    let i = text.find(key)?;
+    text[..i].split_whitespace().last()?.trim_start_matches('(').parse().ok()
+}
+
+pub fn run(root: &Path, args: &[String]) -> Result<(), String> {
+    let mut runs = 3usize;
+    let mut threads: Option<String> = None;
+    let mut only = Vec::new();
+    let mut it = args.iter();
+    while let Some(a) = it.next() {
+        match a.as_str() {
+            "--runs" => {
+                runs = it.next().and_then(|v| v.parse().ok()).ok_or("--runs takes a number")?
+            }
+            "--threads" => threads = Some(it.next().ok_or("--threads takes a number")?.clone()),
+            s => only.push(s.to_string()),
+        }
+    }
+    let status = Command::new(env!("CARGO"))
+        .args(["build", "--release", "--quiet", "-p", "reyes-render"])
+        .current_dir(root)
+        .status()
+        .map_err(|e| format!("cargo build: {e}"))?;
+    if !status.success() {
+        return Err("cargo build --release -p reyes-render failed".into());
+    }
+    let bin = root.join("target/release/reyes-render");
+    let mut scenes: Vec<PathBuf> = std::fs::read_dir(root.join("scenes/bench"))
+        .map_err(|e| format!("scenes/bench: {e}"))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "ron"))
+        .filter(|p| {
+            only.is_empty() || only.iter().any(|o| p.file_stem().is_some_and(|s| s == o.as_str()))
+        })
+        .collect();
+    scenes.sort();
+    let out_dir = root.join("target/bench");
+    std::fs::create_dir_all(&out_dir).map_err(|e| format!("{}: {e}", out_dir.display()))?;
+    let mut rows = Vec::new();
+    for scene in &scenes {
+        let name = scene.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+        let mut row = Row {
+            scene: name.clone(),
+            times: Vec::new(),
+            peak_mb: 0.0,
+            micropolygons: 0,
+            tests: 0,
+            hits: 0,
+            hide_s: f64::INFINITY,
+        };
+        for _ in 0..runs {
+            let mut cmd = Command::new(&bin);
+            cmd.arg(scene)
+                .arg("-o")
+                .arg(out_dir.join(format!("{name}.exr")))
+                .args(["--stats", "-q"]);
+            if let Some(t) = &threads {
+                cmd.args(["--threads", t]);
+            }
+            let t0 = Instant::now();
+            let out = cmd.output().map_err(|e| format!("{}: {e}", bin.display()))?;
+            let wall = t0.elapsed().as_secs_f64();
+            if !out.status.success() {
+                return Err(format!("{name}: {}", String::from_utf8_lossy(&out.stderr).trim()));
+            }
+            let stats = String::from_utf8_lossy(&out.stdout);
+            row.times.push(wall);
+            row.peak_mb = row.peak_mb.max(
+                field(&stats, "Memory:").and_then(|m| number_after(m, "resident")).unwrap_or(0.0),
+            );
+            let dicer = field(&stats, "Dicer:").unwrap_or("");
+            row.micropolygons = number_before(dicer, "micropolygons").unwrap_or(0.0) as u64;
+            let samples = field(&stats, "Hider samples:").unwrap_or("");
+            row.hits = number_after(samples, "(").unwrap_or(0.0) as u64;
+            let misses = number_before(samples, "misses").unwrap_or(0.0) as u64;
+            row.tests = row.hits + misses;
+            let time = field(&stats, "Time:").unwrap_or("");
+            row.hide_s = row.hide_s.min(number_after(time, "hide").unwrap_or(f64::INFINITY));
+        }
+        row.times.sort_by(f64::total_cmp);
+        rows.push(row);
+    }
+    println!(
+        "{:<14} {:>8} {:>8} {:>8} {:>9} {:>12} {:>14} {:>13} {:>7}",
+        "scene",
+        "min s",
+        "median s",
+        "max s",
+        "peak MB",
+        "micropolys",
+        "sample tests",
+        "tests/s (M)",
+        "hits %"
+    );
+    let mut json = String::from("[\n");
+    for (i, r) in rows.iter().enumerate() {
+        let (min, med, max) = (r.times[0], r.times[r.times.len() / 2], r.times[r.times.len() - 1]);
+        let rate = r.tests as f64 / r.hide_s / 1e6;
+        let hit_pct = 100.0 * r.hits as f64 / r.tests.max(1) as f64;
+        println!(
+            "{:<14} {:>8.3} {:>8.3} {:>8.3} {:>9.1} {:>12} {:>14} {:>13.1} {:>7.2}",
+            r.scene, min, med, max, r.peak_mb, r.micropolygons, r.tests, rate, hit_pct
+        );
+        json.push_str(&format!(
+            "  {{\"scene\": \"{}\", \"runs\": {}, \"threads\": {}, \"min_s\": {min:.4}, \"median_s\": {med:.4}, \"max_s\": {max:.4}, \"peak_mb\": {:.1}, \"micropolygons\": {}, \"sample_tests\": {}, \"hits\": {}, \"tests_per_s\": {:.0}}}{}\n",
+            r.scene,
+            r.times.len(),
+            threads.as_deref().unwrap_or("null"),
+            r.peak_mb,
+            r.micropolygons,
+            r.tests,
+            r.hits,
+            rate * 1e6,
+            if i + 1 < rows.len() { "," } else { "" }
+        ));
+    }
+    json.push_str("]\n");
+    let path = root.join("target/bench.json");
+    std::fs::write(&path, json).map_err(|e| format!("{}: {e}", path.display()))?;
+    println!("wrote {}", path.display());
+    Ok(())
+}
