@@ -76,9 +76,9 @@ fn a_defocused_edge_spreads_over_the_circle_of_confusion() {
         // Tolerance: each column is a mean of 48 x 64 samples stratified in space and lens;
         // its variance is at most that of independent samples times NS/(NS-1),
         // 1/(4 * 63 * 48) -> sd 0.0091; four sd = 0.036.
-        for x in 0..64 {
+        for (x, &got) in prof.iter().enumerate() {
             let want = expected(x as f64, E, rho);
-            assert!((prof[x] - want).abs() < 0.036, "z {z}: column {x}: {} vs {want}", prof[x]);
+            assert!((got - want).abs() < 0.036, "z {z}: column {x}: {got} vs {want}");
         }
         // The blur spans e - rho .. e + rho within a pixel, centred on the pinhole edge.
         let first = (0..64).find(|&x| prof[x] > 0.01).unwrap() as f64;

@@ -310,7 +310,8 @@ impl Hider {
             l.grow(&mut lo, &mut hi, self.config.hither, self.config.yon);
         }
         let [t0, t1] = mp.time;
-        if !(t1 > t0) {
+        // An empty (or NaN) segment exists at no time.
+        if t1.partial_cmp(&t0) != Some(std::cmp::Ordering::Greater) {
             return;
         }
         let inv_len = 1.0 / (t1 - t0);
