@@ -16,7 +16,7 @@ use reyes_csg::{Composite, LERP_DONE, NIL, VisPoint, lerpz, resolve_sample, shep
 
 use crate::inside::inside;
 use crate::mpoly::{Micropolygon, flags};
-use crate::samples::BucketSamples;
+use crate::samples::{BucketSamples, Needs};
 use crate::{Hider, Scratch};
 
 /// Port of `bound`: the x, y, z bounding box of four points. (The original's two-compare
@@ -38,10 +38,15 @@ fn bound(v: &[[f32; 3]; 4]) -> ([f32; 3], [f32; 3]) {
 /// fall in `[lo, hi]`; empty when `first > last`.
 #[inline]
 fn scan(lo: f32, hi: f32, rmin: f32, rmax: f32, n: u32) -> (i32, i32) {
-    let first = (lo - rmax).floor().max(0.0);
-    let last = (hi - rmin).floor().min(n as f32 - 1.0);
-    // NaN bounds give an empty range.
-    if first <= last { (first as i32, last as i32) } else { (1, 0) }
+    // floor() is a libm call on baseline x86-64; truncation equals floor for the non-negative
+    // values that survive the clamp at 0, and a negative upper end means an empty range.
+    let last = hi - rmin;
+    if last.is_nan() || last < 0.0 {
+        return (1, 0);
+    }
+    let first = (lo - rmax).max(0.0) as i32; // NaN -> 0
+    let last = (last as i32).min(n as i32 - 1);
+    if first <= last { (first, last) } else { (1, 0) }
 }
 
 /// What one micropolygon contributes to every visible point it creates.
@@ -128,7 +133,15 @@ impl Hider {
         scratch.heads.resize(n, NIL);
         scratch.points.clear();
         let mut samples = std::mem::take(&mut scratch.samples);
-        samples.generate(&self.tables, &self.spec, bucket, left, top, bw, bh);
+        // Times are read only by path M, lens positions only with a lens.
+        let needs = Needs {
+            time: list.iter().any(|&m| {
+                let mp = &mpolys[m as usize];
+                mp.has(flags::MOVING) || !mp.whole_shutter()
+            }),
+            lens: self.config.lens.is_some(),
+        };
+        samples.generate(&self.tables, &self.spec, bucket, left, top, bw, bh, needs);
         for &m in list {
             let mp = &mpolys[m as usize];
             scratch.stats.micropolygons += 1;

@@ -23,7 +23,7 @@ pub use frame::{Frame, border_for_filter_width};
 pub use lens::LensSetup;
 pub use mpoly::{Micropolygon, flags};
 pub use reyes_csg::{MatteRule, VisPoint};
-pub use samples::{BucketSamples, LensShape, Pairing, Pattern, SampleSpec, ShutterShape};
+pub use samples::{BucketSamples, LensShape, Needs, Pairing, Pattern, SampleSpec, ShutterShape};
 pub use tables::Tables;
 
 /// Everything the hider needs to know about a frame (the arguments of `VisParam`,
@@ -229,6 +229,7 @@ impl Hider {
             top,
             self.frame.bucket_w,
             self.frame.bucket_h,
+            samples::Needs::ALL,
         );
         s
     }

@@ -176,6 +176,21 @@ pub struct SampleSpec {
     pub seed: u64,
 }
 
+/// Which sample dimensions a bucket will read. Positions are always made; times and lens
+/// positions only when asked for (their values do not depend on whether the other is made).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Needs {
+    /// Times, time slices and their reach (path M).
+    pub time: bool,
+    /// Lens positions, lens slices and their ranges (paths D and M with a lens).
+    pub lens: bool,
+}
+
+impl Needs {
+    /// Every dimension.
+    pub const ALL: Needs = Needs { time: true, lens: true };
+}
+
 impl BucketSamples {
     /// Compute the samples of bucket number `bucket` whose top-left pixel is raster
     /// (`left`, `top`) and whose size is `bw` x `bh`.
@@ -189,6 +204,7 @@ impl BucketSamples {
         top: i32,
         bw: u32,
         bh: u32,
+        needs: Needs,
     ) {
         let ns = tables.ns as usize;
         let p_count = (bw * bh) as usize;
@@ -214,6 +230,7 @@ impl BucketSamples {
                 let gx = (left + px as i32) as i64 as u64;
                 let gy = (top + py as i32) as i64 as u64;
                 match spec.time_pairing {
+                    _ if !needs.time => {}
                     Pairing::Original => {
                         for (s, tp) in time_perm.iter_mut().enumerate() {
                             *tp = s as u32;
@@ -222,6 +239,7 @@ impl BucketSamples {
                     Pairing::Decorrelated => shuffle(&mut time_perm, spec.seed, &[0x7173, gx, gy]),
                 }
                 match spec.lens_shape {
+                    _ if !needs.lens => {}
                     LensShape::OriginalSquare => {
                         for (s, lp) in lens_perm.iter_mut().enumerate() {
                             *lp = s as u32;
@@ -264,10 +282,15 @@ impl BucketSamples {
                     self.x[k] = px as f32 + loc[0] + jx;
                     self.y[k] = py as f32 + loc[1] + jy;
                     let tau = time_perm[s] as usize;
-                    // Stratified in [tau/NS, (tau+1)/NS), then warped by the shutter shape.
-                    let u = tau as f32 / fns + tables.get(Table::T, off[2] + i + 2);
-                    self.t[k] = spec.shutter.warp(u.min(1.0));
-                    self.by_time[tau * p_count + pixel] = s as u32;
+                    if needs.time {
+                        // Stratified in [tau/NS, (tau+1)/NS), then warped by the shutter shape.
+                        let u = tau as f32 / fns + tables.get(Table::T, off[2] + i + 2);
+                        self.t[k] = spec.shutter.warp(u.min(1.0));
+                        self.by_time[tau * p_count + pixel] = s as u32;
+                    }
+                    if !needs.lens {
+                        continue;
+                    }
                     let jlx = tables.get(Table::LensX, off[3] + i + 3);
                     let jly = tables.get(Table::LensY, off[4] + i + 4);
                     let lambda = lens_perm[s] as usize;
@@ -304,12 +327,16 @@ impl BucketSamples {
             for pixel in 0..p_count {
                 let (px, py) = ((pixel as u32 % bw) as f32, (pixel as u32 / bw) as f32);
                 let ks = slice * p_count + pixel;
-                let kt = self.by_time[ks] as usize * p_count + pixel;
-                let kl = self.by_lens[ks] as usize * p_count + pixel;
                 grow(&mut rs, self.x[ks] - px, self.y[ks] - py);
-                grow(&mut rt, self.x[kt] - px, self.y[kt] - py);
-                grow(&mut rl, self.x[kl] - px, self.y[kl] - py);
-                grow(&mut lr, self.lx[kl], self.ly[kl]);
+                if needs.time {
+                    let kt = self.by_time[ks] as usize * p_count + pixel;
+                    grow(&mut rt, self.x[kt] - px, self.y[kt] - py);
+                }
+                if needs.lens {
+                    let kl = self.by_lens[ks] as usize * p_count + pixel;
+                    grow(&mut rl, self.x[kl] - px, self.y[kl] - py);
+                    grow(&mut lr, self.lx[kl], self.ly[kl]);
+                }
             }
             self.reach_space.push(rs);
             self.reach_time.push(rt);
@@ -336,7 +363,7 @@ mod tests {
     fn make(pattern: Pattern, pairing: Pairing, nx: u32, ny: u32) -> (Tables, BucketSamples) {
         let t = Tables::new(nx, ny, 64, pattern != Pattern::Regular, 5, false, false);
         let mut b = BucketSamples::default();
-        b.generate(&t, &spec(pattern, pairing), 3, 16, 8, 8, 8);
+        b.generate(&t, &spec(pattern, pairing), 3, 16, 8, 8, 8, Needs::ALL);
         (t, b)
     }
 
