@@ -96,6 +96,7 @@ pub fn hider_config(scene: &Scene, camera: &CameraSetup) -> HiderConfig {
         original_jitter_tables: h.original.jitter_tables,
         original_moving_clip: h.original.moving_clip,
         matte: if h.original.matte { MatteRule::Original } else { MatteRule::Holdout },
+        csg_order: reyes_hider::CsgOrder::Exact,
         scan_all: false,
     }
 }

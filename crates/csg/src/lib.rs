@@ -8,7 +8,12 @@
 #![deny(missing_docs)]
 
 mod resolve;
+mod tree;
 mod visible;
 
-pub use resolve::{Composite, MatteRule, resolve_sample};
+pub use resolve::{Composite, MatteRule, Resolver, resolve_sample};
+pub use tree::{
+    CsgExpr, CsgNode, CsgOp, CsgOrder, CsgTree, MAX_SLOTS, csg_resolve_surface, csg_resolve_tree,
+    extract_csgnode, extract_csgtree, mergelists, resolve_tree_at_sample, sortlist,
+};
 pub use visible::{LERP_DONE, NIL, VisPoint, findfront, lerpz, shepard_weights, sortfront};

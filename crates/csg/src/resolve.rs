@@ -4,6 +4,7 @@
 //! Invariant: colours are premultiplied by opacity and `trans` is per-channel transmittance,
 //! so compositing a point behind an accumulated `(C, T)` is `C += T*c`, `T *= t`.
 
+use crate::tree::{CsgOrder, CsgTree, resolve_tree_at_sample};
 use crate::visible::{LERP_DONE, NIL, VisPoint, lerpz, sortfront};
 
 /// Flag bits read here; they are the micropolygon's (`reyes_hider::flags`), repeated so this
@@ -25,6 +26,17 @@ pub enum MatteRule {
     Original,
 }
 
+/// What resolution needs besides the points: the matte rule and the CSG trees.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Resolver<'a> {
+    /// Matte compositing rule.
+    pub matte: MatteRule,
+    /// The scene's CSG trees, indexed by `VisPoint::csg_tree`.
+    pub trees: &'a [CsgTree],
+    /// Depth comparison across CSG operands.
+    pub order: CsgOrder,
+}
+
 /// The resolved value of one sample.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Composite {
@@ -41,9 +53,11 @@ impl Composite {
     pub const EMPTY: Composite = Composite { rgb: [0.0; 3], alpha: 0.0, z: f32::INFINITY };
 }
 
-/// Port of `CSGResolve` for one sample (no CSG trees): repeatedly take the nearest remaining
-/// point (`sortfront`) and composite it behind what is already accumulated, stopping at the
-/// first opaque surface. `lerps` counts exact-depth interpolations.
+/// Port of `CSGResolve` for one sample: repeatedly take the nearest remaining point
+/// (`sortfront`); if it belongs to a CSG tree, resolve that whole tree at this sample (its
+/// boundary points go back into the list as ordinary points, the rest are dropped) and look
+/// again; otherwise composite it behind what is already accumulated, stopping at the first
+/// opaque surface. `lerps` counts exact-depth interpolations.
 ///
 /// Appendix A's `glasshack`: right after compositing a glass surface, if another surface
 /// remains, the accumulated colour is tinted by the raw colour directly behind,
@@ -51,9 +65,10 @@ impl Composite {
 pub fn resolve_sample(
     points: &mut [VisPoint],
     mut head: u32,
-    rule: MatteRule,
+    resolver: &Resolver,
     lerps: &mut u64,
 ) -> Composite {
+    let rule = resolver.matte;
     let mut c = [0.0f32; 3];
     let mut t = [1.0f32; 3];
     // Coverage accumulated from non-matte surfaces, per channel (Holdout rule).
@@ -67,6 +82,17 @@ pub fn resolve_sample(
             break;
         }
         let p = points[front as usize];
+        if p.csg_node != 0 {
+            resolve_tree_at_sample(
+                points,
+                resolver.trees,
+                p.csg_tree,
+                &mut head,
+                resolver.order,
+                lerps,
+            );
+            continue;
+        }
         head = p.next;
         any = true;
         last_flags = p.flags;
@@ -151,7 +177,10 @@ mod tests {
     #[test]
     fn empty_sample() {
         let mut lerps = 0;
-        assert_eq!(resolve_sample(&mut [], NIL, MatteRule::Holdout, &mut lerps), Composite::EMPTY);
+        assert_eq!(
+            resolve_sample(&mut [], NIL, &Resolver::default(), &mut lerps),
+            Composite::EMPTY
+        );
     }
 
     #[test]
@@ -163,7 +192,7 @@ mod tests {
             let all = [red, blue, far];
             let (mut pts, head) = list(order.iter().map(|&i| all[i]).collect());
             let mut lerps = 0;
-            let r = resolve_sample(&mut pts, head, MatteRule::Holdout, &mut lerps);
+            let r = resolve_sample(&mut pts, head, &Resolver::default(), &mut lerps);
             assert_eq!(r.rgb, [0.5, 0.0, 0.5], "order {order:?}");
             assert_eq!(r.alpha, 1.0);
             assert_eq!(r.z, 5.0);
@@ -174,7 +203,7 @@ mod tests {
     fn transparent_alone_has_partial_alpha() {
         let (mut pts, head) = list(vec![surface(2.0, [1.0, 1.0, 1.0], 0.25, 0)]);
         let mut lerps = 0;
-        let r = resolve_sample(&mut pts, head, MatteRule::Holdout, &mut lerps);
+        let r = resolve_sample(&mut pts, head, &Resolver::default(), &mut lerps);
         assert_eq!(r.alpha, 0.25);
         assert_eq!(r.z, f32::INFINITY);
     }
@@ -186,11 +215,16 @@ mod tests {
         let behind = surface(6.0, [0.0, 0.0, 1.0], 1.0, 0);
         let (mut pts, head) = list(vec![behind, matte, glass]);
         let mut lerps = 0;
-        let r = resolve_sample(&mut pts.clone(), head, MatteRule::Holdout, &mut lerps);
+        let r = resolve_sample(&mut pts.clone(), head, &Resolver::default(), &mut lerps);
         assert_eq!(r.rgb, [0.5, 0.0, 0.0]);
         assert_eq!(r.alpha, 0.5);
         // The original drops the whole sample because its deepest surface is matte.
-        let o = resolve_sample(&mut pts, head, MatteRule::Original, &mut lerps);
+        let o = resolve_sample(
+            &mut pts,
+            head,
+            &Resolver { matte: MatteRule::Original, ..Resolver::default() },
+            &mut lerps,
+        );
         assert_eq!((o.rgb, o.alpha), ([0.0; 3], 0.0));
     }
 
@@ -201,7 +235,7 @@ mod tests {
         let behind = surface(3.0, [0.0, 1.0, 0.5], 1.0, 0);
         let (mut pts, head) = list(vec![behind, glass]);
         let mut lerps = 0;
-        let r = resolve_sample(&mut pts, head, MatteRule::Holdout, &mut lerps);
+        let r = resolve_sample(&mut pts, head, &Resolver::default(), &mut lerps);
         // C = 1 * (0.25 + 0.75 * c_behind); the opaque glass then ends the sample.
         assert_eq!(r.rgb, [0.25, 1.0, 0.625]);
         assert_eq!(r.z, 1.0);

@@ -12,7 +12,9 @@
 //! resolved front to back (`CSGResolve`). Invariants: nothing here allocates once the scratch
 //! buffers have grown to the bucket's needs; results depend only on the bucket's inputs.
 
-use reyes_csg::{Composite, LERP_DONE, NIL, VisPoint, lerpz, resolve_sample, shepard_weights};
+use reyes_csg::{
+    Composite, LERP_DONE, NIL, Resolver, VisPoint, lerpz, resolve_sample, shepard_weights,
+};
 
 use crate::inside::inside;
 use crate::mpoly::{Micropolygon, flags};
@@ -174,12 +176,14 @@ impl Hider {
         scratch.rgba.clear();
         scratch.z.clear();
         let mut lerps = 0;
+        let resolver =
+            Resolver { matte: self.config.matte, trees: &self.csg, order: self.config.csg_order };
         for nsample in 0..n {
             let head = scratch.heads[nsample];
             let c = if head == NIL {
                 Composite::EMPTY
             } else {
-                resolve_sample(&mut scratch.points, head, self.config.matte, &mut lerps)
+                resolve_sample(&mut scratch.points, head, &resolver, &mut lerps)
             };
             scratch.rgba.push([c.rgb[0], c.rgb[1], c.rgb[2], c.alpha]);
             scratch.z.push(c.z);

@@ -22,7 +22,7 @@ pub use bucket::gouraud;
 pub use frame::{Frame, border_for_filter_width};
 pub use lens::LensSetup;
 pub use mpoly::{Micropolygon, flags};
-pub use reyes_csg::{MatteRule, VisPoint};
+pub use reyes_csg::{CsgExpr, CsgOp, CsgOrder, CsgTree, MatteRule, VisPoint};
 pub use samples::{BucketSamples, LensShape, Needs, Pairing, Pattern, SampleSpec, ShutterShape};
 pub use tables::Tables;
 
@@ -58,6 +58,8 @@ pub struct HiderConfig {
     pub original_moving_clip: bool,
     /// Matte compositing rule.
     pub matte: MatteRule,
+    /// Depth comparison across CSG operands.
+    pub csg_order: CsgOrder,
     /// Test every sample of the bucket against every micropolygon, with no bound culling.
     /// For tests and study: the image must not change, only the sample-test count.
     pub scan_all: bool,
@@ -80,6 +82,7 @@ impl Default for HiderConfig {
             original_jitter_tables: false,
             original_moving_clip: false,
             matte: MatteRule::Holdout,
+            csg_order: CsgOrder::Exact,
             scan_all: false,
         }
     }
@@ -95,6 +98,8 @@ pub struct Hider {
     spec: SampleSpec,
     /// Per time slice tau: the times `[warp(tau/NS), warp((tau+1)/NS)]` its samples lie in.
     slice_times: Vec<[f32; 2]>,
+    /// CSG trees (`CSGNewTree`), indexed by the micropolygons' `csg_tree`.
+    csg: Vec<CsgTree>,
 }
 
 /// Hider statistics (Appendix A `VisPrint("stat")`), summed over buckets.
@@ -181,7 +186,14 @@ impl Hider {
                 [config.shutter.warp(a), config.shutter.warp(b)]
             })
             .collect();
-        Hider { config, frame, tables, spec, slice_times }
+        Hider { config, frame, tables, spec, slice_times, csg: Vec::new() }
+    }
+
+    /// Register the scene's CSG trees (port of `CSGNewTree`); tree `n` resolves the
+    /// micropolygons whose `csg_tree` is `n`. No limit but `u16` (the original had 64).
+    pub fn with_csg(mut self, trees: Vec<CsgTree>) -> Hider {
+        self.csg = trees;
+        self
     }
 
     /// The frame geometry.

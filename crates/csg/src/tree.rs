@@ -1,0 +1,285 @@
+//! CSG trees and their per-sample resolution: Appendix A `CSGNewTree`, `csg_resolve_tree`,
+//! `csg_resolve_surface`, `extract_csgtree`, `extract_csgnode`, `sortlist`, `mergelists`.
+//!
+//! A tree is binary, as Appendix A's `struct CSGnode { child[2], id[2], op }`. Every child
+//! slot has an id, unique and non-zero within its tree; the root's own id is 0. A leaf
+//! object's micropolygons carry `csg_tree` = the tree's index and `csg_node` = the id of the
+//! slot the object occupies. Resolution relabels the points that lie on the boundary of each
+//! combined solid with the id of the slot above, so after the root only points labelled 0
+//! remain visible; the others keep a child id that is never extracted again.
+
+use crate::visible::{LERP_DONE, NIL, VisPoint, lerpz, sortfront};
+
+/// Appendix A's CSG operators (`CSGDifferenceOp` 1, `CSGIntersectionOp` 2, `CSGUnionOp` 3).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CsgOp {
+    /// First operand minus second.
+    Difference,
+    /// Both.
+    Intersection,
+    /// Either.
+    Union,
+}
+
+/// A CSG expression over leaf objects, as written in a scene.
+#[derive(Debug, Clone, PartialEq)]
+pub enum CsgExpr {
+    /// A closed object, by index.
+    Leaf(u32),
+    /// An operator on two sub-expressions.
+    Op(CsgOp, Box<CsgExpr>, Box<CsgExpr>),
+}
+
+/// One node: port of `struct CSGnode`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct CsgNode {
+    /// Operator.
+    pub op: CsgOp,
+    /// Child nodes (index into the tree's nodes), `None` for a leaf slot.
+    pub child: [Option<u16>; 2],
+    /// Ids of the two child slots.
+    pub id: [u16; 2],
+}
+
+/// A CSG tree (port of the `Tree[]` entry registered by `CSGNewTree`).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct CsgTree {
+    /// Nodes; `nodes[root]` is the root.
+    pub nodes: Vec<CsgNode>,
+    /// Root node index.
+    pub root: u16,
+}
+
+/// Largest number of slots in one tree (ids are `u16`, 0 is the root).
+pub const MAX_SLOTS: usize = u16::MAX as usize;
+
+impl CsgTree {
+    /// Build a tree from an expression whose root is an operator. Returns the tree and, for
+    /// every leaf, `(object index, slot id)`, in expression order; `None` if the expression is
+    /// a bare leaf or has more slots than [`MAX_SLOTS`].
+    pub fn build(expr: &CsgExpr) -> Option<(CsgTree, Vec<(u32, u16)>)> {
+        fn walk(
+            e: &CsgExpr,
+            nodes: &mut Vec<CsgNode>,
+            leaves: &mut Vec<(u32, u16)>,
+            next_id: &mut usize,
+        ) -> Option<u16> {
+            let CsgExpr::Op(op, a, b) = e else { return None };
+            let mut node = CsgNode { op: *op, child: [None, None], id: [0, 0] };
+            for (k, sub) in [a, b].into_iter().enumerate() {
+                if *next_id > MAX_SLOTS {
+                    return None;
+                }
+                let id = *next_id as u16;
+                *next_id += 1;
+                node.id[k] = id;
+                match sub.as_ref() {
+                    CsgExpr::Leaf(obj) => leaves.push((*obj, id)),
+                    inner => node.child[k] = Some(walk(inner, nodes, leaves, next_id)?),
+                }
+            }
+            nodes.push(node);
+            Some((nodes.len() - 1) as u16)
+        }
+        let mut nodes = Vec::new();
+        let mut leaves = Vec::new();
+        let mut next_id = 1;
+        let root = walk(expr, &mut nodes, &mut leaves, &mut next_id)?;
+        Some((CsgTree { nodes, root }, leaves))
+    }
+}
+
+/// Port of `extract_csgtree`: unlink every point of tree `ntree` that is a CSG leaf point
+/// (`csg_node != 0`) from `*list`; return them as a list (in reverse order, as the original).
+/// Appendix A also pulls non-CSG points whose `csgtree` happens to match (3.15); harmless
+/// there, and avoided here by testing `csg_node`.
+pub fn extract_csgtree(points: &mut [VisPoint], ntree: u16, list: &mut u32) -> u32 {
+    let (mut inside, mut outside) = (NIL, NIL);
+    let mut i = *list;
+    while i != NIL {
+        let next = points[i as usize].next;
+        let p = &mut points[i as usize];
+        if p.csg_tree == ntree && p.csg_node != 0 {
+            p.next = inside;
+            inside = i;
+        } else {
+            p.next = outside;
+            outside = i;
+        }
+        i = next;
+    }
+    *list = outside;
+    inside
+}
+
+/// Port of `extract_csgnode`: unlink every point labelled `id` from `*list` and return them.
+pub fn extract_csgnode(points: &mut [VisPoint], id: u16, list: &mut u32) -> u32 {
+    let (mut this, mut other) = (NIL, NIL);
+    let mut i = *list;
+    while i != NIL {
+        let next = points[i as usize].next;
+        let p = &mut points[i as usize];
+        if p.csg_node == id {
+            p.next = this;
+            this = i;
+        } else {
+            p.next = other;
+            other = i;
+        }
+        i = next;
+    }
+    *list = other;
+    this
+}
+
+/// Port of `mergelists`: the concatenation `a ++ b` (not a sorted merge).
+pub fn mergelists(points: &mut [VisPoint], a: u32, b: u32) -> u32 {
+    if a == NIL {
+        return b;
+    }
+    let mut p = a;
+    while points[p as usize].next != NIL {
+        p = points[p as usize].next;
+    }
+    points[p as usize].next = b;
+    a
+}
+
+/// Port of `sortlist`: selection sort front to back by repeated `sortfront` (iterative here;
+/// the original recursed once per point).
+pub fn sortlist(points: &mut [VisPoint], head: &mut u32, lerps: &mut u64) {
+    if *head == NIL {
+        return;
+    }
+    sortfront(points, head, lerps);
+    let mut prev = *head;
+    loop {
+        let mut rest = points[prev as usize].next;
+        if rest == NIL {
+            return;
+        }
+        sortfront(points, &mut rest, lerps);
+        points[prev as usize].next = rest;
+        prev = rest;
+    }
+}
+
+/// Port of `csg_resolve_surface`: walk two front-to-back lists together; each point toggles
+/// the inside/outside state of its own solid. A point of A lies on the combined boundary iff
+/// `b` (the state gating A) is set; a point of B iff `a` is. Initial states: union a = b = 1
+/// (outside both), intersection a = b = 0, difference A - B: a = 0, b = 1. Survivors are
+/// relabelled `id`.
+pub fn csg_resolve_surface(points: &mut [VisPoint], mut la: u32, mut lb: u32, id: u16, op: CsgOp) {
+    let (mut a, mut b) = match op {
+        CsgOp::Union => (true, true),
+        CsgOp::Difference => (false, true),
+        CsgOp::Intersection => (false, false),
+    };
+    while la != NIL && lb != NIL {
+        if points[la as usize].minz < points[lb as usize].minz {
+            if b {
+                points[la as usize].csg_node = id;
+            }
+            la = points[la as usize].next;
+            a = !a;
+        } else {
+            if a {
+                points[lb as usize].csg_node = id;
+            }
+            lb = points[lb as usize].next;
+            b = !b;
+        }
+    }
+    if b {
+        while la != NIL {
+            points[la as usize].csg_node = id;
+            la = points[la as usize].next;
+        }
+    }
+    if a {
+        while lb != NIL {
+            points[lb as usize].csg_node = id;
+            lb = points[lb as usize].next;
+        }
+    }
+}
+
+/// Port of `csg_resolve_tree`: post-order evaluation of `node` (whose own slot id is `id`)
+/// on the tree's points in `*list`.
+pub fn csg_resolve_tree(
+    points: &mut [VisPoint],
+    tree: &CsgTree,
+    node: u16,
+    id: u16,
+    list: &mut u32,
+    lerps: &mut u64,
+) {
+    let n = tree.nodes[node as usize];
+    for k in 0..2 {
+        if let Some(c) = n.child[k] {
+            csg_resolve_tree(points, tree, c, n.id[k], list, lerps);
+        }
+    }
+    let mut l0 = extract_csgnode(points, n.id[0], list);
+    let mut l1 = extract_csgnode(points, n.id[1], list);
+    if l0 != NIL || l1 != NIL {
+        sortlist(points, &mut l0, lerps);
+        sortlist(points, &mut l1, lerps);
+        csg_resolve_surface(points, l0, l1, id, n.op);
+        *list = mergelists(points, l0, *list);
+        *list = mergelists(points, l1, *list);
+    }
+}
+
+/// How cross-list depth comparisons are made.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum CsgOrder {
+    /// Every point of the tree is given its exact depth before resolution, so points of the
+    /// two operands are compared by true depth.
+    #[default]
+    Exact,
+    /// Appendix A: compare by `minz`, which may still be a range minimum when the two points
+    /// came from different lists (3.15), and can misorder overlapping surfaces.
+    Original,
+}
+
+/// Resolve tree `ntree` for one sample: extract its points from `*head`, resolve, put the
+/// survivors (relabelled as ordinary points, `csg_node = 0`) back, drop the rest.
+pub fn resolve_tree_at_sample(
+    points: &mut [VisPoint],
+    trees: &[CsgTree],
+    ntree: u16,
+    head: &mut u32,
+    order: CsgOrder,
+    lerps: &mut u64,
+) {
+    let mut list = extract_csgtree(points, ntree, head);
+    let Some(tree) = trees.get(ntree as usize) else {
+        // Unknown tree: treat its points as ordinary surfaces rather than lose them.
+        let mut i = list;
+        while i != NIL {
+            points[i as usize].csg_node = 0;
+            i = points[i as usize].next;
+        }
+        *head = mergelists(points, list, *head);
+        return;
+    };
+    if order == CsgOrder::Exact {
+        let mut i = list;
+        while i != NIL {
+            let p = &mut points[i as usize];
+            if p.flags & LERP_DONE == 0 {
+                let z = lerpz(&p.v);
+                *lerps += 1;
+                p.minz = z;
+                p.maxz = z;
+                p.flags |= LERP_DONE;
+            }
+            i = p.next;
+        }
+    }
+    csg_resolve_tree(points, tree, tree.root, 0, &mut list, lerps);
+    let resolved = extract_csgnode(points, 0, &mut list);
+    // `list` now holds the points that are not on the solid's boundary: freed (dropped).
+    *head = mergelists(points, resolved, *head);
+}
