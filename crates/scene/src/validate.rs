@@ -5,11 +5,16 @@
 //! names the path of the offending value as the source map spells it (`objects[0].shape.radius`).
 //! Every `f32` is checked finite before any range test on it. No check can panic: geometric
 //! tests are done in `f64`, where products of finite `f32`s cannot overflow.
+//!
+//! Motion keys (`camera.motion`, `objects[i].motion`, `objects[i].deform`) are checked after
+//! the still values they replace, key by key: the list length first, then each key's time
+//! (finite, inside the shutter, after the previous key's), then the key's contents.
 
 use glam::{DMat4, DVec3, DVec4};
 
 use crate::model::{
-    Camera, Hider, Image, Light, Material, Object, Rgb, Scene, Shape, Transform, V3,
+    Camera, Hider, Image, Light, Material, Object, Rgb, Scene, Shape, Shutter, ShutterShape,
+    Transform, V3,
 };
 
 /// A validation failure: the path of the value at fault and what is wrong with it.
@@ -38,7 +43,7 @@ fn check_scene(scene: &Scene) -> Check {
         self::light(&format!("lights[{i}]"), light)?;
     }
     for (i, object) in scene.objects.iter().enumerate() {
-        self::object(&format!("objects[{i}]"), object)?;
+        self::object(&format!("objects[{i}]"), object, &scene.camera.shutter)?;
     }
     Ok(())
 }
@@ -121,17 +126,7 @@ fn camera(cam: &Camera) -> Check {
     if cam.yon <= cam.hither {
         return fail("camera.yon", format!("must be > hither ({}), got {}", cam.hither, cam.yon));
     }
-    if cam.eye == cam.look_at {
-        return fail("camera.look_at", "must differ from eye");
-    }
-    let view = dvec(&cam.look_at) - dvec(&cam.eye);
-    let up = dvec(&cam.up);
-    if up == DVec3::ZERO {
-        return fail("camera.up", "must be non-zero");
-    }
-    if up.cross(view).length() <= 1e-6 * up.length() * view.length() {
-        return fail("camera.up", "must not be parallel to the view direction (look_at - eye)");
-    }
+    orientation("camera", &cam.eye, &cam.look_at, &cam.up)?;
     finite("camera.shutter.open", cam.shutter.open)?;
     finite("camera.shutter.close", cam.shutter.close)?;
     if cam.shutter.close < cam.shutter.open {
@@ -140,10 +135,88 @@ fn camera(cam: &Camera) -> Check {
             format!("must be >= shutter.open ({}), got {}", cam.shutter.open, cam.shutter.close),
         );
     }
+    if let ShutterShape::Gradual { ramp } = cam.shutter.shape {
+        finite("camera.shutter.shape.ramp", ramp)?;
+        if !(ramp > 0.0 && ramp <= 0.5) {
+            return fail("camera.shutter.shape.ramp", format!("must be in (0, 0.5], got {ramp}"));
+        }
+    }
     if let Some(lens) = &cam.lens {
         positive("camera.lens.focal_length", lens.focal_length)?;
         positive("camera.lens.f_stop", lens.f_stop)?;
         positive("camera.lens.focal_distance", lens.focal_distance)?;
+    }
+    keys(
+        "camera.motion",
+        &cam.motion,
+        |k| k.time,
+        &cam.shutter,
+        |i, key| {
+            let at = format!("camera.motion[{i}]");
+            finite_all(&format!("{at}.eye"), &key.eye)?;
+            finite_all(&format!("{at}.look_at"), &key.look_at)?;
+            finite_all(&format!("{at}.up"), &key.up)?;
+            orientation(&at, &key.eye, &key.look_at, &key.up)
+        },
+    )
+}
+
+/// The camera rules on `eye`, `look_at` and `up` (all finite), reported under `at`.
+fn orientation(at: &str, eye: &V3, look_at: &V3, up: &V3) -> Check {
+    if eye == look_at {
+        return fail(format!("{at}.look_at"), "must differ from eye");
+    }
+    let view = dvec(look_at) - dvec(eye);
+    let up = dvec(up);
+    if up == DVec3::ZERO {
+        return fail(format!("{at}.up"), "must be non-zero");
+    }
+    if up.cross(view).length() <= 1e-6 * up.length() * view.length() {
+        return fail(
+            format!("{at}.up"),
+            "must not be parallel to the view direction (look_at - eye)",
+        );
+    }
+    Ok(())
+}
+
+/// The rules every list of motion keys at `at` obeys: empty, or at least 2 keys; every
+/// key's `time` finite and inside the (already valid) shutter; times strictly increasing,
+/// unless the shutter is closed (`close == open`), when they all equal `open`.
+/// `contents(i, key)` checks key `i`'s other fields, after its time.
+fn keys<K>(
+    at: &str,
+    keys: &[K],
+    time: impl Fn(&K) -> f32,
+    shutter: &Shutter,
+    mut contents: impl FnMut(usize, &K) -> Check,
+) -> Check {
+    if keys.len() == 1 {
+        return fail(at, "motion needs at least 2 keys (or none), got 1");
+    }
+    let (open, close) = (shutter.open, shutter.close);
+    let mut previous: Option<f32> = None;
+    for (i, key) in keys.iter().enumerate() {
+        let t = time(key);
+        let path = format!("{at}[{i}].time");
+        finite(&path, t)?;
+        if t < open || t > close {
+            return fail(
+                path,
+                format!("motion key time {t} is outside the shutter [{open}, {close}]"),
+            );
+        }
+        if let Some(before) = previous
+            && close > open
+            && t <= before
+        {
+            return fail(
+                path,
+                format!("keys must be in increasing time order, got {t} after {before}"),
+            );
+        }
+        previous = Some(t);
+        contents(i, key)?;
     }
     Ok(())
 }
@@ -189,12 +262,80 @@ fn light(at: &str, light: &Light) -> Check {
     non_negative(&format!("{at}.intensity"), *intensity)
 }
 
-fn object(at: &str, object: &Object) -> Check {
+fn object(at: &str, object: &Object, shutter: &Shutter) -> Check {
     shape(&format!("{at}.shape"), &object.shape)?;
     for (i, t) in object.transform.iter().enumerate() {
         transform(&format!("{at}.transform[{i}]"), t)?;
     }
-    material(&format!("{at}.material"), &object.material)
+    material(&format!("{at}.material"), &object.material)?;
+    motion(&format!("{at}.motion"), object, shutter)?;
+    deform(&format!("{at}.deform"), object, shutter)
+}
+
+/// Transform motion: key times, then each key's transforms by the rules of `transform`.
+fn motion(at: &str, object: &Object, shutter: &Shutter) -> Check {
+    keys(
+        at,
+        &object.motion,
+        |k| k.time,
+        shutter,
+        |i, key| {
+            for (j, t) in key.transform.iter().enumerate() {
+                transform(&format!("{at}[{i}].transform[{j}]"), t)?;
+            }
+            Ok(())
+        },
+    )
+}
+
+/// Deformation motion: only of a `Mesh` or `BilinearPatch`; key times, then each key's points
+/// (as many as the shape has, all finite).
+fn deform(at: &str, object: &Object, shutter: &Shutter) -> Check {
+    if object.deform.is_empty() {
+        return Ok(());
+    }
+    let count = match &object.shape {
+        Shape::BilinearPatch { points } => points.len(),
+        Shape::Mesh { points, .. } => points.len(),
+        other => {
+            return fail(
+                at,
+                format!(
+                    "deformation keys need a Mesh or BilinearPatch shape, got {}",
+                    shape_name(other)
+                ),
+            );
+        }
+    };
+    keys(
+        at,
+        &object.deform,
+        |k| k.time,
+        shutter,
+        |i, key| {
+            let path = format!("{at}[{i}].points");
+            if key.points.len() != count {
+                return fail(path, format!("expected {count} points, got {}", key.points.len()));
+            }
+            for (j, p) in key.points.iter().enumerate() {
+                finite_all(&format!("{path}[{j}]"), p)?;
+            }
+            Ok(())
+        },
+    )
+}
+
+/// The variant name of a shape, for messages.
+fn shape_name(shape: &Shape) -> &'static str {
+    match shape {
+        Shape::Sphere { .. } => "Sphere",
+        Shape::Cylinder { .. } => "Cylinder",
+        Shape::Cone { .. } => "Cone",
+        Shape::Disk { .. } => "Disk",
+        Shape::Torus { .. } => "Torus",
+        Shape::BilinearPatch { .. } => "BilinearPatch",
+        Shape::Mesh { .. } => "Mesh",
+    }
 }
 
 fn shape(at: &str, shape: &Shape) -> Check {

@@ -91,6 +91,12 @@ fn the_document_covers_every_variant() {
         "pattern:",
         "original:",
         "lens: Some(",
+        "Gradual(",
+        "camera: (eye",
+        "motion: [",
+        "deform: [",
+        "time_pairing:",
+        "moving_clip:",
     ] {
         assert!(ron_blocks().iter().any(|b| b.contains(name)), "no ```ron example uses {name}");
     }

@@ -110,6 +110,42 @@ const CASES: &[Case] = &[
     Case { name: "material opacity negative", from: "(0.8, 0.1, 0.1))", to: "(0.8, 0.1, 0.1), opacity: (1.0, 1.0, -0.5))", field: "objects[0].material.opacity[2]", at: Some((7, 108)) },
     Case { name: "plastic roughness 0", from: "Matte(color: (0.8, 0.1, 0.1))", to: "Plastic(color: (0.8, 0.1, 0.1), roughness: 0.0)", field: "objects[0].material.roughness", at: Some((7, 101)) },
     Case { name: "negative kd", from: "Matte(color: (0.8, 0.1, 0.1))", to: "Matte(color: (0.8, 0.1, 0.1), kd: -1.0)", field: "objects[0].material.kd", at: Some((7, 92)) },
+    Case { name: "gradual shutter ramp 0", from: "yon: 100.0)", to: "yon: 100.0, shutter: (open: 0.0, close: 1.0, shape: Gradual(ramp: 0.0)))", field: "camera.shutter.shape.ramp", at: Some((3, 152)) },
+    Case { name: "gradual shutter ramp above 0.5", from: "yon: 100.0)", to: "yon: 100.0, shutter: (open: 0.0, close: 1.0, shape: Gradual(ramp: 0.6)))", field: "camera.shutter.shape.ramp", at: Some((3, 152)) },
+    Case { name: "gradual shutter ramp negative", from: "yon: 100.0)", to: "yon: 100.0, shutter: (open: 0.0, close: 1.0, shape: Gradual(ramp: -0.25)))", field: "camera.shutter.shape.ramp", at: Some((3, 152)) },
+    Case { name: "gradual shutter ramp NaN", from: "yon: 100.0)", to: "yon: 100.0, shutter: (open: 0.0, close: 1.0, shape: Gradual(ramp: NaN)))", field: "camera.shutter.shape.ramp", at: Some((3, 152)) },
+    Case { name: "gradual shutter without ramp", from: "yon: 100.0)", to: "yon: 100.0, shutter: (open: 0.0, close: 1.0, shape: Gradual()))", field: "camera.shutter.shape.ramp", at: Some((3, 146)) },
+    Case { name: "unknown shutter shape", from: "yon: 100.0)", to: "yon: 100.0, shutter: (open: 0.0, close: 1.0, shape: Box))", field: "camera.shutter.shape", at: Some((3, 138)) },
+    Case { name: "camera motion with one key", from: "yon: 100.0)", to: "yon: 100.0, motion: [(time: 0.0, eye: (0.0, 1.0, -10.0), look_at: (0.0, 0.0, 0.0))])", field: "camera.motion", at: Some((3, 106)) },
+    Case { name: "camera motion key after shutter close", from: "yon: 100.0)", to: "yon: 100.0, motion: [(time: 0.0, eye: (0.0, 1.0, -10.0), look_at: (0.0, 0.0, 0.0)), (time: 1.5, eye: (0.0, 1.0, -10.0), look_at: (0.0, 0.0, 0.0))])", field: "camera.motion[1].time", at: Some((3, 177)) },
+    Case { name: "camera motion key before shutter open", from: "yon: 100.0)", to: "yon: 100.0, motion: [(time: -0.5, eye: (0.0, 1.0, -10.0), look_at: (0.0, 0.0, 0.0)), (time: 1.0, eye: (0.0, 1.0, -10.0), look_at: (0.0, 0.0, 0.0))])", field: "camera.motion[0].time", at: Some((3, 114)) },
+    Case { name: "camera motion keys out of order", from: "yon: 100.0)", to: "yon: 100.0, motion: [(time: 0.0, eye: (0.0, 1.0, -10.0), look_at: (0.0, 0.0, 0.0)), (time: 0.7, eye: (0.0, 1.0, -10.0), look_at: (0.0, 0.0, 0.0)), (time: 0.5, eye: (0.0, 1.0, -10.0), look_at: (0.0, 0.0, 0.0))])", field: "camera.motion[2].time", at: Some((3, 240)) },
+    Case { name: "camera motion keys at the same time", from: "yon: 100.0)", to: "yon: 100.0, motion: [(time: 0.5, eye: (0.0, 1.0, -10.0), look_at: (0.0, 0.0, 0.0)), (time: 0.5, eye: (0.0, 1.0, -10.0), look_at: (0.0, 0.0, 0.0))])", field: "camera.motion[1].time", at: Some((3, 177)) },
+    Case { name: "camera motion NaN time", from: "yon: 100.0)", to: "yon: 100.0, motion: [(time: NaN, eye: (0.0, 1.0, -10.0), look_at: (0.0, 0.0, 0.0)), (time: 1.0, eye: (0.0, 1.0, -10.0), look_at: (0.0, 0.0, 0.0))])", field: "camera.motion[0].time", at: Some((3, 114)) },
+    Case { name: "camera motion inf eye", from: "yon: 100.0)", to: "yon: 100.0, motion: [(time: 0.0, eye: (0.0, 1.0, -10.0), look_at: (0.0, 0.0, 0.0)), (time: 1.0, eye: (inf, 1.0, -10.0), look_at: (0.0, 0.0, 0.0))])", field: "camera.motion[1].eye[0]", at: Some((3, 188)) },
+    Case { name: "camera motion NaN up", from: "yon: 100.0)", to: "yon: 100.0, motion: [(time: 0.0, eye: (0.0, 1.0, -10.0), look_at: (0.0, 0.0, 0.0), up: (0.0, NaN, 0.0)), (time: 1.0, eye: (0.0, 1.0, -10.0), look_at: (0.0, 0.0, 0.0))])", field: "camera.motion[0].up[1]", at: Some((3, 179)) },
+    Case { name: "camera motion key eye at look_at", from: "yon: 100.0)", to: "yon: 100.0, motion: [(time: 0.0, eye: (0.0, 1.0, -10.0), look_at: (0.0, 0.0, 0.0)), (time: 1.0, eye: (2.0, 0.0, 0.0), look_at: (2.0, 0.0, 0.0))])", field: "camera.motion[1].look_at", at: Some((3, 213)) },
+    Case { name: "camera motion key up zero", from: "yon: 100.0)", to: "yon: 100.0, motion: [(time: 0.0, eye: (0.0, 1.0, -10.0), look_at: (0.0, 0.0, 0.0), up: (0.0, 0.0, 0.0)), (time: 1.0, eye: (0.0, 1.0, -10.0), look_at: (0.0, 0.0, 0.0))])", field: "camera.motion[0].up", at: Some((3, 173)) },
+    Case { name: "camera motion key up parallel to view", from: "yon: 100.0)", to: "yon: 100.0, motion: [(time: 0.0, eye: (0.0, 1.0, -10.0), look_at: (0.0, 0.0, 0.0)), (time: 1.0, eye: (0.0, 5.0, 0.0), look_at: (0.0, 0.0, 0.0))])", field: "camera.motion[1].up", at: Some((3, 170)) },
+    Case { name: "transform motion with one key", from: "material:", to: "motion: [(time: 0.0, transform: [Translate((1.0, 0.0, 0.0))])], material:", field: "objects[0].motion", at: Some((7, 56)) },
+    Case { name: "transform motion key outside the shutter", from: "material:", to: "motion: [(time: 0.0, transform: []), (time: 1.5, transform: [Translate((1.0, 0.0, 0.0))])], material:", field: "objects[0].motion[1].time", at: Some((7, 92)) },
+    Case { name: "transform motion keys out of order", from: "material:", to: "motion: [(time: 0.0, transform: []), (time: 0.7, transform: []), (time: 0.5, transform: [])], material:", field: "objects[0].motion[2].time", at: Some((7, 120)) },
+    Case { name: "transform motion inf time", from: "material:", to: "motion: [(time: 0.0, transform: []), (time: inf, transform: [])], material:", field: "objects[0].motion[1].time", at: Some((7, 92)) },
+    Case { name: "transform motion NaN translate", from: "material:", to: "motion: [(time: 0.0, transform: [Translate((0.0, NaN, 0.0))]), (time: 1.0, transform: [])], material:", field: "objects[0].motion[0].transform[0][1]", at: Some((7, 97)) },
+    Case { name: "transform motion rotate about a zero axis", from: "material:", to: "motion: [(time: 0.0, transform: []), (time: 1.0, transform: [Rotate(angle: 90.0, axis: (0.0, 0.0, 0.0))])], material:", field: "objects[0].motion[1].transform[0].axis", at: Some((7, 135)) },
+    Case { name: "transform motion scale by zero", from: "material:", to: "motion: [(time: 0.0, transform: [Translate((1.0, 0.0, 0.0)), Scale((1.0, 1.0, 0.0))]), (time: 1.0, transform: [])], material:", field: "objects[0].motion[0].transform[1][2]", at: Some((7, 126)) },
+    Case { name: "transform motion projective matrix", from: "material:", to: "motion: [(time: 0.0, transform: []), (time: 1.0, transform: [Matrix(((1.0, 0.0, 0.0, 0.0), (0.0, 1.0, 0.0, 0.0), (0.0, 0.0, 1.0, 0.0), (0.5, 0.0, 0.0, 1.0)))])], material:", field: "objects[0].motion[1].transform[0][3]", at: Some((7, 183)) },
+    Case { name: "transform motion singular matrix", from: "material:", to: "motion: [(time: 0.0, transform: []), (time: 1.0, transform: [Matrix(((1.0, 0.0, 0.0, 0.0), (0.0, 1.0, 0.0, 0.0), (0.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0)))])], material:", field: "objects[0].motion[1].transform[0]", at: Some((7, 109)) },
+    Case { name: "closed shutter with a key after open", from: "yon: 100.0)", to: "yon: 100.0, shutter: (open: 0.5, close: 0.5), motion: [(time: 0.5, eye: (0.0, 1.0, -10.0), look_at: (0.0, 0.0, 0.0)), (time: 0.6, eye: (0.0, 1.0, -10.0), look_at: (0.0, 0.0, 0.0))])", field: "camera.motion[1].time", at: Some((3, 211)) },
+    Case { name: "key before a shifted shutter", from: "yon: 100.0)", to: "yon: 100.0, shutter: (open: 1.0, close: 2.0), motion: [(time: 0.0, eye: (0.0, 1.0, -10.0), look_at: (0.0, 0.0, 0.0)), (time: 2.0, eye: (0.0, 1.0, -10.0), look_at: (0.0, 0.0, 0.0))])", field: "camera.motion[0].time", at: Some((3, 148)) },
+    Case { name: "deformation of a sphere", from: "material:", to: "deform: [(time: 0.0, points: []), (time: 1.0, points: [])], material:", field: "objects[0].deform", at: Some((7, 56)) },
+    Case { name: "deformation with one key", from: "Sphere(radius: 1.0)", to: "BilinearPatch(points: ((0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (1.0, 1.0, 0.0))), deform: [(time: 0.0, points: [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (1.0, 1.0, 0.0)])]", field: "objects[0].deform", at: Some((7, 128)) },
+    Case { name: "deformation of a patch with 3 points", from: "0.1))),\n", to: "0.1))),\n    (shape: BilinearPatch(points: ((0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (1.0, 1.0, 0.0))), material: Matte(color: (0.5, 0.5, 0.5)),\n     deform: [(time: 0.0, points: [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (1.0, 1.0, 0.0)]),\n              (time: 1.0, points: [(0.0, 0.0, 1.0), (1.0, 0.0, 1.0), (0.0, 1.0, 1.0)])]),\n", field: "objects[1].deform[1].points", at: Some((10, 35)) },
+    Case { name: "deformation of a mesh with too many points", from: "Sphere(radius: 1.0)", to: "Mesh(points: [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)], faces: [[0, 1, 2]]), deform: [(time: 0.0, points: [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (1.0, 1.0, 0.0)]), (time: 1.0, points: [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)])]", field: "objects[0].deform[0].points", at: Some((7, 143)) },
+    Case { name: "deformation key outside the shutter", from: "Sphere(radius: 1.0)", to: "Mesh(points: [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)], faces: [[0, 1, 2]]), deform: [(time: 0.0, points: [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)]), (time: 2.0, points: [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)])]", field: "objects[0].deform[1].time", at: Some((7, 204)) },
+    Case { name: "deformation keys out of order", from: "Sphere(radius: 1.0)", to: "Mesh(points: [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)], faces: [[0, 1, 2]]), deform: [(time: 1.0, points: [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)]), (time: 0.0, points: [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)])]", field: "objects[0].deform[1].time", at: Some((7, 204)) },
+    Case { name: "deformation NaN point", from: "Sphere(radius: 1.0)", to: "Mesh(points: [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)], faces: [[0, 1, 2]]), deform: [(time: 0.0, points: [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)]), (time: 1.0, points: [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (NaN, 1.0, 0.0)])]", field: "objects[0].deform[1].points[2][0]", at: Some((7, 253)) },
+    Case { name: "deformation points written as a tuple", from: "Sphere(radius: 1.0)", to: "BilinearPatch(points: ((0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (1.0, 1.0, 0.0))), deform: [(time: 0.0, points: ((0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (1.0, 1.0, 0.0))), (time: 1.0, points: ((0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (1.0, 1.0, 0.0)))]", field: "objects[0].deform[0].points", at: Some((7, 149)) },
 ];
 
 /// The text of `case` and the error it must produce.
@@ -179,6 +215,29 @@ fn the_catalogue_covers_the_required_inputs() {
         "mesh index out of range",
         "mesh face with 5 indices",
         "mesh colours length mismatch",
+        "gradual shutter ramp 0",
+        "gradual shutter ramp above 0.5",
+        "camera motion with one key",
+        "camera motion key after shutter close",
+        "camera motion keys out of order",
+        "camera motion key eye at look_at",
+        "camera motion key up zero",
+        "camera motion key up parallel to view",
+        "transform motion with one key",
+        "transform motion key outside the shutter",
+        "transform motion keys out of order",
+        "transform motion rotate about a zero axis",
+        "transform motion scale by zero",
+        "transform motion singular matrix",
+        "transform motion projective matrix",
+        "closed shutter with a key after open",
+        "deformation of a sphere",
+        "deformation with one key",
+        "deformation of a patch with 3 points",
+        "deformation of a mesh with too many points",
+        "deformation key outside the shutter",
+        "deformation keys out of order",
+        "deformation NaN point",
     ] {
         assert!(CASES.iter().any(|c| c.name == required), "missing case {required}");
     }
@@ -222,6 +281,98 @@ fn exact_messages() {
     assert_eq!(
         shown("missing required field"),
         "scenes/bad.ron:2:21: image.height: missing required field `height`"
+    );
+    assert_eq!(
+        shown("gradual shutter ramp above 0.5"),
+        "scenes/bad.ron:3:152: camera.shutter.shape.ramp: must be in (0, 0.5], got 0.6"
+    );
+    assert_eq!(
+        shown("camera motion key after shutter close"),
+        "scenes/bad.ron:3:177: camera.motion[1].time: motion key time 1.5 is outside the shutter [0, 1]"
+    );
+    assert_eq!(
+        shown("camera motion key up zero"),
+        "scenes/bad.ron:3:173: camera.motion[0].up: must be non-zero"
+    );
+    assert_eq!(
+        shown("transform motion with one key"),
+        "scenes/bad.ron:7:56: objects[0].motion: motion needs at least 2 keys (or none), got 1"
+    );
+    assert_eq!(
+        shown("transform motion keys out of order"),
+        "scenes/bad.ron:7:120: objects[0].motion[2].time: keys must be in increasing time order, got 0.5 after 0.7"
+    );
+    assert_eq!(
+        shown("transform motion rotate about a zero axis"),
+        "scenes/bad.ron:7:135: objects[0].motion[1].transform[0].axis: must be non-zero"
+    );
+    assert_eq!(
+        shown("closed shutter with a key after open"),
+        "scenes/bad.ron:3:211: camera.motion[1].time: motion key time 0.6 is outside the shutter [0.5, 0.5]"
+    );
+    assert_eq!(
+        shown("deformation of a sphere"),
+        "scenes/bad.ron:7:56: objects[0].deform: deformation keys need a Mesh or BilinearPatch shape, got Sphere"
+    );
+    assert_eq!(
+        shown("deformation of a patch with 3 points"),
+        "scenes/bad.ron:10:35: objects[1].deform[1].points: expected 4 points, got 3"
+    );
+}
+
+/// Object and deformation keys are checked against the camera's shutter, wherever it is.
+#[test]
+fn object_keys_follow_the_shutter() {
+    let with = |shutter: &str, motion: &str| {
+        let text = BASE
+            .replacen("yon: 100.0)", &format!("yon: 100.0, shutter: {shutter})"), 1)
+            .replacen("material:", &format!("motion: [{motion}], material:"), 1);
+        parse(&text, Path::new(FILE)).map(|_| ()).map_err(|e| e.to_string())
+    };
+    let keys = |a: &str, b: &str| {
+        format!("(time: {a}, transform: []), (time: {b}, transform: [Translate((1.0, 0.0, 0.0))])")
+    };
+    // Keys at both ends of a shifted shutter are inside it; outside it they are not.
+    assert_eq!(with("(open: 1.0, close: 2.0)", &keys("1.0", "2.0")), Ok(()));
+    assert_eq!(
+        with("(open: 1.0, close: 2.0)", &keys("0.0", "2.0")),
+        Err("scenes/bad.ron:7:64: objects[0].motion[0].time: motion key time 0 is outside the shutter [1, 2]".into())
+    );
+    assert_eq!(
+        with("(open: 1.0, close: 2.0)", &keys("1.0", "2.5")),
+        Err("scenes/bad.ron:7:92: objects[0].motion[1].time: motion key time 2.5 is outside the shutter [1, 2]".into())
+    );
+    // A closed shutter (no blur): every key at the opening time, none after.
+    assert_eq!(with("(open: 0.5, close: 0.5)", &keys("0.5", "0.5")), Ok(()));
+    assert_eq!(
+        with("(open: 0.5, close: 0.5)", &keys("0.5", "0.75")),
+        Err("scenes/bad.ron:7:92: objects[0].motion[1].time: motion key time 0.75 is outside the shutter [0.5, 0.5]".into())
+    );
+    // An open shutter needs strictly increasing times.
+    assert_eq!(
+        with("(open: 0.0, close: 1.0)", &keys("0.5", "0.5")),
+        Err("scenes/bad.ron:7:92: objects[0].motion[1].time: keys must be in increasing time order, got 0.5 after 0.5".into())
+    );
+}
+
+/// A bad motion key is a bad scene for `load` too: one line, exit code 2.
+#[test]
+fn a_bad_motion_key_is_exit_code_2() {
+    let case = CASES
+        .iter()
+        .find(|c| c.name == "transform motion keys out of order")
+        .unwrap_or_else(|| panic!("no case"));
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("reyes-scene-tests");
+    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+    let path = dir.join("bad-motion.ron");
+    std::fs::write(&path, BASE.replacen(case.from, case.to, 1)).unwrap_or_else(|e| panic!("{e}"));
+    let err = reyes_scene::load(&path).err().unwrap_or_else(|| panic!("loaded a bad scene"));
+    assert_eq!(err.exit_code(), 2);
+    let shown = err.to_string();
+    assert!(!shown.contains('\n'), "{shown}");
+    assert!(
+        shown.ends_with(":7:120: objects[0].motion[2].time: keys must be in increasing time order, got 0.5 after 0.7"),
+        "{shown}"
     );
 }
 

@@ -9,22 +9,29 @@ use reyes_scene::{SceneError, parse};
 const VALID: &str = r#"Scene(
   image: (width: 64, height: 48),
   camera: (eye: (0.0, 1.0, -10.0), look_at: (0.0, 0.0, 0.0), up: (0.0, 1.0, 0.0),
-           fov: 35.0, hither: 0.1, yon: 100.0, shutter: (open: 0.0, close: 1.0),
-           lens: Some((focal_length: 1.0, f_stop: 2.8, focal_distance: 8.0))),
+           fov: 35.0, hither: 0.1, yon: 100.0, shutter: (open: 0.0, close: 1.0, shape: Gradual(ramp: 0.25)),
+           lens: Some((focal_length: 1.0, f_stop: 2.8, focal_distance: 8.0)),
+           motion: [(time: 0.0, eye: (0.0, 1.0, -10.0), look_at: (0.0, 0.0, 0.0)),
+                    (time: 1.0, eye: (0.5, 1.0, -10.0), look_at: (0.0, 0.0, 0.0), up: (0.0, 1.0, 0.1))]),
   hider: (pixel_samples: (4, 4), jitter: true, pattern: Fig7, filter: (kind: Sinc, width: 2.0),
           bucket_size: (16, 16), shading_rate: 1.0, seed: 7, max_grid_size: 64,
-          original: (permute: true)),
+          original: (permute: true, time_pairing: true, lens: false, moving_clip: true)),
   lights: [Ambient(color: (1.0, 1.0, 1.0), intensity: 0.1), Point(from: (0.0, 5.0, 0.0)),
            Distant(from: (1.0, 1.0, -1.0), to: (0.0, 0.0, 0.0), color: (1.0, 1.0, 1.0), intensity: 1.0)],
   objects: [
     (name: "ball", shape: Sphere(radius: 1.0, zmin: Some(-0.5), zmax: None, thetamax: 270.0),
      transform: [Rotate(angle: 30.0, axis: (0.0, 1.0, 0.0)), Scale((1.0, 2.0, 1.0))],
+     motion: [(time: 0.0, transform: [Translate((0.0, 0.0, 0.0))]),
+              (time: 0.5, transform: [Rotate(angle: 30.0, axis: (0.0, 1.0, 0.0))]),
+              (time: 1.0, transform: [Matrix(((1.0, 0.0, 0.0, 1.0), (0.0, 1.0, 0.0, 0.0), (0.0, 0.0, 1.0, 0.0), (0.0, 0.0, 0.0, 1.0)))])],
      material: Plastic(color: (0.8, 0.1, 0.1), opacity: (1.0, 1.0, 1.0), roughness: 0.2)),
     (shape: Torus(major_radius: 2.0, minor_radius: 0.5, phimin: -90.0, phimax: 90.0),
      transform: [Matrix(((1.0, 0.0, 0.0, 0.0), (0.0, 1.0, 0.0, 2.0), (0.0, 0.0, 1.0, 0.0), (0.0, 0.0, 0.0, 1.0)))],
      material: Matte(color: (0.2, 0.2, 0.9)), matte: true),
     (shape: Mesh(points: [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (1.0, 1.0, 0.0), (0.0, 1.0, 0.0)],
                  faces: [[0, 1, 2, 3], [0, 2, 3]], colors: Some([(1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0), (1.0, 1.0, 1.0)])),
+     deform: [(time: 0.0, points: [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (1.0, 1.0, 0.0), (0.0, 1.0, 0.0)]),
+              (time: 1.0, points: [(0.0, 0.0, 1.0), (1.0, 0.0, 0.0), (1.0, 1.0, 0.0), (0.0, 1.0, 1.0)])],
      material: Constant(color: (1.0, 1.0, 1.0))),
   ],
 )
@@ -162,6 +169,40 @@ proptest! {
         } else {
             let e = result.err();
             prop_assert_eq!(e.as_ref().map(|e| e.field.as_str()), Some("objects[0].shape.radius"));
+        }
+    }
+
+    #[test]
+    fn ramp_is_accepted_exactly_in_0_to_one_half(ramp in prop_oneof![any::<f32>(), -0.1f32..0.7]) {
+        let text = VALID.replace("ramp: 0.25", &format!("ramp: {ramp:?}"));
+        let result = parse(&text, Path::new("fuzz.ron"));
+        if ramp > 0.0 && ramp <= 0.5 {
+            prop_assert!(result.is_ok(), "{:?}", result.err().map(|e| e.to_string()));
+        } else {
+            let e = result.err();
+            prop_assert_eq!(e.as_ref().map(|e| e.field.as_str()), Some("camera.shutter.shape.ramp"));
+        }
+    }
+
+    /// The middle transform key is accepted exactly strictly between its neighbours (0 and 1).
+    #[test]
+    fn a_key_time_is_accepted_exactly_between_its_neighbours(time in prop_oneof![any::<f32>(), -0.5f32..1.5, Just(0.0f32), Just(1.0f32)]) {
+        let text = VALID.replace("(time: 0.5, transform", &format!("(time: {time:?}, transform"));
+        let result = parse(&text, Path::new("fuzz.ron"));
+        if time > 0.0 && time < 1.0 {
+            prop_assert!(result.is_ok(), "{:?}", result.err().map(|e| e.to_string()));
+        } else {
+            // Non-finite, outside the shutter or not after key 0: the middle key is at fault;
+            // at exactly 1, key 2 (also at 1) is the one out of order.
+            let at_fault =
+                if time == 1.0 { "objects[0].motion[2].time" } else { "objects[0].motion[1].time" };
+            let e = result.err();
+            prop_assert_eq!(
+                e.as_ref().map(|e| e.field.as_str()),
+                Some(at_fault),
+                "{:?}",
+                e.as_ref().map(|e| e.to_string())
+            );
         }
     }
 
