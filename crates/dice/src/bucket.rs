@@ -1,7 +1,8 @@
 //! Bucket stage: sort micropolygons into the buckets their screen bounds touch.
 //!
-//! Invariants: a micropolygon's screen bound is its vertex bound over the whole shutter
-//! ([`Micropolygon::bound`]) grown by the lens (`bounddof`) when there is one; it is listed
+//! Invariants: a micropolygon's screen bound is its vertex bound over its shutter segment
+//! ([`Micropolygon::bound`]: the vertices at both ends, which bound the linear motion in
+//! between) grown by the lens (`bounddof`) when there is one; it is listed
 //! in exactly the buckets [`Frame::buckets_touched`] returns for that bound, and bucket
 //! lists hold indices in increasing order because indices are inserted in increasing order.
 

@@ -3,7 +3,9 @@
 //! Invariants: camera space is +x right, +y up, +z forward (eye depth), built from an
 //! orthonormal basis; raster space is pixels with y down, pixel (x, y) covering
 //! `[x, x+1) x [y, y+1)`, and the field of view spans the shorter image side. Projection
-//! is only meaningful for `z > 0`; callers never project a point with `z <= 0`.
+//! is only meaningful for `z > 0`; callers never project a point with `z <= 0`. A moving
+//! camera (`camera.motion`) changes only the view (eye, look-at point, up vector); the
+//! projection, clipping depths and lens are the same at every time.
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
 use reyes_hider::LensSetup;
@@ -22,12 +24,53 @@ struct Basis {
     forward: Vec3,
 }
 
-/// The camera basis of `camera`, or why it has none (eye at look_at, up along the view).
-fn basis(camera: &Camera) -> Result<Basis, DiceError> {
-    let eye = Vec3::from(camera.eye);
-    let forward =
-        (Vec3::from(camera.look_at) - eye).try_normalize().ok_or(DiceError::EyeAtLookAt)?;
-    let up_in = Vec3::from(camera.up);
+/// Where a camera is and where it looks, in world space.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct View {
+    /// Eye position.
+    pub eye: Vec3,
+    /// A point the camera looks at.
+    pub look_at: Vec3,
+    /// Up direction (need not be perpendicular to the view direction).
+    pub up: Vec3,
+}
+
+impl View {
+    /// The still view of `camera` (its `eye`, `look_at` and `up`).
+    pub fn still(camera: &Camera) -> View {
+        View {
+            eye: Vec3::from(camera.eye),
+            look_at: Vec3::from(camera.look_at),
+            up: Vec3::from(camera.up),
+        }
+    }
+
+    /// The view of motion key `k`.
+    pub fn key(k: &reyes_scene::CameraKey) -> View {
+        View { eye: Vec3::from(k.eye), look_at: Vec3::from(k.look_at), up: Vec3::from(k.up) }
+    }
+
+    /// The view at shutter open: the first motion key if the camera moves, else the still view.
+    pub fn at_open(camera: &Camera) -> View {
+        camera.motion.first().map_or_else(|| View::still(camera), View::key)
+    }
+
+    /// Each of eye, look-at point and up vector interpolated linearly by `f` (exactly
+    /// unchanged where the two views agree).
+    pub fn lerp(&self, other: &View, f: f32) -> View {
+        use crate::motion::lerp;
+        View {
+            eye: lerp(self.eye, other.eye, f),
+            look_at: lerp(self.look_at, other.look_at, f),
+            up: lerp(self.up, other.up, f),
+        }
+    }
+}
+
+/// The camera basis of `view`, or why it has none (eye at look_at, up along the view).
+fn basis(view: &View) -> Result<Basis, DiceError> {
+    let forward = (view.look_at - view.eye).try_normalize().ok_or(DiceError::EyeAtLookAt)?;
+    let up_in = view.up;
     let side = up_in.cross(forward);
     if side.length() <= PARALLEL_EPS * up_in.length() {
         return Err(DiceError::UpParallelToView);
@@ -37,9 +80,14 @@ fn basis(camera: &Camera) -> Result<Basis, DiceError> {
     Ok(Basis { right, up, forward })
 }
 
-/// Check that the scene's camera has a well-defined view basis.
+/// Check that the scene's camera has a well-defined view basis: the still view, or every
+/// motion key when the camera moves (the keys replace the still view).
 pub(crate) fn check_camera(camera: &Camera) -> Result<(), DiceError> {
-    basis(camera).map(|_| ())
+    if camera.motion.is_empty() {
+        basis(&View::still(camera)).map(|_| ())
+    } else {
+        camera.motion.iter().try_for_each(|k| basis(&View::key(k)).map(|_| ()))
+    }
 }
 
 /// World-to-camera transform and raster projection of a scene's camera.
@@ -59,20 +107,22 @@ pub struct CameraSetup {
 }
 
 impl CameraSetup {
-    /// Set up the camera of `scene`.
+    /// Set up the camera of `scene`, seen from where it is at shutter open (its first motion
+    /// key if it moves; the other keys are [`crate::dice_scene`]'s business).
     ///
     /// A degenerate camera (eye at `look_at`, or `up` parallel to the view) has no basis;
     /// [`crate::dice_scene`] reports it as an error, and here it falls back to looking
     /// down +z with +y up (or +x right when the view is along y) so that this never panics.
     pub fn new(scene: &Scene) -> CameraSetup {
         let cam = &scene.camera;
-        let basis = basis(cam).unwrap_or_else(|_| fallback_basis(cam));
+        let view = View::at_open(cam);
+        let basis = basis(&view).unwrap_or_else(|_| fallback_basis(&view));
         let width = scene.image.width as f32;
         let height = scene.image.height as f32;
         let half_short = 0.5 * width.min(height);
         let pixels_per_unit = half_short / (0.5 * cam.fov.to_radians()).tan();
         CameraSetup {
-            eye_world: Vec3::from(cam.eye),
+            eye_world: view.eye,
             basis,
             width,
             height,
@@ -81,6 +131,14 @@ impl CameraSetup {
             yon: cam.yon,
             lens: cam.lens,
         }
+    }
+
+    /// The same camera (projection, clipping, lens) seen from `view`, falling back as
+    /// [`CameraSetup::new`] does when `view` has no basis (an interpolated view can be
+    /// degenerate even when the keys are not).
+    pub(crate) fn with_view(&self, view: &View) -> CameraSetup {
+        let basis = basis(view).unwrap_or_else(|_| fallback_basis(view));
+        CameraSetup { eye_world: view.eye, basis, ..self.clone() }
     }
 
     /// The world-to-camera matrix (rigid: rows are right, up, forward; the eye maps to 0).
@@ -145,10 +203,9 @@ impl CameraSetup {
     }
 }
 
-/// A usable basis for a degenerate camera (see [`CameraSetup::new`]).
-fn fallback_basis(camera: &Camera) -> Basis {
-    let eye = Vec3::from(camera.eye);
-    let forward = (Vec3::from(camera.look_at) - eye).try_normalize().unwrap_or(Vec3::Z);
+/// A usable basis for a degenerate view (see [`CameraSetup::new`]).
+fn fallback_basis(view: &View) -> Basis {
+    let forward = (view.look_at - view.eye).try_normalize().unwrap_or(Vec3::Z);
     let up_guess = if forward.y.abs() < 0.9 { Vec3::Y } else { Vec3::Z };
     let right = up_guess.cross(forward).try_normalize().unwrap_or(Vec3::X);
     Basis { right, up: forward.cross(right), forward }
@@ -176,6 +233,7 @@ mod tests {
             hider: Hider::default(),
             lights: vec![],
             objects: vec![],
+            solids: vec![],
         }
     }
 
@@ -245,6 +303,34 @@ mod tests {
         assert_eq!(check_camera(&s.camera), Err(DiceError::UpParallelToView));
         let m = CameraSetup::new(&s).world_to_camera();
         assert!(m.is_finite());
+    }
+
+    #[test]
+    fn motion_keys_replace_the_still_view() {
+        use reyes_scene::CameraKey;
+        // A degenerate still view is not used when the camera has keys.
+        let mut s = scene([0.0; 3], [0.0; 3], [0.0, 1.0, 0.0], 45.0, 10, 10);
+        let key = |time: f32, eye: [f32; 3]| CameraKey {
+            time,
+            eye,
+            look_at: [0.0, 0.0, 10.0],
+            up: [0.0, 1.0, 0.0],
+        };
+        s.camera.motion = vec![key(0.0, [1.0, 2.0, 0.0]), key(1.0, [3.0, 2.0, 0.0])];
+        assert_eq!(check_camera(&s.camera), Ok(()));
+        // The setup is the camera at shutter open: the first key.
+        let cam = CameraSetup::new(&s);
+        assert_eq!(cam.eye_world(), Vec3::new(1.0, 2.0, 0.0));
+        let p = cam.world_to_camera().transform_point3(Vec3::new(0.0, 0.0, 10.0));
+        assert!(p.x.abs() < 1e-5 && p.y.abs() < 1e-5, "looks at its look_at: {p}");
+        // A degenerate key is reported.
+        s.camera.motion[1].eye = [0.0, 0.0, 10.0];
+        assert_eq!(check_camera(&s.camera), Err(DiceError::EyeAtLookAt));
+        // An interpolated view may be degenerate even when the keys are not: it falls back.
+        let a = View::key(&key(0.0, [0.0, 0.0, 0.0]));
+        let b = View { up: [0.0, -1.0, 0.0].into(), ..a };
+        let mid = cam.with_view(&a.lerp(&b, 0.5));
+        assert!(mid.world_to_camera().is_finite());
     }
 
     #[test]

@@ -4,41 +4,63 @@
 //! and deterministic: the same scene and frame give bit-identical output (no hash-map
 //! iteration, no threads; objects, faces, patches and grid cells are visited in order).
 //!
-//! Pipeline per object (in scene order): build the object-to-world matrix
-//! ([`object_to_world`]), turn the shape into parametric surfaces (quadrics, bilinear
-//! patches, one patch per mesh face), then REYES bound/split/dice per surface:
+//! Pipeline per object (in scene order): work out the object's motion over the shutter
+//! (`motion.rs`: its breakpoints, and at each the object-to-world placement and the camera),
+//! turn the shape into parametric surfaces (quadrics, bilinear patches, one patch per mesh
+//! face), then REYES bound/split/dice per surface:
 //!
-//! * **Bound.** A patch is judged on an 8x8 test grid of camera-space points. It is culled
-//!   if all test points are in front of hither or beyond yon, or (when all are in front of
-//!   the eye) its projected bound misses the bucket grid, or (pinhole camera, some points at
-//!   or behind the eye) all points lie outside one side plane of the view frustum. Every
-//!   bound is grown by a safety margin, 25% of its extent plus 2 pixels, because test points
-//!   do not bound a curved surface: between samples it bulges outward by up to its sagitta.
-//!   With a lens the projected bound also grows by the blur (`LensSetup::grow`).
-//! * **Split.** A patch straddling hither (some test z below it) is halved along its longer
-//!   camera-space direction, at most 20 times; then it is diced anyway. Otherwise the
-//!   projected lengths of its longest row and column give `nu = ceil(len_u / sqrt(rate))`,
-//!   `nv` likewise; above `max_grid_size` micropolygons the patch is halved along the
-//!   longer projected direction (at most 40 splits deep, beyond which the grid is shrunk).
-//! * **Dice.** The `(nu+1) x (nv+1)` vertex grid is evaluated, shaded in world space at
-//!   shutter open, projected, and emitted as `nu x nv` micropolygons.
+//! * **Motion.** Time is normalised over the shutter, `t = (time - open) / (close - open)`.
+//!   The breakpoints are {0, 1} and the normalised times of the object's transform and
+//!   deformation keys and of the camera's keys, sorted and distinct; with no keys at all, or
+//!   a closed shutter (`close == open`: everything at `open`), the only breakpoint is 0. Keys
+//!   are held before the first and after the last and linear in between: transform keys
+//!   lerp the world-space points of the two keys' matrices, camera keys lerp eye, look-at
+//!   point and up before building the basis, deformation keys lerp control points.
+//! * **Bound.** A patch is judged on an 8x8 test grid of camera-space points per breakpoint.
+//!   It is culled if at every breakpoint all test points are in front of hither, or at every
+//!   one all are beyond yon, or every segment between breakpoints has an end where all are
+//!   nearer than `hither / 2` (its micropolygons would all be dropped), or (when all are in
+//!   front of the eye) the union over the breakpoints of its projected bounds misses the
+//!   bucket grid, or (pinhole camera, some points at or behind the eye) at every breakpoint
+//!   all points lie outside the same side plane of the view frustum. Micropolygons move
+//!   linearly in raster space between breakpoints, so these unions hold them at every time.
+//!   Every bound is grown by a safety margin, 25% of its extent plus 2 pixels, because test
+//!   points do not bound a curved surface: between samples it bulges outward by up to its
+//!   sagitta. With a lens the projected bound also grows by the blur (`LensSetup::grow`).
+//! * **Split.** A patch straddling hither at any breakpoint (some test z below it, not all)
+//!   is halved along its longer camera-space direction, at most 20 times; then it is diced
+//!   anyway. Otherwise the longest projected row and column over all breakpoints give
+//!   `nu = ceil(len_u / sqrt(rate))`, `nv` likewise (so the grid is near the shading rate at
+//!   every time); above `max_grid_size` micropolygons the patch is halved along the longer
+//!   projected direction (at most 40 splits deep, beyond which the grid is shrunk). One
+//!   decision holds for every breakpoint, so all times share one grid topology.
+//! * **Dice.** The `(nu+1) x (nv+1)` vertex grid is evaluated and projected at every
+//!   breakpoint, shaded once in world space at shutter open (t = 0), and emitted as `nu x nv`
+//!   micropolygons per segment `[t_a, t_b]`: `v` the positions at `t_a`, `speed` the
+//!   displacement to `t_b`, `time = [t_a, t_b]`, `MOVING` if any speed is non-zero or the
+//!   segment is not the whole shutter. Consecutive segments over which a micropolygon does
+//!   not move are merged; a micropolygon still over the whole shutter is one record with
+//!   time `[0, 1]` and zero speed, so a still scene diced exactly as before motion existed.
 //!
 //! Eye plane: no vertex with `z <= 0` is projected. A micropolygon with a vertex nearer
-//! than `hither / 2` is dropped: the hider's `bounddof` assumes nothing nearer, splitting
+//! than `hither / 2` (at either end of its segment) is dropped for that segment: the hider's `bounddof` assumes nothing nearer, splitting
 //! has made such quads tiny in parameter space, and at `z < hither/2` a micropolygon that
 //! also reaches past hither would span a depth range huge compared to its size, i.e. it is
 //! seen nearly edge-on and covers almost nothing. One with some vertex outside
-//! `[hither, yon]` (but not all in front of hither, nor all beyond yon) is flagged
+//! `[hither, yon]` at either end of its segment (but not all in front of hither at both
+//! ends, nor all beyond yon at both ends, which are dropped) is flagged
 //! `HITHER_YON_CROSSING` for per-sample clipping in the hider.
 //!
 //! Bucketing: `buckets[b]` lists, in increasing order, every micropolygon whose screen bound
-//! ([`screen_bound`]) touches bucket `b` ([`reyes_hider::Frame::buckets_touched`]).
+//! over its segment ([`screen_bound`]: the vertices at both ends, grown by the lens) touches
+//! bucket `b` ([`reyes_hider::Frame::buckets_touched`]).
 //! Neighbouring grids may be diced at different rates, so T-junction cracks are possible.
 #![deny(missing_docs)]
 
 mod bucket;
 mod camera;
 mod dice;
+mod motion;
 mod shade;
 mod shapes;
 mod split;
@@ -53,6 +75,7 @@ use reyes_scene::Scene;
 
 use crate::bucket::Bucketer;
 use crate::dice::Emitter;
+use crate::motion::{CameraMotion, ObjectMotion, ShutterTime};
 use crate::split::{Decision, Patch, Splitter};
 
 /// The diced scene: micropolygons and, per bucket, the indices of those that touch it.
@@ -89,6 +112,8 @@ pub struct DiceStats {
     pub culled: u64,
     /// Emitted micropolygons flagged `HITHER_YON_CROSSING`.
     pub crossing: u64,
+    /// Emitted micropolygons flagged `MOVING` (moving, or existing for part of the shutter).
+    pub moving: u64,
     /// Total entries over all bucket lists.
     pub bucket_entries: u64,
 }
@@ -159,23 +184,28 @@ fn check_frame(scene: &Scene, frame: &Frame) -> Result<(), DiceError> {
 pub fn dice_scene(scene: &Scene, frame: &Frame) -> Result<Diced, DiceError> {
     check_frame(scene, frame)?;
     camera::check_camera(&scene.camera)?;
-    let camera = CameraSetup::new(scene);
+    let camera_motion = CameraMotion::new(scene);
+    let camera = camera_motion.setup();
+    let shutter = ShutterTime::new(&scene.camera.shutter);
     let hider = &scene.hider;
-    let splitter = Splitter::new(&camera, frame, hider.shading_rate, hider.max_grid_size);
+    let splitter = Splitter::new(camera, frame, hider.shading_rate, hider.max_grid_size);
     let bucketer = Bucketer::new(frame, camera.lens(), camera.hither(), camera.yon());
     let mut out = Emitter::new(bucketer, camera.hither(), camera.yon(), splitter.near());
-    let world_to_camera = camera.world_to_camera();
     let mut stats = DiceStats::default();
     let mut stack = Vec::new();
     for object in &scene.objects {
-        let ctx = dice::object_context(object, &scene.lights, camera.eye_world());
-        let object_to_camera = world_to_camera * ctx.to_world;
-        for surface in shapes::surfaces(object) {
+        let motion = ObjectMotion::new(object, &camera_motion, &shutter);
+        let Some(open) = motion.moments().first() else {
+            continue;
+        };
+        let ctx = dice::object_context(object, &scene.lights, camera.eye_world(), &open.place);
+        for index in 0..motion.surface_count() {
+            let poses = motion.poses(index);
             stats.primitives += 1;
             stack.clear();
             stack.push(Patch::root());
             while let Some(patch) = stack.pop() {
-                match splitter.decide(&surface, &object_to_camera, &patch) {
+                match splitter.decide(&poses, &patch) {
                     Decision::Cull => stats.patches_culled += 1,
                     Decision::Split { along_u, hither } => {
                         stats.splits += 1;
@@ -188,7 +218,7 @@ pub fn dice_scene(scene: &Scene, frame: &Frame) -> Result<Diced, DiceError> {
                     Decision::Dice { nu, nv, limited } => {
                         stats.grids += 1;
                         stats.depth_limited += u64::from(limited);
-                        out.dice(&camera, &ctx, &surface, &patch, (nu, nv))?;
+                        out.dice(camera, &ctx, &poses, &patch, (nu, nv))?;
                     }
                 }
             }
@@ -197,6 +227,7 @@ pub fn dice_scene(scene: &Scene, frame: &Frame) -> Result<Diced, DiceError> {
     stats.micropolygons = out.mpolys.len() as u64;
     stats.culled = out.culled;
     stats.crossing = out.crossing;
+    stats.moving = out.moving;
     stats.bucket_entries = out.bucketer.entries;
     Ok(Diced { mpolys: out.mpolys, buckets: out.bucketer.buckets, stats })
 }

@@ -4,6 +4,9 @@
 //! geometric normal with the outward orientation of the conventions in the crate docs
 //! (quadrics sweep around object z with `theta = u * thetamax`), and a colour tint (mesh
 //! vertex colours, white elsewhere). Every returned value is finite for finite input.
+//! A deforming shape (bilinear patch or mesh) gives, for every set of control points with
+//! the shape's point count, surfaces in the same order and number, so surface `i` at one
+//! time and surface `i` at another are the same piece of the object.
 
 use glam::Vec3;
 use reyes_scene::{Object, Shape};
@@ -141,11 +144,29 @@ impl Surface {
     }
 }
 
+/// The control points of a shape that can deform (bilinear patch corners, mesh points);
+/// `None` for the quadrics.
+pub(crate) fn control_points(shape: &Shape) -> Option<Vec<Vec3>> {
+    match shape {
+        Shape::BilinearPatch { points } => Some(points.iter().map(|p| Vec3::from(*p)).collect()),
+        Shape::Mesh { points, .. } => Some(points.iter().map(|p| Vec3::from(*p)).collect()),
+        _ => None,
+    }
+}
+
 /// The surfaces of an object, in a fixed order (mesh faces in list order). Faces with
 /// fewer than three valid indices are skipped; faces with more than four are fanned into
 /// triangles around their first vertex.
 pub(crate) fn surfaces(object: &Object) -> Vec<Surface> {
-    match &object.shape {
+    shape_surfaces(&object.shape, None)
+}
+
+/// The surfaces of `shape` (as [`surfaces`]), with its control points replaced by
+/// `points_object` when given (a deformation key). A point missing from `points_object`
+/// keeps the shape's own, so the surfaces are always those of the shape's point count.
+pub(crate) fn shape_surfaces(shape: &Shape, points_object: Option<&[Vec3]>) -> Vec<Surface> {
+    let moved = |i: usize, own: Vec3| points_object.and_then(|p| p.get(i).copied()).unwrap_or(own);
+    match shape {
         Shape::Sphere { radius, zmin, zmax, thetamax } => {
             let r = *radius;
             let z0 = zmin.unwrap_or(-r).clamp(-r, r);
@@ -183,11 +204,11 @@ pub(crate) fn surfaces(object: &Object) -> Vec<Surface> {
             }]
         }
         Shape::BilinearPatch { points } => {
-            let p = points.map(Vec3::from);
+            let p = [0, 1, 2, 3].map(|i| moved(i, Vec3::from(points[i])));
             vec![Surface::Bilinear(Bilinear::new(p, [Vec3::ONE; 4], None))]
         }
         Shape::Mesh { points, faces, colors } => {
-            let point = |i: u32| points.get(i as usize).map(|p| Vec3::from(*p));
+            let point = |i: u32| points.get(i as usize).map(|p| moved(i as usize, Vec3::from(*p)));
             let tint = |i: u32| {
                 colors
                     .as_ref()
@@ -239,6 +260,8 @@ mod tests {
             matte: false,
             motion: vec![],
             deform: vec![],
+            interpolation: Default::default(),
+            glass: None,
         }
     }
 

@@ -1,16 +1,20 @@
 //! Bound-and-split stage: decide, once per patch, whether to cull, split or dice it.
 //!
-//! Invariants: decisions look only at a `TEST_N x TEST_N` test grid of camera-space points,
-//! so every bound grows by a safety margin (test points do not bound a curved surface);
-//! a patch is culled only when it cannot produce a micropolygon that touches a bucket; a
+//! Invariants: decisions look only at a `TEST_N x TEST_N` test grid of camera-space points
+//! per breakpoint of the object's motion, so every bound grows by a safety margin (test
+//! points do not bound a curved surface); one decision holds for every breakpoint, so the
+//! grids of all times match vertex for vertex; a patch is culled only when it cannot produce
+//! a micropolygon that touches a bucket at any time (micropolygons move linearly in raster
+//! space between breakpoints, so the union of the breakpoints' bounds holds them all); a
 //! diced patch never exceeds `max_grid_size` micropolygons; recursion is bounded by
 //! `MAX_SPLIT_DEPTH` (and `MAX_HITHER_SPLITS` splits for straddling the hither plane).
+//! With one breakpoint (no motion) every decision is the one a still object always had.
 
-use glam::{Mat4, Vec2, Vec3};
+use glam::{Vec2, Vec3};
 use reyes_hider::{Frame, LensSetup};
 
 use crate::camera::CameraSetup;
-use crate::shapes::Surface;
+use crate::motion::Pose;
 
 /// Test points per parameter direction.
 pub(crate) const TEST_N: usize = 8;
@@ -164,17 +168,23 @@ impl Splitter {
         self.near
     }
 
-    /// Camera-space test points of `patch`.
-    pub fn test_grid(&self, surface: &Surface, object_to_camera: &Mat4, patch: &Patch) -> TestGrid {
-        let mut grid = [[Vec3::ZERO; TEST_N]; TEST_N];
-        for (j, row) in grid.iter_mut().enumerate() {
-            let v = Patch::at(patch.v, j, TEST_N - 1);
-            for (i, p) in row.iter_mut().enumerate() {
-                let u = Patch::at(patch.u, i, TEST_N - 1);
-                *p = object_to_camera.project_point3(surface.position(u, v));
+    /// Camera-space test points of `patch` of the surface in `pose`, at the pose's time.
+    pub fn test_grid(&self, pose: &Pose<'_>, patch: &Patch) -> TestGrid {
+        fn fill(pose: &Pose<'_>, patch: &Patch, to_camera: impl Fn(Vec3) -> Vec3) -> TestGrid {
+            let mut grid = [[Vec3::ZERO; TEST_N]; TEST_N];
+            for (j, row) in grid.iter_mut().enumerate() {
+                let v = Patch::at(patch.v, j, TEST_N - 1);
+                for (i, p) in row.iter_mut().enumerate() {
+                    let u = Patch::at(patch.u, i, TEST_N - 1);
+                    *p = to_camera(pose.surface.position(u, v));
+                }
             }
+            grid
         }
-        grid
+        match pose.moment.object_to_camera() {
+            Some(m) => fill(pose, patch, |p| m.project_point3(p)),
+            None => fill(pose, patch, |p| pose.moment.camera_point(p)),
+        }
     }
 
     /// Raster bound of the test points grown by the safety margin and, with a lens, by the
@@ -205,9 +215,56 @@ impl Splitter {
         Some((Vec2::new(lo3[0], lo3[1]), Vec2::new(hi3[0], hi3[1])))
     }
 
-    /// Decide what to do with `patch` of `surface`.
-    pub fn decide(&self, surface: &Surface, object_to_camera: &Mat4, patch: &Patch) -> Decision {
-        let grid = self.test_grid(surface, object_to_camera, patch);
+    /// Decide what to do with `patch` of a surface seen at every breakpoint of its motion
+    /// (`poses`, in time order; one pose for a still object).
+    pub fn decide(&self, poses: &[Pose<'_>], patch: &Patch) -> Decision {
+        if let [pose] = poses {
+            return self.decide_grids(std::slice::from_ref(&self.test_grid(pose, patch)), patch);
+        }
+        let grids: Vec<TestGrid> = poses.iter().map(|pose| self.test_grid(pose, patch)).collect();
+        self.decide_grids(&grids, patch)
+    }
+
+    /// Decide from the test grids of every breakpoint.
+    pub fn decide_grids(&self, grids: &[TestGrid], patch: &Patch) -> Decision {
+        // `None`: no finite test point at that time, so no usable vertex.
+        let per_time: Vec<Option<GridFacts<'_>>> =
+            grids.iter().map(|g| self.grid_facts(g)).collect();
+        // Breakpoints ending a segment some micropolygon may be seen in; only they count.
+        let mut live = vec![false; per_time.len()];
+        if let [one] = per_time.as_slice() {
+            live[0] = !self.unseen(one.as_ref(), one.as_ref(), false);
+        } else {
+            for (k, w) in per_time.windows(2).enumerate() {
+                if !self.unseen(w[0].as_ref(), w[1].as_ref(), true) {
+                    live[k] = true;
+                    live[k + 1] = true;
+                }
+            }
+        }
+        let facts: Vec<GridFacts<'_>> =
+            per_time.into_iter().zip(&live).filter_map(|(f, &l)| f.filter(|_| l)).collect();
+        if facts.is_empty() {
+            return Decision::Cull;
+        }
+        let mz = |f: &GridFacts<'_>| MARGIN_FRACTION * (f.hi.z - f.lo.z);
+        // Straddling hither at some breakpoint: part of the grid is nearer than hither there
+        // (or not finite). All of it nearer is not straddling: splitting would not help.
+        let straddles = facts
+            .iter()
+            .any(|f| !f.all_finite || (f.lo.z < self.hither && f.hi.z + mz(f) >= self.hither));
+        if straddles {
+            if patch.hither_splits < MAX_HITHER_SPLITS && patch.depth < MAX_SPLIT_DEPTH {
+                let (len_u, len_v) = max_lengths(&facts, |p| p.is_finite().then_some(*p));
+                return Decision::Split { along_u: len_u >= len_v, hither: true };
+            }
+            return self.dice_decision(&facts, patch, true);
+        }
+        self.dice_decision(&facts, patch, false)
+    }
+
+    /// The facts of `grid`, or `None` if no point of it is finite.
+    fn grid_facts<'a>(&self, grid: &'a TestGrid) -> Option<GridFacts<'a>> {
         let mut all_finite = true;
         let (mut lo, mut hi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
         for p in grid.iter().flatten() {
@@ -218,47 +275,57 @@ impl Splitter {
                 all_finite = false;
             }
         }
-        if lo.z > hi.z {
-            return Decision::Cull; // no finite point at all
-        }
-        // Depth: all behind hither or all beyond yon, even allowing for bulges.
-        let mz = MARGIN_FRACTION * (hi.z - lo.z);
-        if hi.z + mz < self.hither || lo.z - mz > self.yon {
-            return Decision::Cull;
-        }
-        // Screen: the margin-grown raster bound misses the bucket grid.
-        if let Some((r_lo, r_hi)) = self.margin_bound(&grid) {
-            if r_hi.x < self.screen_lo.x
-                || r_hi.y < self.screen_lo.y
-                || r_lo.x > self.screen_hi.x
-                || r_lo.y > self.screen_hi.y
-            {
-                return Decision::Cull;
-            }
-        } else if let (Some(planes), true) = (&self.frustum, all_finite) {
-            // Some points at or behind the eye: test the frustum's side planes in camera space.
-            let m3 = MARGIN_FRACTION * (hi - lo).max_element();
-            for n in planes {
-                if grid.iter().flatten().all(|p| n.dot(*p) > m3) {
-                    return Decision::Cull;
-                }
-            }
-        }
-        let straddles = !all_finite || lo.z < self.hither;
-        if straddles {
-            if patch.hither_splits < MAX_HITHER_SPLITS && patch.depth < MAX_SPLIT_DEPTH {
-                let (len_u, len_v) = lengths(&grid, |p| p.is_finite().then_some(*p));
-                return Decision::Split { along_u: len_u >= len_v, hither: true };
-            }
-            return self.dice_decision(&grid, patch, true);
-        }
-        self.dice_decision(&grid, patch, false)
+        let raster = if all_finite { self.margin_bound(grid) } else { None };
+        (lo.z <= hi.z).then_some(GridFacts { grid, lo, hi, all_finite, raster })
     }
 
-    /// Grid size from projected lengths; split if too big and allowed, else clamp.
-    fn dice_decision(&self, grid: &TestGrid, patch: &Patch, at_limit: bool) -> Decision {
+    /// True if no micropolygon of the segment from test grid `a` to test grid `b` (the same
+    /// grid for a still patch; `segment` false) can be kept and touch a bucket, even
+    /// allowing for bulges between test points. A kept micropolygon has usable vertices at
+    /// both ends (for a segment: none nearer than `near`), is not all in front of hither at
+    /// both ends nor all beyond yon at both ends, and moves linearly in raster space and
+    /// depth, so it stays within the union of its two end bounds.
+    fn unseen(&self, a: Option<&GridFacts<'_>>, b: Option<&GridFacts<'_>>, segment: bool) -> bool {
+        let (Some(a), Some(b)) = (a, b) else {
+            return true;
+        };
+        let mz = |f: &GridFacts<'_>| MARGIN_FRACTION * (f.hi.z - f.lo.z);
+        let nearer = |f: &GridFacts<'_>, depth: f32| f.hi.z + mz(f) < depth;
+        let beyond = |f: &GridFacts<'_>| f.lo.z - mz(f) > self.yon;
+        if (segment && (nearer(a, self.near) || nearer(b, self.near)))
+            || (nearer(a, self.hither) && nearer(b, self.hither))
+            || (beyond(a) && beyond(b))
+        {
+            return true;
+        }
+        // Screen: the margin-grown raster bounds of both ends miss the bucket grid.
+        if let (Some((lo_a, hi_a)), Some((lo_b, hi_b))) = (a.raster, b.raster) {
+            let (lo, hi) = (lo_a.min(lo_b), hi_a.max(hi_b));
+            return hi.x < self.screen_lo.x
+                || hi.y < self.screen_lo.y
+                || lo.x > self.screen_hi.x
+                || lo.y > self.screen_hi.y;
+        }
+        // Some points at or behind the eye: test the frustum's side planes in camera space.
+        // Kept vertices are in front of the eye, where being outside a side plane is being
+        // off that side of the screen, and a micropolygon moving linearly between two
+        // positions off one side stays off it.
+        match (&self.frustum, a.all_finite && b.all_finite) {
+            (Some(planes), true) => planes.iter().any(|n| {
+                [a, b].iter().all(|f| {
+                    let m3 = MARGIN_FRACTION * (f.hi - f.lo).max_element();
+                    f.grid.iter().flatten().all(|p| n.dot(*p) > m3)
+                })
+            }),
+            _ => false,
+        }
+    }
+
+    /// Grid size from the longest projected lengths over the breakpoints (so the grid is
+    /// near the shading rate at every time); split if too big and allowed, else clamp.
+    fn dice_decision(&self, facts: &[GridFacts<'_>], patch: &Patch, at_limit: bool) -> Decision {
         // Only points that may become kept vertices count (all of them unless at the limit).
-        let (len_u, len_v) = lengths(grid, |p| {
+        let (len_u, len_v) = max_lengths(facts, |p| {
             (p.is_finite() && p.z >= self.near).then(|| self.camera.eye_to_raster(*p).extend(0.0))
         });
         let count =
@@ -273,6 +340,27 @@ impl Splitter {
         let (nu, nv) = clamp_grid(nu, nv, self.max_grid);
         Decision::Dice { nu, nv, limited: true }
     }
+}
+
+/// What the decisions need to know of one breakpoint's test grid.
+#[derive(Debug, Clone, Copy)]
+struct GridFacts<'a> {
+    grid: &'a TestGrid,
+    /// Camera-space bound of the finite points.
+    lo: Vec3,
+    hi: Vec3,
+    /// Every point is finite.
+    all_finite: bool,
+    /// [`Splitter::margin_bound`] of the grid.
+    raster: Option<(Vec2, Vec2)>,
+}
+
+/// [`lengths`] of every grid: the largest `len_u` and the largest `len_v`.
+fn max_lengths(facts: &[GridFacts<'_>], map: impl Fn(&Vec3) -> Option<Vec3>) -> (f32, f32) {
+    facts
+        .iter()
+        .map(|f| lengths(f.grid, &map))
+        .fold((0.0_f32, 0.0_f32), |(mu, mv), (u, v)| (mu.max(u), mv.max(v)))
 }
 
 /// `(len_u, len_v)`: the longest row and the longest column of the grid, each the sum of
@@ -307,7 +395,9 @@ fn clamp_grid(nu: u64, nv: u64, max: u64) -> (u32, u32) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::shapes::surfaces;
+    use crate::motion::{Moment, Placement};
+    use crate::shapes::{Surface, surfaces};
+    use glam::Mat4;
     use proptest::prelude::*;
     use reyes_scene::{Camera, Hider, Image, Material, Object, Scene, Shape, Shutter};
 
@@ -328,6 +418,7 @@ mod tests {
             hider: Hider::default(),
             lights: vec![],
             objects: vec![],
+            solids: vec![],
         }
     }
 
@@ -340,6 +431,8 @@ mod tests {
             matte: false,
             motion: vec![],
             deform: vec![],
+            interpolation: Default::default(),
+            glass: None,
         }
     }
 
@@ -374,27 +467,82 @@ mod tests {
             thetamax: 360.0,
         }))
         .remove(0);
-        let at = |x: f32, y: f32, z: f32| Mat4::from_translation(Vec3::new(x, y, z));
-        assert_eq!(sp.decide(&sphere, &at(0.0, 0.0, -5.0), &Patch::root()), Decision::Cull);
-        assert_eq!(sp.decide(&sphere, &at(0.0, 0.0, 200.0), &Patch::root()), Decision::Cull);
-        assert_eq!(sp.decide(&sphere, &at(30.0, 0.0, 10.0), &Patch::root()), Decision::Cull);
+        let decide = |x: f32, y: f32, z: f32| decide_at(&sp, &sphere, &[Vec3::new(x, y, z)]);
+        assert_eq!(decide(0.0, 0.0, -5.0), Decision::Cull);
+        assert_eq!(decide(0.0, 0.0, 200.0), Decision::Cull);
+        assert_eq!(decide(30.0, 0.0, 10.0), Decision::Cull);
         // Beside the eye, behind the frustum's left plane: culled by the planes.
-        assert_eq!(sp.decide(&sphere, &at(-5.0, 0.0, 0.5), &Patch::root()), Decision::Cull);
+        assert_eq!(decide(-5.0, 0.0, 0.5), Decision::Cull);
         // Around the eye: straddles hither, split.
+        assert!(matches!(decide(0.0, 0.0, 0.5), Decision::Split { hither: true, .. }));
+        // In view: split for size (a sphere at 10 units is about 120 pixels across).
+        assert!(matches!(decide(0.0, 0.0, 10.0), Decision::Split { hither: false, .. }));
+        // Far away: diced whole.
+        assert!(matches!(decide(0.0, 0.0, 90.0), Decision::Dice { .. }));
+    }
+
+    /// The decision for the whole of `surface` translated to each of `at` in turn (one
+    /// breakpoint per position), seen by a camera at the origin.
+    fn decide_at(sp: &Splitter, surface: &Surface, at: &[Vec3]) -> Decision {
+        let moments: Vec<Moment> = at
+            .iter()
+            .enumerate()
+            .map(|(k, p)| {
+                let t = k as f32 / (at.len().max(2) - 1) as f32;
+                Moment::new(t, Placement::Matrix(Mat4::from_translation(*p)), Mat4::IDENTITY, 0)
+            })
+            .collect();
+        let poses: Vec<Pose<'_>> = moments.iter().map(|moment| Pose { surface, moment }).collect();
+        sp.decide(&poses, &Patch::root())
+    }
+
+    #[test]
+    fn moving_patches_are_judged_over_the_whole_shutter() {
+        let s = scene(None);
+        let cam = CameraSetup::new(&s);
+        let frame = Frame::new(160, 120, 1, 16, 16);
+        let sp = Splitter::new(&cam, &frame, 1.0, 256);
+        let sphere = surfaces(&shape_object(Shape::Sphere {
+            radius: 1.0,
+            zmin: None,
+            zmax: None,
+            thetamax: 360.0,
+        }))
+        .remove(0);
+        let off_left = Vec3::new(-60.0, 0.0, 60.0);
+        let off_right = Vec3::new(60.0, 0.0, 60.0);
+        let centre = Vec3::new(0.0, 0.0, 60.0);
+        assert_eq!(decide_at(&sp, &sphere, &[off_left]), Decision::Cull);
+        assert_eq!(decide_at(&sp, &sphere, &[off_left, off_left]), Decision::Cull);
+        // Off screen at open, on screen at close; and across the screen in between.
+        assert!(matches!(decide_at(&sp, &sphere, &[off_left, centre]), Decision::Dice { .. }));
+        assert!(matches!(decide_at(&sp, &sphere, &[off_left, off_right]), Decision::Dice { .. }));
+        // Depth: beyond yon at open and in view at close is kept; a segment with an end
+        // behind the eye drops every micropolygon, so only the other segments count.
+        let behind = Vec3::new(0.0, 0.0, -5.0);
+        let beyond = Vec3::new(0.0, 0.0, 300.0);
+        assert_eq!(decide_at(&sp, &sphere, &[behind, behind]), Decision::Cull);
+        assert_eq!(decide_at(&sp, &sphere, &[beyond, beyond]), Decision::Cull);
+        assert_ne!(decide_at(&sp, &sphere, &[beyond, centre]), Decision::Cull);
+        assert_eq!(decide_at(&sp, &sphere, &[behind, beyond]), Decision::Cull);
+        assert_ne!(decide_at(&sp, &sphere, &[behind, centre, centre]), Decision::Cull);
+        // Beside the eye at both ends, behind the same side plane: culled.
+        let beside = [Vec3::new(-5.0, 0.0, 0.5), Vec3::new(-6.0, 0.0, -0.5)];
+        assert_eq!(decide_at(&sp, &sphere, &beside), Decision::Cull);
+        // Straddling hither at any breakpoint splits for hither.
+        let near = Vec3::new(0.0, 0.0, 0.5);
         assert!(matches!(
-            sp.decide(&sphere, &at(0.0, 0.0, 0.5), &Patch::root()),
+            decide_at(&sp, &sphere, &[centre, near]),
             Decision::Split { hither: true, .. }
         ));
-        // In view: split for size (a sphere at 10 units is about 120 pixels across).
-        assert!(matches!(
-            sp.decide(&sphere, &at(0.0, 0.0, 10.0), &Patch::root()),
-            Decision::Split { hither: false, .. }
-        ));
-        // Far away: diced whole.
-        assert!(matches!(
-            sp.decide(&sphere, &at(0.0, 0.0, 90.0), &Patch::root()),
-            Decision::Dice { .. }
-        ));
+        // The size estimate is the largest over the breakpoints.
+        let (Decision::Dice { nu: nu_far, .. }, Decision::Dice { nu: nu_both, .. }) = (
+            decide_at(&sp, &sphere, &[Vec3::new(0.0, 0.0, 90.0)]),
+            decide_at(&sp, &sphere, &[Vec3::new(0.0, 0.0, 90.0), Vec3::new(0.0, 0.0, 60.0)]),
+        ) else {
+            panic!("far spheres are diced whole");
+        };
+        assert!(nu_both > nu_far, "{nu_both} vs {nu_far}");
     }
 
     proptest! {
@@ -424,7 +572,8 @@ mod tests {
             let m = Mat4::from_translation(Vec3::new(pos.0, pos.1, pos.2))
                 * Mat4::from_axis_angle(Vec3::new(axis.0, axis.1, axis.2).normalize(), angle.to_radians());
             let patch = Patch { u: [u0, (u0 + du).min(1.0)], v: [v0, (v0 + dv).min(1.0)], depth: 0, hither_splits: 0 };
-            let grid = sp.test_grid(&surface, &m, &patch);
+            let moment = Moment::new(0.0, Placement::Matrix(m), Mat4::IDENTITY, 0);
+            let grid = sp.test_grid(&Pose { surface: &surface, moment: &moment }, &patch);
             let (lo, hi) = sp.margin_bound(&grid).expect("in front of the eye");
             let n = 40;
             for j in 0..=n {

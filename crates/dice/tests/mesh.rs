@@ -34,6 +34,8 @@ fn mesh_object(material: Material, matte: bool) -> Object {
         matte,
         motion: Vec::new(),
         deform: Vec::new(),
+        interpolation: Default::default(),
+        glass: None,
     }
 }
 

@@ -79,6 +79,8 @@ fn odd_shapes_and_transforms_do_not_panic() {
                 matte: false,
                 motion: Vec::new(),
                 deform: Vec::new(),
+                interpolation: Default::default(),
+                glass: None,
             });
         }
     }

@@ -38,6 +38,7 @@ pub fn scene(width: u32, height: u32, camera: Camera, objects: Vec<Object>) -> S
             },
         ],
         objects,
+        solids: Vec::new(),
     }
 }
 
@@ -51,6 +52,8 @@ pub fn object(shape: Shape, transform: Vec<Transform>) -> Object {
         matte: false,
         motion: Vec::new(),
         deform: Vec::new(),
+        interpolation: Default::default(),
+        glass: None,
     }
 }
 
