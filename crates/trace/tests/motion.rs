@@ -1,0 +1,144 @@
+//! Motion: transform keys (translation, rotation along the chord, shutter normalisation,
+//! a closed shutter) and deformation keys, each checked at known times.
+
+mod common;
+
+use common::{close, close_v, deforming, moving, scene, scene_with_shutter};
+use glam::Vec3;
+use reyes_scene::{Shape, Transform};
+use reyes_trace::{Ray, Tracer};
+
+fn ball() -> Shape {
+    Shape::Sphere { radius: 1.0, zmin: None, zmax: None, thetamax: 360.0 }
+}
+
+fn shoot(t: &Tracer, origin: Vec3, dir: Vec3, time: f32) -> Option<reyes_trace::Hit> {
+    t.intersect(&Ray::new(origin, dir, time), f32::INFINITY)
+}
+
+#[test]
+fn translating_sphere_is_where_its_keys_say() {
+    let keys = vec![
+        (0.0, vec![Transform::Translate([0.0, 0.0, 0.0])]),
+        (1.0, vec![Transform::Translate([2.0, 0.0, 0.0])]),
+    ];
+    let t = Tracer::new(&scene(vec![moving(ball(), keys)]));
+    let fwd = Vec3::Z;
+    let h = shoot(&t, Vec3::new(0.0, 0.0, -10.0), fwd, 0.0).expect("time 0 at x = 0");
+    assert!(close(h.t, 9.0, 1e-5) && close_v(h.p_world, Vec3::new(0.0, 0.0, -1.0), 1e-5));
+    assert!(shoot(&t, Vec3::new(2.0, 0.0, -10.0), fwd, 0.0).is_none(), "not yet at x = 2");
+    let h = shoot(&t, Vec3::new(2.0, 0.0, -10.0), fwd, 1.0).expect("time 1 at x = 2");
+    assert!(close(h.t, 9.0, 1e-5) && close_v(h.p_world, Vec3::new(2.0, 0.0, -1.0), 1e-5));
+    assert!(close_v(h.n_world, Vec3::NEG_Z, 1e-5));
+    assert!(shoot(&t, Vec3::new(0.0, 0.0, -10.0), fwd, 1.0).is_none(), "gone from x = 0");
+    // Along the motion: the near side is at x = 1 + 2 time.
+    for (time, x) in [(0.0, 1.0), (0.25, 1.5), (0.5, 2.0), (1.0, 3.0)] {
+        let h = shoot(&t, Vec3::new(10.0, 0.0, 0.0), Vec3::NEG_X, time).expect("hit");
+        assert!(close(h.p_world.x, x, 1e-5), "time {time}: {}", h.p_world.x);
+        assert!(
+            t.occluded(&Ray::new(Vec3::new(10.0, 0.0, 0.0), Vec3::NEG_X, time), 10.0 - x + 1e-3)
+        );
+        assert!(
+            !t.occluded(&Ray::new(Vec3::new(10.0, 0.0, 0.0), Vec3::NEG_X, time), 10.0 - x - 1e-3)
+        );
+    }
+}
+
+#[test]
+fn key_times_are_normalised_over_the_shutter_and_held_outside() {
+    let keys = vec![
+        (2.5, vec![Transform::Translate([0.0, 0.0, 0.0])]),
+        (3.5, vec![Transform::Translate([2.0, 0.0, 0.0])]),
+    ];
+    let t = Tracer::new(&scene_with_shutter(vec![moving(ball(), keys)], 2.0, 4.0));
+    // Normalised 0.25 and 0.75 are the keys; 0 and 1 hold them; 0.5 is halfway.
+    for (time, x) in [(0.0, 1.0), (0.25, 1.0), (0.5, 2.0), (0.75, 3.0), (1.0, 3.0)] {
+        let h = shoot(&t, Vec3::new(10.0, 0.0, 0.0), Vec3::NEG_X, time).expect("hit");
+        assert!(close(h.p_world.x, x, 1e-5), "time {time}: {}", h.p_world.x);
+    }
+}
+
+#[test]
+fn a_closed_shutter_uses_the_first_key() {
+    let keys = vec![
+        (1.0, vec![Transform::Translate([0.0, 0.0, 0.0])]),
+        (1.0, vec![Transform::Translate([2.0, 0.0, 0.0])]),
+    ];
+    let t = Tracer::new(&scene_with_shutter(vec![moving(ball(), keys)], 1.0, 1.0));
+    for time in [0.0, 0.5, 1.0] {
+        let h = shoot(&t, Vec3::new(10.0, 0.0, 0.0), Vec3::NEG_X, time).expect("hit");
+        assert!(close(h.p_world.x, 1.0, 1e-5));
+    }
+}
+
+#[test]
+fn rotation_keys_move_points_along_the_chord() {
+    // A ball at (2,0,0) turned a quarter about z. Between the keys every point moves on the
+    // straight line between its key positions (as the dicer lerps world positions), so at
+    // mid-shutter the centre is at (1,1,0) and the ball is squeezed to 0.707 across in xy.
+    let keys = vec![
+        (0.0, vec![Transform::Translate([2.0, 0.0, 0.0])]),
+        (
+            1.0,
+            vec![
+                Transform::Translate([2.0, 0.0, 0.0]),
+                Transform::Rotate { angle: 90.0, axis: [0.0, 0.0, 1.0] },
+            ],
+        ),
+    ];
+    let t = Tracer::new(&scene(vec![moving(ball(), keys)]));
+    let half = std::f32::consts::FRAC_1_SQRT_2;
+    let h = shoot(&t, Vec3::new(1.0, 1.0, 10.0), Vec3::NEG_Z, 0.5).expect("top");
+    assert!(close(h.t, 9.0, 1e-5), "z radius stays 1: {}", h.t);
+    let h = shoot(&t, Vec3::new(10.0, 1.0, 0.0), Vec3::NEG_X, 0.5).expect("side");
+    assert!(close(h.p_world.x, 1.0 + half, 1e-5), "xy radius 0.707: {}", h.p_world.x);
+    // The object point (1,0,0): (3,0,0) at open, (0,3,0) at close, (1.5,1.5,0) at the middle.
+    let d = Vec3::new(-1.0, -1.0, 0.0).normalize();
+    let h = shoot(&t, Vec3::new(10.0, 10.0, 0.0), d, 0.5).expect("diagonal");
+    assert!(close_v(h.p_world, Vec3::new(1.5, 1.5, 0.0), 1e-5), "{}", h.p_world);
+    assert!(close_v(h.n_world, -d, 1e-5));
+    // At the keys the ball is whole.
+    let h = shoot(&t, Vec3::new(0.0, 10.0, 0.0), Vec3::NEG_Y, 1.0).expect("close");
+    assert!(close(h.t, 7.0, 1e-5));
+}
+
+#[test]
+fn deformation_keys_move_the_points() {
+    let square = |z: f32| vec![[0.0, 0.0, z], [1.0, 0.0, z], [0.0, 1.0, z], [1.0, 1.0, z]];
+    let shape = Shape::BilinearPatch {
+        points: [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 1.0, 0.0]],
+    };
+    let mut patch = deforming(shape, vec![(0.0, square(0.0)), (1.0, square(1.0))]);
+    let t = Tracer::new(&scene(vec![patch.clone()]));
+    for (time, expect) in [(0.0, 5.0), (0.5, 4.5), (1.0, 4.0)] {
+        let h = shoot(&t, Vec3::new(0.25, 0.75, 5.0), Vec3::NEG_Z, time).expect("hit");
+        assert!(close(h.t, expect, 1e-5), "time {time}: {}", h.t);
+        assert!(close(h.u, 0.25, 1e-5) && close(h.v, 0.75, 1e-5));
+        assert!(close_v(h.n_world, Vec3::Z, 1e-6));
+    }
+    // With transform motion as well: at mid-shutter lifted by 0.5 and moved by 0.5 in x.
+    patch.motion = vec![
+        reyes_scene::TransformKey { time: 0.0, transform: vec![] },
+        reyes_scene::TransformKey {
+            time: 1.0,
+            transform: vec![Transform::Translate([1.0, 0.0, 0.0])],
+        },
+    ];
+    let t = Tracer::new(&scene(vec![patch]));
+    assert!(shoot(&t, Vec3::new(1.2, 0.5, 5.0), Vec3::NEG_Z, 0.0).is_none());
+    let h = shoot(&t, Vec3::new(1.2, 0.5, 5.0), Vec3::NEG_Z, 0.5).expect("moved and lifted");
+    assert!(close(h.t, 4.5, 1e-5) && close(h.u, 0.7, 1e-5));
+}
+
+#[test]
+fn deforming_mesh_triangles_follow_their_vertices() {
+    let pts = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    let shifted: Vec<[f32; 3]> = pts.iter().map(|p| [p[0] + 3.0, p[1], p[2]]).collect();
+    let shape = Shape::Mesh { points: pts.clone(), faces: vec![vec![0, 1, 2]], colors: None };
+    let t = Tracer::new(&scene(vec![deforming(shape, vec![(0.0, pts), (1.0, shifted)])]));
+    let o = Vec3::new(3.2, 0.2, 1.0);
+    assert!(shoot(&t, o, Vec3::NEG_Z, 0.0).is_none());
+    assert!(shoot(&t, o, Vec3::NEG_Z, 0.5).is_none(), "at x 1.5..2.5");
+    let h = shoot(&t, o, Vec3::NEG_Z, 1.0).expect("arrived");
+    assert!(close(h.t, 1.0, 1e-6) && close(h.v, 0.2, 1e-5) && close(h.u, 0.25, 1e-5));
+}
