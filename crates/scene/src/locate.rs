@@ -634,6 +634,19 @@ mod tests {
         assert_eq!(map.find("lens.f_stop"), at(1, 67));
     }
 
+    /// CSG trees: variant names are transparent, `Union([..])` and `Object("..")` share their
+    /// path with their one value, and `Difference(a, b)` indexes its two operands.
+    #[test]
+    fn csg_operands_are_indexed() {
+        let src = "(tree: Difference(Union([Object(\"a\"), Object(\"b\")]), Object(\"c\")))";
+        let map = SourceMap::scan(src);
+        assert_eq!(map.find("tree"), at(1, 8));
+        assert_eq!(map.find("tree[0]"), at(1, 19));
+        assert_eq!(map.find("tree[0][1]"), at(1, 39));
+        assert_eq!(map.find("tree[1]"), at(1, 54));
+        assert_eq!(map.path_at(Pos { line: 1, col: 46 }), "tree[0][1]");
+    }
+
     #[test]
     fn strings_comments_and_raw_literals_are_skipped() {
         let src = "#![enable(implicit_some)]\n( /* a: (1) /* nested */ */ a: \"x:(\\\"\", // b: 9\n b: r#\"]\"#, c: 'x', d: r#e, f: [1e-3, -inf])";

@@ -30,6 +30,36 @@ pub struct Scene {
     /// Geometric objects.
     #[serde(default)]
     pub objects: Vec<Object>,
+    /// Constructive solid geometry: each solid combines closed objects (named in `objects`)
+    /// with union, intersection and difference. An object used in a solid is drawn only as
+    /// part of it, and may be used in one solid only.
+    #[serde(default)]
+    pub solids: Vec<Solid>,
+}
+
+/// One CSG solid (Appendix A's CSG tree).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Solid {
+    /// Name, for messages.
+    #[serde(default)]
+    pub name: String,
+    /// The expression.
+    pub tree: Csg,
+}
+
+/// A CSG expression. Operands must be closed: full spheres and tori, cylinders, cones and
+/// paraboloids (closed by their end caps when used here), closed meshes.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum Csg {
+    /// A closed object, by name.
+    Object(String),
+    /// Everything inside any operand (two or more).
+    Union(Vec<Csg>),
+    /// Everything inside every operand (two or more).
+    Intersection(Vec<Csg>),
+    /// Inside the first operand and outside the second.
+    Difference(Box<Csg>, Box<Csg>),
 }
 
 /// Output resolution in pixels.
@@ -201,6 +231,10 @@ pub enum SpatialPattern {
     Fig6,
     /// FIG. 7: a FIG. 5 reference pattern plus a bounded random offset in every pixel.
     Fig7,
+    /// Pure random: every sample uniform anywhere in its pixel, no stratification.
+    Random,
+    /// Owen-scrambled Sobol (0,2) per pixel; needs power-of-two `pixel_samples`, else `Fig6`.
+    Sobol,
 }
 
 /// Reconstruction filter (`VisFilter`).
@@ -249,6 +283,9 @@ pub struct Original {
     pub bartlett_filter: bool,
     /// Sinc kernel centre value 1 instead of its limit 2 (2.3).
     pub sinc_filter: bool,
+    /// CSG operands compared by depth-range minima, as Appendix A's `csg_resolve_surface`
+    /// did, instead of exact depths (3.15).
+    pub csg_order: bool,
     /// Matte and opacity of a sample taken from the deepest composited surface, so a matte
     /// behind a transparent surface drops the whole sample (3.14).
     pub matte: bool,
@@ -339,6 +376,26 @@ pub struct Object {
     /// shape. When given, replaces the shape's own points.
     #[serde(default)]
     pub deform: Vec<PointsKey>,
+    /// How colour varies across a micropolygon: `Flat` uses its first vertex's colour
+    /// (Appendix A without GOURAUD), `Gouraud` interpolates the vertex colours at each sample
+    /// (Appendix A `gouraud`).
+    #[serde(default)]
+    pub interpolation: Interpolation,
+    /// Appendix A's `glasshack`: when `Some(a)`, everything composited up to and including
+    /// this surface is tinted by the colour of the surface directly behind it,
+    /// `C *= a + (1 - a) * c_behind` (a in [0, 1]; 1 is no tint).
+    #[serde(default)]
+    pub glass: Option<f32>,
+}
+
+/// Colour interpolation across a micropolygon.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub enum Interpolation {
+    /// One colour per micropolygon.
+    #[default]
+    Flat,
+    /// Shepard interpolation of the four vertex colours at the sample.
+    Gouraud,
 }
 
 /// An object's transform at one time.

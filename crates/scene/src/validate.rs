@@ -1,21 +1,36 @@
 //! Semantic validation of a deserialised [`Scene`]: ranges, finiteness and consistency.
 //!
-//! Invariants: checks run in a fixed order (image, camera, hider, lights, objects, each in
-//! field order) and stop at the first failure, so the reported error is stable; each failure
+//! Invariants: checks run in a fixed order (image, camera, hider, lights, objects, solids, each
+//! in field order) and stop at the first failure, so the reported error is stable; each failure
 //! names the path of the offending value as the source map spells it (`objects[0].shape.radius`).
 //! Every `f32` is checked finite before any range test on it. No check can panic: geometric
 //! tests are done in `f64`, where products of finite `f32`s cannot overflow.
+//!
+//! Solids are checked after every object, so an operand's own shape is already valid when its
+//! closure is judged. Within a solid: an operator at the root, the number of leaves, then the
+//! tree in pre-order (an operator's operand count before its operands, operands left to right;
+//! a leaf's name, then its earlier uses, then its closure). Paths into a tree follow the source map: variant names are transparent and
+//! operands are indexed, `solids[0].tree[1][0]` is the first operand of the second operand.
 //!
 //! Motion keys (`camera.motion`, `objects[i].motion`, `objects[i].deform`) are checked after
 //! the still values they replace, key by key: the list length first, then each key's time
 //! (finite, inside the shutter, after the previous key's), then the key's contents.
 
+use std::collections::HashMap;
+
 use glam::{DMat4, DVec3, DVec4};
 
+use crate::error::clip;
 use crate::model::{
-    Camera, Hider, Image, Light, Material, Object, Rgb, Scene, Shape, Shutter, ShutterShape,
+    Camera, Csg, Hider, Image, Light, Material, Object, Rgb, Scene, Shape, Shutter, ShutterShape,
     Transform, V3,
 };
+
+/// Most solids in a scene: the renderer numbers CSG trees with `u16`.
+pub(crate) const MAX_SOLIDS: usize = 65535;
+/// Most leaves (objects) in one solid. The renderer's trees are binary and give every node
+/// but the root a `u16` slot id in 1..=65535; a solid of `n` leaves has `2n - 2` slots.
+pub(crate) const MAX_LEAVES: usize = 32768;
 
 /// A validation failure: the path of the value at fault and what is wrong with it.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -25,6 +40,11 @@ pub(crate) struct Issue {
 }
 
 type Check = Result<(), Issue>;
+
+/// Object name -> the first object with it, and the second if any.
+type Names<'a> = HashMap<&'a str, (usize, Option<usize>)>;
+/// Object index -> the solid and the path of the leaf that uses it.
+type Used = HashMap<usize, (usize, String)>;
 
 fn fail(path: impl Into<String>, message: impl Into<String>) -> Check {
     Err(Issue { path: path.into(), message: message.into() })
@@ -45,7 +65,7 @@ fn check_scene(scene: &Scene) -> Check {
     for (i, object) in scene.objects.iter().enumerate() {
         self::object(&format!("objects[{i}]"), object, &scene.camera.shutter)?;
     }
-    Ok(())
+    solids(scene)
 }
 
 /// `value` must be finite.
@@ -269,7 +289,15 @@ fn object(at: &str, object: &Object, shutter: &Shutter) -> Check {
     }
     material(&format!("{at}.material"), &object.material)?;
     motion(&format!("{at}.motion"), object, shutter)?;
-    deform(&format!("{at}.deform"), object, shutter)
+    deform(&format!("{at}.deform"), object, shutter)?;
+    if let Some(a) = object.glass {
+        let path = format!("{at}.glass");
+        finite(&path, a)?;
+        if !(0.0..=1.0).contains(&a) {
+            return fail(path, format!("must be in [0, 1], got {a}"));
+        }
+    }
+    Ok(())
 }
 
 /// Transform motion: key times, then each key's transforms by the rules of `transform`.
@@ -531,4 +559,274 @@ fn material(at: &str, m: &Material) -> Check {
             unit_rgb(&field("specular_color"), specular_color)
         }
     }
+}
+
+/// An object name for a message: quoted, escaped and clipped.
+fn quoted(name: &str) -> String {
+    format!("{:?}", clip(name, 64))
+}
+
+/// The CSG rules: at most [`MAX_SOLIDS`] solids; each solid's tree by [`solid`]; every
+/// object used by at most one leaf of all the trees.
+fn solids(scene: &Scene) -> Check {
+    if scene.solids.is_empty() {
+        return Ok(());
+    }
+    if scene.solids.len() > MAX_SOLIDS {
+        return fail(
+            "solids",
+            format!("at most {MAX_SOLIDS} solids are allowed, got {}", scene.solids.len()),
+        );
+    }
+    // Name -> the first two objects carrying it.
+    let mut names: Names = HashMap::new();
+    for (i, object) in scene.objects.iter().enumerate() {
+        names
+            .entry(object.name.as_str())
+            .and_modify(|e| {
+                e.1.get_or_insert(i);
+            })
+            .or_insert((i, None));
+    }
+    // Object index -> the leaf that uses it.
+    let mut used: Used = HashMap::new();
+    for (s, solid) in scene.solids.iter().enumerate() {
+        self::solid(s, &solid.tree, scene, &names, &mut used)?;
+    }
+    Ok(())
+}
+
+/// Solid `s`: an operator at the root, at most [`MAX_LEAVES`] leaves, then every node in
+/// pre-order. Iterative, so no tree depth can exhaust the stack.
+fn solid(s: usize, tree: &Csg, scene: &Scene, names: &Names, used: &mut Used) -> Check {
+    let at = format!("solids[{s}].tree");
+    if matches!(tree, Csg::Object(_)) {
+        return fail(at, "a solid needs an operator: Union, Intersection or Difference");
+    }
+    let mut leaves = 0usize;
+    let mut stack = vec![tree];
+    while let Some(node) = stack.pop() {
+        match node {
+            Csg::Object(_) => leaves += 1,
+            Csg::Union(items) | Csg::Intersection(items) => stack.extend(items),
+            Csg::Difference(a, b) => stack.extend([a.as_ref(), b.as_ref()]),
+        }
+    }
+    if leaves > MAX_LEAVES {
+        return fail(at, format!("a solid may use at most {MAX_LEAVES} objects, got {leaves}"));
+    }
+    let mut stack: Vec<(&Csg, String)> = vec![(tree, at)];
+    while let Some((node, path)) = stack.pop() {
+        let (op, items) = match node {
+            Csg::Object(name) => {
+                leaf(&path, s, name, scene, names, used)?;
+                continue;
+            }
+            Csg::Difference(a, b) => {
+                stack.push((b, format!("{path}[1]")));
+                stack.push((a, format!("{path}[0]")));
+                continue;
+            }
+            Csg::Union(items) => ("Union", items),
+            Csg::Intersection(items) => ("Intersection", items),
+        };
+        if items.len() < 2 {
+            return fail(path, format!("{op} needs at least 2 operands, got {}", items.len()));
+        }
+        for (k, item) in items.iter().enumerate().rev() {
+            stack.push((item, format!("{path}[{k}]")));
+        }
+    }
+    Ok(())
+}
+
+/// A leaf `Object(name)` at `path` in solid `s`: the name resolves to exactly one object,
+/// not used by any leaf before, whose surface is closed.
+fn leaf(path: &str, s: usize, name: &str, scene: &Scene, names: &Names, used: &mut Used) -> Check {
+    if name.is_empty() {
+        return fail(
+            path,
+            "an operand must name an object: unnamed objects cannot be used in solids",
+        );
+    }
+    let index = match names.get(name) {
+        None => return fail(path, format!("no object is named {}", quoted(name))),
+        Some((first, Some(second))) => {
+            return fail(
+                path,
+                format!(
+                    "object name {0} is ambiguous: objects[{first}] and objects[{second}] are \
+                     both named {0}",
+                    quoted(name)
+                ),
+            );
+        }
+        Some((index, None)) => *index,
+    };
+    if let Some((other, at)) = used.get(&index) {
+        return fail(
+            path,
+            format!("object {} is already used by solids[{other}] (at {at})", quoted(name)),
+        );
+    }
+    let Some(object) = scene.objects.get(index) else {
+        return fail(path, format!("no object is named {}", quoted(name)));
+    };
+    match closure(&object.shape) {
+        Closure::Closed => {}
+        Closure::Open(why) => {
+            return fail(
+                path,
+                format!(
+                    "object {} is not closed ({why}); CSG operands must be closed solids",
+                    quoted(name)
+                ),
+            );
+        }
+        Closure::Misoriented(why) => {
+            return fail(
+                path,
+                format!(
+                    "object {} is not consistently oriented ({why}); the two faces at every \
+                     edge of a closed mesh must run along it in opposite directions",
+                    quoted(name)
+                ),
+            );
+        }
+    }
+    used.insert(index, (s, path.to_string()));
+    Ok(())
+}
+
+/// Whether a (valid) shape bounds a solid.
+#[derive(Debug, Clone, PartialEq, Eq)]
+enum Closure {
+    Closed,
+    /// Not closed, and why.
+    Open(String),
+    /// A closed mesh whose faces do not agree on the outside.
+    Misoriented(String),
+}
+
+/// Closure of a shape that passed [`shape`]. Quadrics: full sweeps, a sphere uncut (cuts at or
+/// beyond the poles do not cut), a torus's whole tube; cylinders and cones are closed by end
+/// caps in a solid. Disks and patches never are. Meshes by [`mesh_closure`].
+fn closure(shape: &Shape) -> Closure {
+    let sweep = |kind: &str, thetamax: f32| {
+        if thetamax == 360.0 {
+            Closure::Closed
+        } else {
+            Closure::Open(format!("{kind} with thetamax {thetamax}"))
+        }
+    };
+    match shape {
+        Shape::Sphere { radius, zmin, zmax, thetamax } => {
+            if let Some(z) = zmin
+                && *z > -radius
+            {
+                return Closure::Open(format!("Sphere cut at zmin {z}"));
+            }
+            if let Some(z) = zmax
+                && z < radius
+            {
+                return Closure::Open(format!("Sphere cut at zmax {z}"));
+            }
+            sweep("Sphere", *thetamax)
+        }
+        Shape::Cylinder { thetamax, .. } => sweep("Cylinder", *thetamax),
+        Shape::Cone { thetamax, .. } => sweep("Cone", *thetamax),
+        Shape::Torus { phimin, phimax, thetamax, .. } => {
+            let tube = f64::from(*phimax) - f64::from(*phimin);
+            if tube != 360.0 {
+                return Closure::Open(format!("Torus with phimax - phimin = {tube}"));
+            }
+            sweep("Torus", *thetamax)
+        }
+        Shape::Disk { .. } => Closure::Open("Disk".into()),
+        Shape::BilinearPatch { .. } => Closure::Open("BilinearPatch".into()),
+        Shape::Mesh { faces, .. } => mesh_closure(faces),
+    }
+}
+
+/// The faces along one undirected mesh edge.
+#[derive(Debug, Default)]
+struct EdgeUse {
+    /// How many faces have the edge.
+    faces: usize,
+    /// The first two of them, each with the direction it runs along the edge.
+    first: Vec<(usize, (u32, u32))>,
+}
+
+/// A mesh is closed when every edge is shared by exactly two faces, and consistently
+/// oriented when those two faces run along it in opposite directions. A face first drops
+/// repeated consecutive indices (`[0, 1, 1, 2]` is the triangle `[0, 1, 2]`); one left with
+/// fewer than 3 points has no area and is ignored, one that still repeats a point is an error.
+/// Faces and their edges are visited in order, so the edge reported is the first bad one.
+fn mesh_closure(faces: &[Vec<u32>]) -> Closure {
+    let mut polygons: Vec<(usize, Vec<u32>)> = Vec::with_capacity(faces.len());
+    for (f, face) in faces.iter().enumerate() {
+        let mut v: Vec<u32> = Vec::with_capacity(face.len());
+        for &i in face {
+            if v.last() != Some(&i) {
+                v.push(i);
+            }
+        }
+        while v.len() > 1 && v.first() == v.last() {
+            v.pop();
+        }
+        if v.len() < 3 {
+            continue;
+        }
+        if let Some(&p) =
+            v.iter().enumerate().find_map(|(k, p)| v[k + 1..].contains(p).then_some(p))
+        {
+            return Closure::Open(format!("Mesh: faces[{f}] passes through point {p} twice"));
+        }
+        polygons.push((f, v));
+    }
+    if polygons.is_empty() {
+        return Closure::Open("Mesh: no face has an area".into());
+    }
+    let edges = |v: &[u32]| -> Vec<(u32, u32)> {
+        (0..v.len()).map(|k| (v[k], v[(k + 1) % v.len()])).collect()
+    };
+    let key = |(a, b): (u32, u32)| (a.min(b), a.max(b));
+    let mut uses: HashMap<(u32, u32), EdgeUse> = HashMap::new();
+    for (f, v) in &polygons {
+        for e in edges(v) {
+            let entry = uses.entry(key(e)).or_default();
+            entry.faces += 1;
+            if entry.first.len() < 2 {
+                entry.first.push((*f, e));
+            }
+        }
+    }
+    for (f, v) in &polygons {
+        for e @ (a, b) in edges(v) {
+            let n = uses.get(&key(e)).map_or(0, |u| u.faces);
+            if n == 1 {
+                return Closure::Open(format!(
+                    "Mesh: edge ({a}, {b}) of faces[{f}] belongs to no other face"
+                ));
+            }
+            if n > 2 {
+                return Closure::Open(format!("Mesh: edge ({a}, {b}) is shared by {n} faces"));
+            }
+        }
+    }
+    for (_, v) in &polygons {
+        for e in edges(v) {
+            if let Some(used) = uses.get(&key(e))
+                && let [(f, d), (g, d2)] = used.first.as_slice()
+                && d == d2
+            {
+                let (a, b) = *d;
+                return Closure::Misoriented(format!(
+                    "Mesh: faces[{f}] and faces[{g}] both run along edge ({a}, {b}) from point \
+                     {a} to point {b}"
+                ));
+            }
+        }
+    }
+    Closure::Closed
 }

@@ -51,6 +51,14 @@ const CONTEXTS: &[&str] = &[
     "Scene(image: (width: 8, height: 8), camera: (eye: (0.0, 0.0, -5.0), look_at: (0.0, 0.0, 0.0)), objects: [(shape: @, material: Matte(color: (0.5, 0.5, 0.5)))])",
     "Scene(image: (width: 8, height: 8), camera: (eye: (0.0, 0.0, -5.0), look_at: (0.0, 0.0, 0.0)), objects: [(shape: Sphere(radius: 1.0), material: @)])",
     "Scene(image: (width: 8, height: 8), camera: (eye: (0.0, 0.0, -5.0), look_at: (0.0, 0.0, 0.0)), objects: [(shape: Sphere(radius: 1.0), material: Matte(color: (0.5, 0.5, 0.5)), @)])",
+    // A CSG tree over five closed objects.
+    "Scene(image: (width: 8, height: 8), camera: (eye: (0.0, 0.0, -5.0), look_at: (0.0, 0.0, 0.0)),
+     objects: [(name: \"ball\", shape: Sphere(radius: 1.0), material: Matte(color: (0.5, 0.5, 0.5))),
+               (name: \"hole\", shape: Cylinder(radius: 0.5, zmin: -2.0, zmax: 2.0), material: Matte(color: (0.5, 0.5, 0.5))),
+               (name: \"left\", shape: Sphere(radius: 2.0), material: Matte(color: (0.5, 0.5, 0.5))),
+               (name: \"right\", shape: Sphere(radius: 2.0), material: Matte(color: (0.5, 0.5, 0.5))),
+               (name: \"cap\", shape: Sphere(radius: 0.5), material: Matte(color: (0.5, 0.5, 0.5)))],
+     solids: [(tree: @)])",
 ];
 
 #[test]
@@ -97,6 +105,14 @@ fn the_document_covers_every_variant() {
         "deform: [",
         "time_pairing:",
         "moving_clip:",
+        "solids: [",
+        "Object(",
+        "Union([",
+        "Intersection([",
+        "Difference(",
+        "interpolation: Gouraud",
+        "glass: Some(",
+        "csg_order:",
     ] {
         assert!(ron_blocks().iter().any(|b| b.contains(name)), "no ```ron example uses {name}");
     }

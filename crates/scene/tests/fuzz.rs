@@ -15,7 +15,7 @@ const VALID: &str = r#"Scene(
                     (time: 1.0, eye: (0.5, 1.0, -10.0), look_at: (0.0, 0.0, 0.0), up: (0.0, 1.0, 0.1))]),
   hider: (pixel_samples: (4, 4), jitter: true, pattern: Fig7, filter: (kind: Sinc, width: 2.0),
           bucket_size: (16, 16), shading_rate: 1.0, seed: 7, max_grid_size: 64,
-          original: (permute: true, time_pairing: true, lens: false, moving_clip: true)),
+          original: (permute: true, time_pairing: true, lens: false, moving_clip: true, csg_order: true)),
   lights: [Ambient(color: (1.0, 1.0, 1.0), intensity: 0.1), Point(from: (0.0, 5.0, 0.0)),
            Distant(from: (1.0, 1.0, -1.0), to: (0.0, 0.0, 0.0), color: (1.0, 1.0, 1.0), intensity: 1.0)],
   objects: [
@@ -33,7 +33,16 @@ const VALID: &str = r#"Scene(
      deform: [(time: 0.0, points: [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (1.0, 1.0, 0.0), (0.0, 1.0, 0.0)]),
               (time: 1.0, points: [(0.0, 0.0, 1.0), (1.0, 0.0, 0.0), (1.0, 1.0, 0.0), (0.0, 1.0, 1.0)])],
      material: Constant(color: (1.0, 1.0, 1.0))),
+    (name: "core", shape: Sphere(radius: 1.5), transform: [Translate((0.0, 0.0, 4.0))],
+     material: Matte(color: (0.9, 0.9, 0.2)), interpolation: Gouraud, glass: Some(0.5)),
+    (name: "bore", shape: Cylinder(radius: 0.5, zmin: -2.0, zmax: 2.0), transform: [Translate((0.0, 0.0, 4.0))],
+     material: Matte(color: (0.2, 0.9, 0.9)), interpolation: Flat),
+    (name: "box", shape: Mesh(points: [(-1.0, -1.0, 3.0), (1.0, -1.0, 3.0), (1.0, 1.0, 3.0), (-1.0, 1.0, 3.0),
+                                       (-1.0, -1.0, 5.0), (1.0, -1.0, 5.0), (1.0, 1.0, 5.0), (-1.0, 1.0, 5.0)],
+                              faces: [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [2, 3, 7, 6], [1, 2, 6], [1, 6, 5], [0, 4, 7, 3]]),
+     material: Matte(color: (0.9, 0.2, 0.9))),
   ],
+  solids: [(name: "drilled", tree: Difference(Union([Object("core"), Object("box")]), Object("bore")))],
 )
 "#;
 
@@ -207,6 +216,19 @@ proptest! {
     }
 
     #[test]
+    fn glass_is_accepted_exactly_in_0_1(glass in prop_oneof![any::<f32>(), -0.5f32..1.5, Just(0.0f32), Just(1.0f32)]) {
+        let text = VALID.replace("glass: Some(0.5)", &format!("glass: Some({glass:?})"));
+        let result = parse(&text, Path::new("fuzz.ron"));
+        if (0.0..=1.0).contains(&glass) {
+            prop_assert!(result.is_ok(), "{:?}", result.err().map(|e| e.to_string()));
+        } else {
+            let e = result.err();
+            prop_assert_eq!(e.as_ref().map(|e| e.field.as_str()), Some("objects[3].glass"));
+            prop_assert_eq!(e.as_ref().and_then(|e| e.line.zip(e.col)), Some((29, 78)));
+        }
+    }
+
+    #[test]
     fn image_size_is_accepted_exactly_in_1_65536(width in any::<u32>()) {
         let text = VALID.replace("width: 64", &format!("width: {width}"));
         let result = parse(&text, Path::new("fuzz.ron"));
@@ -217,7 +239,8 @@ proptest! {
 #[test]
 fn the_fuzz_base_is_valid() {
     let scene = parse(VALID, Path::new("fuzz.ron")).unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!(scene.objects.len(), 3);
+    assert_eq!(scene.objects.len(), 6);
+    assert_eq!(scene.solids.len(), 1);
 }
 
 #[test]
@@ -249,4 +272,80 @@ fn huge_tokens_give_short_messages() {
     let text = VALID.replace("\"ball\"", &format!("({long})"));
     let e = parse(&text, Path::new("fuzz.ron")).err().unwrap_or_else(|| panic!("accepted"));
     assert!(e.to_string().chars().count() < 600, "{}", e.to_string().len());
+}
+
+/// The faces of a closed, consistently oriented cube.
+const CUBE: [[u32; 4]; 6] =
+    [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [2, 3, 7, 6], [1, 2, 6, 5], [0, 4, 7, 3]];
+
+/// The closure law, computed plainly on faces without repeated indices: `None` if closed and
+/// consistently oriented, else the start of the expected message.
+fn mesh_oracle(faces: &[Vec<u32>]) -> Option<&'static str> {
+    let mut directed = std::collections::HashMap::<(u32, u32), usize>::new();
+    for face in faces {
+        for k in 0..face.len() {
+            *directed.entry((face[k], face[(k + 1) % face.len()])).or_default() += 1;
+        }
+    }
+    let count = |a, b| directed.get(&(a, b)).copied().unwrap_or(0);
+    if directed.keys().any(|&(a, b)| count(a, b) + count(b, a) != 2) {
+        Some("is not closed")
+    } else if directed.keys().any(|&(a, b)| count(a, b) != 1) {
+        Some("is not consistently oriented")
+    } else {
+        None
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 500, ..ProptestConfig::default() })]
+
+    /// An edited cube (faces turned, reversed, dropped or repeated) is a CSG operand exactly
+    /// when every edge is shared by two faces running along it in opposite directions.
+    #[test]
+    fn mesh_operands_are_accepted_exactly_when_closed_and_oriented(
+        edits in proptest::collection::vec((0usize..6, 0u8..4), 0..4),
+        reverse_all in any::<bool>(),
+    ) {
+        let mut faces: Vec<Vec<u32>> = CUBE.iter().map(|f| f.to_vec()).collect();
+        for (f, op) in edits {
+            let f = f % faces.len().max(1);
+            match op {
+                0 => if let Some(face) = faces.get_mut(f) { face.rotate_left(1) },
+                1 => if let Some(face) = faces.get_mut(f) { face.reverse() },
+                2 => if faces.len() > 1 { faces.remove(f); },
+                _ => if let Some(face) = faces.get(f).cloned() { faces.push(face) },
+            }
+        }
+        if reverse_all {
+            faces.iter_mut().for_each(|f| f.reverse());
+        }
+        let list: Vec<String> = faces
+            .iter()
+            .map(|f| format!("[{}]", f.iter().map(u32::to_string).collect::<Vec<_>>().join(", ")))
+            .collect();
+        let text = format!(
+            r#"Scene(image: (width: 8, height: 8), camera: (eye: (0.0, 0.0, -5.0), look_at: (0.0, 0.0, 0.0)),
+  objects: [
+    (name: "ball", shape: Sphere(radius: 1.0), material: Matte(color: (0.5, 0.5, 0.5))),
+    (name: "m", shape: Mesh(points: [(-1.0, -1.0, -1.0), (1.0, -1.0, -1.0), (1.0, 1.0, -1.0), (-1.0, 1.0, -1.0),
+                                     (-1.0, -1.0, 1.0), (1.0, -1.0, 1.0), (1.0, 1.0, 1.0), (-1.0, 1.0, 1.0)],
+                            faces: [{}]),
+     material: Matte(color: (0.5, 0.5, 0.5))),
+  ],
+  solids: [(tree: Union([Object("ball"), Object("m")]))])"#,
+            list.join(", ")
+        );
+        let result = parse(&text, Path::new("fuzz.ron"));
+        match mesh_oracle(&faces) {
+            None => prop_assert!(result.is_ok(), "{:?}", result.err().map(|e| e.to_string())),
+            Some(expected) => {
+                let e = result.err();
+                prop_assert_eq!(e.as_ref().map(|e| e.field.as_str()), Some("solids[0].tree[1]"));
+                prop_assert_eq!(e.as_ref().and_then(|e| e.line.zip(e.col)), Some((9, 42)));
+                let message = e.map(|e| e.message).unwrap_or_default();
+                prop_assert!(message.starts_with(&format!("object \"m\" {expected} (Mesh: ")), "{}", message);
+            }
+        }
+    }
 }
