@@ -1,8 +1,10 @@
 //! Project tasks: `cargo xtask golden` (compare every golden scene with its reference),
-//! `cargo xtask bless` (rewrite the references; look at the PNGs it writes first!) and
-//! `cargo xtask bench` (time the benchmark scenes).
+//! `cargo xtask bless` (rewrite the references; look at the PNGs it writes first!),
+//! `cargo xtask bench` (time the benchmark scenes) and `cargo xtask study` (regenerate the
+//! sampling study's figures in docs/study/).
 
 mod bench;
+mod study;
 
 use std::process::ExitCode;
 
@@ -10,7 +12,7 @@ use reyes_render::golden::{self, Outcome};
 
 fn usage() -> ExitCode {
     eprintln!(
-        "usage: cargo xtask <golden | bless [SCENE...] | bench [--runs N] [--threads T] [SCENE...]>"
+        "usage: cargo xtask <golden | bless [SCENE...] | bench [--runs N] [--threads T] [SCENE...] | study [--quick]>"
     );
     ExitCode::from(2)
 }
@@ -23,6 +25,15 @@ fn main() -> ExitCode {
             Ok(()) => ExitCode::SUCCESS,
             Err(e) => {
                 eprintln!("xtask bench: {e}");
+                ExitCode::FAILURE
+            }
+        };
+    }
+    if args.first().map(String::as_str) == Some("study") {
+        return match study::run(&root, &args[1..]) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(e) => {
+                eprintln!("xtask study: {e}");
                 ExitCode::FAILURE
             }
         };

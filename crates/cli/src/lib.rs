@@ -8,6 +8,7 @@
 
 pub mod golden;
 mod stats;
+pub mod study;
 
 use std::time::Instant;
 
@@ -72,6 +73,8 @@ pub fn hider_config(scene: &Scene, camera: &CameraSetup) -> HiderConfig {
             SpatialPattern::Fig5 => Pattern::Fig5,
             SpatialPattern::Fig6 => Pattern::Fig6,
             SpatialPattern::Fig7 => Pattern::Fig7,
+            SpatialPattern::Random => Pattern::Random,
+            SpatialPattern::Sobol => Pattern::Sobol,
         }
     };
     HiderConfig {

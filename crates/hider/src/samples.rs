@@ -10,11 +10,20 @@
 //!
 //! with `ox..oly` in 0..=22 drawn per bucket. Invariants: arrays are s-major
 //! (`k = s*P + pixel`) so the sampling loops read them contiguously along a row; sample `s`
-//! of every pixel lies in spatial stratum `Location[s]`; the samples of time slice `tau` all
-//! have times in `[tau/NS, (tau+1)/NS)`.
+//! of every pixel lies in spatial stratum `Location[s]` (for every pattern but
+//! [`Pattern::Random`], which is unstratified by definition: the hider's scan ranges come
+//! from each slice's actual reach, so it stays correct, only slower); the samples of time
+//! slice `tau` all have times in `[tau/NS, (tau+1)/NS)`.
+//!
+//! [`Pattern::Sobol`] does not read the tables: each pixel gets its own Owen-scrambled Sobol
+//! (0,2) point set for position and another for the lens, and a scrambled (0,1) set for time
+//! (see [`owen`]); each position point goes to the sample whose stratum holds it.
 
-use crate::rng::hash;
+pub mod owen;
+
+use crate::rng::{hash, unit};
 use crate::tables::{Table, Tables};
+use owen::{Scramble, to_unit, to_unit_16};
 
 /// Spatial pattern (FIGS. 3, 5, 6, 7 of the patent).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -28,6 +37,43 @@ pub enum Pattern {
     Fig6,
     /// FIG. 7: the FIG. 5 reference pattern plus a random offset of at most a quarter stratum.
     Fig7,
+    /// Pure random: each sample uniform anywhere in its pixel, new in every pixel, with no
+    /// stratification (the baseline the patent improves on). Times and lens positions are
+    /// still made as for FIG. 6 (stratified, paired as asked).
+    Random,
+    /// Modern: per pixel, an Owen-scrambled Sobol (0,2) point set (Burley 2020), every point
+    /// given to the sample whose stratum holds it; time from a scrambled (0,1) set and the
+    /// lens from another scrambled (0,2) set, each with its own scramble per pixel and paired
+    /// with the positions as for FIG. 6. Needs `nx` and `ny` to be powers of two and a
+    /// one-to-one `Location`; otherwise FIG. 6 is used instead.
+    Sobol,
+}
+
+/// For [`Pattern::Sobol`]: `(a, b, cells)` with `nx = 2^a`, `ny = 2^b` and `cells[cx << b | cy]`
+/// the sample index whose stratum is cell `(cx, cy)`; `None` when that is not possible
+/// (a side not a power of two, or the original `permute`'s non-bijective `Location`).
+pub fn sobol_cells(tables: &Tables) -> Option<(u32, u32, Vec<u32>)> {
+    if !(tables.nx.is_power_of_two() && tables.ny.is_power_of_two()) {
+        return None;
+    }
+    let (a, b) = (tables.nx.trailing_zeros(), tables.ny.trailing_zeros());
+    let mut cells = vec![u32::MAX; tables.ns as usize];
+    for (s, loc) in tables.location.iter().enumerate() {
+        let cx = (loc[0] * tables.nx as f32).round() as u32;
+        let cy = (loc[1] * tables.ny as f32).round() as u32;
+        let c = ((cx << b) | cy) as usize;
+        if cells[c] != u32::MAX {
+            return None;
+        }
+        cells[c] = s as u32;
+    }
+    Some((a, b, cells))
+}
+
+/// The leading `bits` binary digits of a 32-bit fraction.
+#[inline]
+fn leading(x: u32, bits: u32) -> u32 {
+    ((x as u64) >> (32 - bits)) as u32
 }
 
 /// How sample indices are paired with time and lens strata.
@@ -224,6 +270,21 @@ impl BucketSamples {
         });
         let mut time_perm = vec![0u32; ns];
         let mut lens_perm = vec![0u32; ns];
+        // The modern sampler's per-pixel point sets, indexed by sample index s (position),
+        // time stratum tau and lens cell lambda.
+        let sobol = match spec.pattern {
+            Pattern::Sobol => sobol_cells(tables),
+            _ => None,
+        };
+        let pattern = match spec.pattern {
+            Pattern::Sobol if sobol.is_none() => Pattern::Fig6,
+            p => p,
+        };
+        let (mut net_xy, mut net_t, mut net_l) = match sobol {
+            Some(_) => (vec![[0.0f32; 2]; ns], vec![0.0f32; ns], vec![[0.0f32; 2]; ns]),
+            None => (Vec::new(), Vec::new(), Vec::new()),
+        };
+        let m = ns.trailing_zeros();
         for py in 0..bh {
             for px in 0..bw {
                 let pixel = (py * bw + px) as usize;
@@ -247,11 +308,36 @@ impl BucketSamples {
                     }
                     LensShape::Disk => shuffle(&mut lens_perm, spec.seed, &[0x1e75, gx, gy]),
                 }
+                if let Some((a, b, cells)) = &sobol {
+                    let cell = |p: [u32; 2]| {
+                        cells[((leading(p[0], *a) << b) | leading(p[1], *b)) as usize]
+                    };
+                    let space = Scramble::new(spec.seed, &[0x50b0, gx, gy]);
+                    for j in 0..ns as u32 {
+                        let p = space.point_2d(j);
+                        net_xy[cell(p) as usize] = [to_unit_16(p[0]), to_unit_16(p[1])];
+                    }
+                    if needs.time {
+                        let time = Scramble::new(spec.seed, &[0x71e5, gx, gy]);
+                        for j in 0..ns as u32 {
+                            let t = time.point_1d(j);
+                            net_t[leading(t, m) as usize] = to_unit(t);
+                        }
+                    }
+                    if needs.lens {
+                        let lens = Scramble::new(spec.seed, &[0x1e25, gx, gy]);
+                        for j in 0..ns as u32 {
+                            let p = lens.point_2d(j);
+                            net_l[cell(p) as usize] = [to_unit(p[0]), to_unit(p[1])];
+                        }
+                    }
+                }
                 for s in 0..ns {
                     let i = 7 * s + 2 * pixel;
                     let k = s * p_count + pixel;
                     let loc = tables.location[s];
-                    let (jx, jy) = match spec.pattern {
+                    let (jx, jy) = match pattern {
+                        Pattern::Random | Pattern::Sobol => (0.0, 0.0), // not read
                         Pattern::Regular | Pattern::Fig6 => {
                             (tables.get(Table::X, off[0] + i), tables.get(Table::Y, off[1] + i + 1))
                         }
@@ -279,12 +365,29 @@ impl BucketSamples {
                             )
                         }
                     };
-                    self.x[k] = px as f32 + loc[0] + jx;
-                    self.y[k] = py as f32 + loc[1] + jy;
+                    match pattern {
+                        Pattern::Random => {
+                            let h = hash(spec.seed, &[0x7a4d, gx, gy, s as u64]);
+                            self.x[k] = px as f32 + unit(h);
+                            self.y[k] = py as f32 + unit(h << 24);
+                        }
+                        Pattern::Sobol => {
+                            self.x[k] = px as f32 + net_xy[s][0];
+                            self.y[k] = py as f32 + net_xy[s][1];
+                        }
+                        _ => {
+                            self.x[k] = px as f32 + loc[0] + jx;
+                            self.y[k] = py as f32 + loc[1] + jy;
+                        }
+                    }
                     let tau = time_perm[s] as usize;
                     if needs.time {
                         // Stratified in [tau/NS, (tau+1)/NS), then warped by the shutter shape.
-                        let u = tau as f32 / fns + tables.get(Table::T, off[2] + i + 2);
+                        let u = if sobol.is_some() {
+                            net_t[tau]
+                        } else {
+                            tau as f32 / fns + tables.get(Table::T, off[2] + i + 2)
+                        };
                         self.t[k] = spec.shutter.warp(u.min(1.0));
                         self.by_time[tau * p_count + pixel] = s as u32;
                     }
@@ -297,6 +400,13 @@ impl BucketSamples {
                     self.by_lens[lambda * p_count + pixel] = s as u32;
                     let lens_cell = tables.location[lambda];
                     let (lx, ly) = match spec.lens_shape {
+                        _ if sobol.is_some() => {
+                            let [u, v] = net_l[lambda];
+                            match spec.lens_shape {
+                                LensShape::OriginalSquare => (u - 0.5 / fns, v - 0.5 / fns),
+                                LensShape::Disk => concentric_disk(u, v),
+                            }
+                        }
                         LensShape::OriginalSquare => {
                             (lens_cell[0] - 0.5 / fns + jlx, lens_cell[1] - 0.5 / fns + jly)
                         }

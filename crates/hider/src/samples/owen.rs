@@ -1,0 +1,186 @@
+//! The modern sampler: an Owen-scrambled Sobol (0,2) sequence, scrambled by hashing
+//! (Burley 2020, "Practical hash-based Owen scrambling"), one independent scramble per pixel
+//! and per dimension pair (position, lens) and a scrambled van der Corput (0,1) sequence for
+//! time.
+//!
+//! Why it stratifies: the first two Sobol dimensions (van der Corput, and the Pascal-matrix
+//! dimension) form a (0,2)-sequence in base 2, so every aligned block of `2^m` consecutive
+//! points is a (0,m,2)-net: each elementary interval `[i/2^a, (i+1)/2^a) x [j/2^b, (j+1)/2^b)`
+//! with `a + b = m` holds exactly one point. In particular, when the pixel has `nx x ny` strata
+//! with `nx = 2^a`, `ny = 2^b`, each stratum holds exactly one of the pixel's `NS = 2^m`
+//! points, so every point can be given to the sample index whose stratum contains it.
+//!
+//! Owen (nested uniform) scrambling flips digit `k` of a coordinate by a random function of
+//! the digits before it; it maps elementary intervals onto elementary intervals of the same
+//! shape, so it keeps the net property while making each point uniformly distributed.
+//! The hash below does this on bit-reversed integers: every bit of the result depends only on
+//! the same and lower bits of the input (additions, multiplications, and `x ^= x * even`).
+//! The same scramble applied to the point *index* maps aligned blocks of `2^m` indices onto
+//! aligned blocks, so prefixes of the shuffled sequence stay nets (the progressive property).
+
+use crate::rng::hash;
+
+/// Base-2 Owen scrambling of a bit-reversed integer: bit `k` of the result depends only on
+/// bits `0..=k` of `x` and on `seed`, and the map is a bijection. The Laine-Karras hash
+/// improved by N. Vegdahl (2021), as used in Burley's scheme.
+#[inline]
+pub fn reversed_owen(mut x: u32, seed: u32) -> u32 {
+    x ^= x.wrapping_mul(0x3d20_adea);
+    x = x.wrapping_add(seed);
+    x = x.wrapping_mul((seed >> 16) | 1);
+    x ^= x.wrapping_mul(0x0552_6c56);
+    x ^= x.wrapping_mul(0x53a2_2864);
+    x
+}
+
+/// Nested uniform (Owen) scrambling of a 32-digit binary fraction `x / 2^32`: digit `k`
+/// (bit `31 - k`) is flipped by a hash of the digits before it.
+#[inline]
+pub fn nested_uniform_scramble(x: u32, seed: u32) -> u32 {
+    reversed_owen(x.reverse_bits(), seed).reverse_bits()
+}
+
+/// Sobol dimension 1 (the second): the Pascal generator matrix mod 2, as a 32-bit fraction.
+#[inline]
+pub fn sobol_dim1(mut i: u32) -> u32 {
+    let mut v: u32 = 1 << 31;
+    let mut x = 0;
+    while i != 0 {
+        if i & 1 != 0 {
+            x ^= v;
+        }
+        i >>= 1;
+        v ^= v >> 1;
+    }
+    x
+}
+
+/// The first two Sobol dimensions of point `i`, unscrambled, as 32-bit fractions: van der
+/// Corput (bit reversal) and [`sobol_dim1`].
+#[inline]
+pub fn sobol_2d(i: u32) -> [u32; 2] {
+    [i.reverse_bits(), sobol_dim1(i)]
+}
+
+/// Seeds of one scrambled (0,2) or (0,1) sequence: one for the index shuffle, one per
+/// coordinate. Derived by hashing, so independent sequences need only different keys.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Scramble {
+    index: u32,
+    x: u32,
+    y: u32,
+}
+
+impl Scramble {
+    /// The scramble for `seed` and the integers `key` (e.g. dimension and global pixel).
+    pub fn new(seed: u64, key: &[u64]) -> Scramble {
+        let h = hash(seed, key);
+        let h2 = hash(h, &[0x0e5c]);
+        Scramble { index: h as u32, x: (h >> 32) as u32, y: h2 as u32 }
+    }
+
+    /// Point `i` of the Owen-scrambled, index-shuffled Sobol (0,2) sequence, as 32-bit
+    /// fractions. For any `m`, points `0..2^m` form a (0,m,2)-net.
+    #[inline]
+    pub fn point_2d(&self, i: u32) -> [u32; 2] {
+        let [x, y] = sobol_2d(nested_uniform_scramble(i, self.index));
+        [nested_uniform_scramble(x, self.x), nested_uniform_scramble(y, self.y)]
+    }
+
+    /// Point `i` of the Owen-scrambled, index-shuffled van der Corput (0,1) sequence: for any
+    /// `m`, points `0..2^m` put one point in each interval `[k/2^m, (k+1)/2^m)`.
+    #[inline]
+    pub fn point_1d(&self, i: u32) -> u32 {
+        nested_uniform_scramble(nested_uniform_scramble(i, self.index).reverse_bits(), self.x)
+    }
+}
+
+/// A 32-bit fraction as an `f32` in `[0, 1)`, keeping its leading 24 bits exactly, so the
+/// stratum read from the float (`floor(u * 2^a)` for `a <= 24`) is the one read from the bits.
+#[inline]
+pub fn to_unit(x: u32) -> f32 {
+    (x >> 8) as f32 * (1.0 / 16_777_216.0)
+}
+
+/// A 32-bit fraction as an `f32` in `(0, 1)` on a grid of `2^-16` (the centre of its cell):
+/// adding it to a pixel coordinate below 128 is exact, so a sample never rounds across a
+/// stratum or pixel boundary.
+#[inline]
+pub fn to_unit_16(x: u32) -> f32 {
+    ((x >> 16) as f32 + 0.5) * (1.0 / 65_536.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every elementary interval of area 2^-m holds exactly one of `pts`.
+    fn is_02_net(pts: &[[u32; 2]], m: u32) -> bool {
+        (0..=m).all(|a| {
+            let b = m - a;
+            let mut seen = vec![false; 1 << m];
+            pts.iter().all(|p| {
+                let cx = if a == 0 { 0 } else { p[0] >> (32 - a) };
+                let cy = if b == 0 { 0 } else { p[1] >> (32 - b) };
+                let c = ((cx << b) | cy) as usize;
+                !std::mem::replace(&mut seen[c], true)
+            })
+        })
+    }
+
+    #[test]
+    fn unscrambled_sobol_is_a_02_sequence() {
+        for m in 0..=10 {
+            for block in 0..4u32 {
+                let pts: Vec<_> = (0..1u32 << m).map(|i| sobol_2d((block << m) + i)).collect();
+                assert!(is_02_net(&pts, m), "m {m} block {block}");
+            }
+        }
+    }
+
+    #[test]
+    fn scrambling_is_a_bijection_that_keeps_leading_digits_together() {
+        // Points sharing their first k digits still share them after scrambling.
+        for seed in [0u32, 1, 0xdead_beef] {
+            let mut out: Vec<u32> =
+                (0..1u32 << 12).map(|i| nested_uniform_scramble(i << 20, seed)).collect();
+            for w in out.chunks(1 << 4) {
+                assert!(w.iter().all(|&v| v >> 24 == w[0] >> 24));
+            }
+            out.sort();
+            out.dedup();
+            assert_eq!(out.len(), 1 << 12);
+        }
+    }
+
+    #[test]
+    fn scrambled_prefixes_are_nets() {
+        for seed in 0..20u64 {
+            let sc = Scramble::new(seed, &[7, seed * 3]);
+            let pts: Vec<_> = (0..1024).map(|i| sc.point_2d(i)).collect();
+            for m in 0..=10 {
+                assert!(is_02_net(&pts[..1 << m], m), "seed {seed} m {m}");
+            }
+            let ts: Vec<u32> = (0..256).map(|i| sc.point_1d(i)).collect();
+            for m in 0..=8u32 {
+                let mut seen = vec![false; 1 << m];
+                for &t in &ts[..1 << m] {
+                    let k = if m == 0 { 0 } else { (t >> (32 - m)) as usize };
+                    assert!(!std::mem::replace(&mut seen[k], true), "seed {seed} m {m}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn float_conversion_keeps_the_stratum() {
+        for x in [0u32, 1, 0x7fff_ffff, 0x8000_0000, u32::MAX, 0x1234_5678] {
+            let u = to_unit(x);
+            assert!((0.0..1.0).contains(&u));
+            assert_eq!((u * 256.0) as u32, x >> 24);
+            let v = to_unit_16(x);
+            assert!(v > 0.0 && v < 1.0);
+            assert_eq!((v * 256.0) as u32, x >> 24);
+        }
+    }
+}

@@ -1,0 +1,681 @@
+//! `cargo xtask study [--quick]`: regenerate every figure of docs/sampling.md into
+//! docs/study/ from scratch, and `docs/study/results.md` with the measured numbers.
+//!
+//! The computations live in `reyes_render::study` (tested there); this file only runs them
+//! at full size, times them and draws the PNGs with plotters. `--quick` uses small sizes
+//! (a smoke test of the whole pipeline, about a tenth of the time; its numbers are noisy).
+//!
+//! Text is drawn with a TrueType font read at run time: `$REYES_STUDY_FONT`, else DejaVu Sans
+//! from the usual system places (Debian: `apt-get install fonts-dejavu-core`).
+
+use std::error::Error;
+use std::fmt::Write as _;
+use std::path::Path;
+use std::time::Instant;
+
+use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
+use plotters::prelude::*;
+use plotters::style::{FontStyle, register_font};
+use reyes_hider::{Frame, Hider, HiderConfig, Pairing, ShutterShape};
+use reyes_render::study::{self, EdgeCase, EdgeStudy, Sampler, fit_slope};
+use reyes_render::{RenderOptions, render};
+
+type Res<T = ()> = Result<T, Box<dyn Error>>;
+type Area<'a> = DrawingArea<BitMapBackend<'a>, Shift>;
+
+const FONT: &str = "sans-serif";
+
+/// Colour of each sampler in every figure (Okabe-Ito palette).
+fn colour(s: Sampler) -> RGBColor {
+    match s {
+        Sampler::Regular => RGBColor(0, 0, 0),
+        Sampler::Random => RGBColor(150, 150, 150),
+        Sampler::Fig5 => RGBColor(230, 159, 0),
+        Sampler::Fig6 => RGBColor(0, 114, 178),
+        Sampler::Fig7 => RGBColor(0, 158, 115),
+        Sampler::Sobol => RGBColor(213, 94, 0),
+    }
+}
+
+fn load_font() -> Res {
+    let mut candidates: Vec<String> = std::env::var("REYES_STUDY_FONT").into_iter().collect();
+    candidates.extend(
+        [
+            "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
+            "/usr/share/fonts/TTF/DejaVuSans.ttf",
+            "/usr/share/fonts/dejavu/DejaVuSans.ttf",
+            "/usr/local/share/fonts/DejaVuSans.ttf",
+            "/Library/Fonts/Arial.ttf",
+            "C:\\Windows\\Fonts\\arial.ttf",
+        ]
+        .map(String::from),
+    );
+    for path in &candidates {
+        if let Ok(bytes) = std::fs::read(path) {
+            // plotters keeps fonts for the life of the program.
+            let bytes: &'static [u8] = Box::leak(bytes.into_boxed_slice());
+            register_font(FONT, FontStyle::Normal, bytes)
+                .map_err(|_| format!("{path}: not a usable TrueType font"))?;
+            return Ok(());
+        }
+    }
+    Err("no TrueType font found: set REYES_STUDY_FONT=/path/to/font.ttf \
+         (Debian: apt-get install fonts-dejavu-core)"
+        .into())
+}
+
+/// Full-size or quick settings.
+struct Sizes {
+    /// Edges per (case, sampler, sample count).
+    edges: usize,
+    /// Periodogram windows per sampler.
+    windows: u32,
+    /// Zone plate side.
+    zone: u32,
+}
+
+/// One edge case's RMSE per sampler, in the order of [`SIDES`].
+type CaseResults = (EdgeCase, Vec<(Sampler, Vec<f64>)>);
+
+/// Sample counts of the error curves: n x n per pixel.
+const SIDES: [u32; 5] = [1, 2, 4, 8, 16];
+
+pub fn run(root: &Path, args: &[String]) -> Res {
+    let quick = args.iter().any(|a| a == "--quick");
+    if let Some(a) = args.iter().find(|a| *a != "--quick") {
+        return Err(format!("unknown argument {a} (usage: cargo xtask study [--quick])").into());
+    }
+    let sizes = if quick {
+        Sizes { edges: 6, windows: 8, zone: 96 }
+    } else {
+        Sizes { edges: 64, windows: 64, zone: 192 }
+    };
+    load_font()?;
+    let out = root.join("docs/study");
+    std::fs::create_dir_all(&out)?;
+    let start = Instant::now();
+    let mut log = String::new();
+    let mut step = |name: &str, t: Instant| {
+        let line = format!("{name}: {:.1} s", t.elapsed().as_secs_f64());
+        println!("study: {line}");
+        log.push_str(&format!("| {name} | {:.1} |\n", t.elapsed().as_secs_f64()));
+    };
+
+    let t = Instant::now();
+    patterns(&out.join("patterns.png"))?;
+    step("sample patterns (patterns.png)", t);
+
+    let t = Instant::now();
+    time_figure(&out.join("time.png"))?;
+    step("time against position (time.png)", t);
+
+    let t = Instant::now();
+    periodograms(&out, sizes.windows)?;
+    step("periodograms (periodograms.png, periodogram-radial.png)", t);
+
+    let t = Instant::now();
+    picket_fence(root, &out.join("picket-fence.png"))?;
+    step("picket fence renders (picket-fence.png)", t);
+
+    let t = Instant::now();
+    zone_plates(&out.join("zone-plate.png"), sizes.zone)?;
+    step("zone plates (zone-plate.png)", t);
+
+    let t = Instant::now();
+    let study = EdgeStudy { edges: sizes.edges, ..EdgeStudy::default() };
+    let mut results = Vec::new();
+    for case in EdgeCase::ALL {
+        let tc = Instant::now();
+        let mut rows = Vec::new();
+        for sampler in Sampler::ALL {
+            let mut rmse = Vec::new();
+            for n in SIDES {
+                rmse.push(study.rmse(case, sampler, n)?);
+            }
+            rows.push((sampler, rmse));
+        }
+        println!("study:   {} ({:.1} s)", case.label(), tc.elapsed().as_secs_f64());
+        results.push((case, rows));
+    }
+    error_figure(&out.join("edge-errors.png"), &study, &results)?;
+    step("edge error curves (edge-errors.png)", t);
+
+    let total = start.elapsed().as_secs_f64();
+    let md = results_markdown(&study, &results, &log, total, quick);
+    std::fs::write(out.join("results.md"), &md)?;
+    println!("{md}");
+    println!("study: wrote {} in {total:.1} s", out.display());
+    Ok(())
+}
+
+fn samples_per_pixel() -> Vec<f64> {
+    SIDES.iter().map(|&n| (n * n) as f64).collect()
+}
+
+fn results_markdown(
+    study: &EdgeStudy,
+    results: &[CaseResults],
+    log: &str,
+    total: f64,
+    quick: bool,
+) -> String {
+    let spp = samples_per_pixel();
+    let mut md = String::from(
+        "# Sampling study: measured numbers\n\nGenerated by `cargo xtask study`; do not edit. \
+         See [../sampling.md](../sampling.md) for what they mean.\n\n",
+    );
+    if quick {
+        md.push_str("**Quick run (`--quick`): small sizes, noisy numbers.**\n\n");
+    }
+    let _ = writeln!(
+        md,
+        "Edge study: {} random edges per cell of each table, {} x {} images, motion {} px over \
+         the shutter, circle of confusion radius {} px; RMSE over every pixel the edge touches \
+         (analytic value strictly between 0 and 1).\n",
+        study.edges, study.image, study.image, study.motion_px, study.blur_px
+    );
+    md.push_str("## Fitted convergence slopes (log RMSE against log samples per pixel)\n\n");
+    md.push_str("| pattern |");
+    for (case, _) in results {
+        let _ = write!(md, " {} |", case.label());
+    }
+    md.push_str("\n|---|");
+    for _ in results {
+        md.push_str("---|");
+    }
+    md.push('\n');
+    for (i, sampler) in Sampler::ALL.iter().enumerate() {
+        let _ = write!(md, "| {} |", sampler.label());
+        for (_, rows) in results {
+            let _ = write!(md, " {:.2} |", fit_slope(&spp, &rows[i].1));
+        }
+        md.push('\n');
+    }
+    for (case, rows) in results {
+        let _ = writeln!(md, "\n## RMSE, {}\n", case.label());
+        md.push_str("| pattern |");
+        for s in &spp {
+            let _ = write!(md, " {s} spp |");
+        }
+        md.push_str("\n|---|");
+        for _ in &spp {
+            md.push_str("---|");
+        }
+        md.push('\n');
+        for (sampler, rmse) in rows {
+            let _ = write!(md, "| {} |", sampler.label());
+            for r in rmse {
+                let _ = write!(md, " {r:.5} |");
+            }
+            md.push('\n');
+        }
+    }
+    md.push_str("\n## Owen-Sobol against Appendix A's jitter (FIG. 6): RMSE ratio\n\n");
+    md.push_str("| case | 16 spp | 64 spp | 256 spp |\n|---|---|---|---|\n");
+    for (case, rows) in results {
+        let get = |s: Sampler| &rows.iter().find(|r| r.0 == s).expect("sampler").1;
+        let (sob, fig6) = (get(Sampler::Sobol), get(Sampler::Fig6));
+        let _ = writeln!(
+            md,
+            "| {} | {:.3} | {:.3} | {:.3} |",
+            case.label(),
+            sob[2] / fig6[2],
+            sob[3] / fig6[3],
+            sob[4] / fig6[4]
+        );
+    }
+    md.push_str("\n## Wall time (2 cores)\n\n| step | seconds |\n|---|---|\n");
+    md.push_str(log);
+    let _ = writeln!(md, "| **total** | **{total:.1}** |");
+    md
+}
+
+/// `v` with two significant digits.
+fn significant(v: f64) -> String {
+    let digits = (1 - v.abs().log10().floor() as i32).max(0) as usize;
+    format!("{v:.digits$}")
+}
+
+/// Grey level in [0, 1] (linear) as an sRGB colour.
+fn grey(v: f32) -> RGBColor {
+    let g = (reyes_film::srgb_encode(v.clamp(0.0, 1.0)) * 255.0).round() as u8;
+    RGBColor(g, g, g)
+}
+
+/// A perceptual colour map (viridis, by linear interpolation of 6 stops) for `u` in [0, 1].
+fn viridis(u: f64) -> RGBColor {
+    const STOPS: [(f64, f64, f64); 6] = [
+        (68.0, 1.0, 84.0),
+        (65.0, 68.0, 135.0),
+        (42.0, 120.0, 142.0),
+        (34.0, 168.0, 132.0),
+        (122.0, 209.0, 81.0),
+        (253.0, 231.0, 37.0),
+    ];
+    let x = u.clamp(0.0, 1.0) * 5.0;
+    let i = (x.floor() as usize).min(4);
+    let f = x - i as f64;
+    let (a, b) = (STOPS[i], STOPS[i + 1]);
+    let l = |p: f64, q: f64| (p + (q - p) * f).round() as u8;
+    RGBColor(l(a.0, b.0), l(a.1, b.1), l(a.2, b.2))
+}
+
+/// Pixel and stratum grid lines on a chart over `[0, px] x [0, px]`.
+fn grid(
+    chart: &mut ChartContext<'_, BitMapBackend<'_>, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    px: u32,
+    strata: u32,
+) -> Res {
+    let fine = px * strata;
+    for i in 0..=fine {
+        let v = i as f64 / strata as f64;
+        let style = if i % strata == 0 {
+            ShapeStyle::from(&BLACK).stroke_width(2)
+        } else {
+            ShapeStyle::from(&RGBColor(200, 200, 200)).stroke_width(1)
+        };
+        chart.draw_series(std::iter::once(PathElement::new(
+            vec![(v, 0.0), (v, px as f64)],
+            style,
+        )))?;
+        chart.draw_series(std::iter::once(PathElement::new(
+            vec![(0.0, v), (px as f64, v)],
+            style,
+        )))?;
+    }
+    Ok(())
+}
+
+/// FIGS. 3, 5, 6, 7, random and Owen-Sobol: 3 x 3 pixels of 4 x 4 samples each.
+fn patterns(path: &Path) -> Res {
+    let root = BitMapBackend::new(path, (1200, 860)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let root = root.titled(
+        "Sample positions, 4 x 4 samples per pixel over 3 x 3 pixels (thick: pixels; thin: strata)",
+        (FONT, 22),
+    )?;
+    for (panel, sampler) in root.split_evenly((2, 3)).iter().zip(Sampler::ALL) {
+        let pts = study::samples(sampler, 4, 4, 3, 3, 7, Pairing::Decorrelated);
+        let mut chart = ChartBuilder::on(panel)
+            .caption(sampler.label(), (FONT, 20))
+            .margin(12)
+            .build_cartesian_2d(0.0..3.0, 3.0..0.0)?;
+        grid(&mut chart, 3, 4)?;
+        chart.draw_series(
+            pts.iter().map(|s| Circle::new((s.x as f64, s.y as f64), 4, colour(sampler).filled())),
+        )?;
+    }
+    root.present()?;
+    Ok(())
+}
+
+/// FIG. 12 and FIGS. 13-16: the time of each sample against its position.
+fn time_figure(path: &Path) -> Res {
+    let root = BitMapBackend::new(path, (1200, 1180)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let root = root.titled(
+        "Time against position (FIG. 12) and the shutter's time density (FIGS. 13-16)",
+        (FONT, 22),
+    )?;
+    let rows = root.split_evenly((3, 1));
+    let cases = [
+        (Sampler::Fig6, Pairing::Original, "App. A: sample s in time stratum s"),
+        (Sampler::Fig6, Pairing::Decorrelated, "FIG. 6, decorrelated pairing"),
+        (Sampler::Sobol, Pairing::Decorrelated, "Owen-Sobol, scrambled time"),
+    ];
+    // Row 1: 2 x 2 pixels of 4 x 4 samples, coloured by time (dark: opening, yellow: closing).
+    for (panel, (sampler, pairing, label)) in rows[0].split_evenly((1, 3)).iter().zip(cases) {
+        let pts = study::samples(sampler, 4, 4, 2, 2, 3, pairing);
+        let mut chart = ChartBuilder::on(panel)
+            .caption(format!("{label}: colour = time"), (FONT, 16))
+            .margin(10)
+            .build_cartesian_2d(0.0..2.0, 2.0..0.0)?;
+        grid(&mut chart, 2, 4)?;
+        chart.draw_series(
+            pts.iter()
+                .map(|s| Circle::new((s.x as f64, s.y as f64), 6, viridis(s.t as f64).filled())),
+        )?;
+    }
+    // Row 2: time against sub-pixel y over 32 x 32 pixels.
+    for (panel, (sampler, pairing, label)) in rows[1].split_evenly((1, 3)).iter().zip(cases) {
+        let pts = study::samples(sampler, 4, 4, 32, 32, 3, pairing);
+        let mut chart = ChartBuilder::on(panel)
+            .caption(format!("{label}: t against sub-pixel y"), (FONT, 16))
+            .margin(10)
+            .x_label_area_size(35)
+            .y_label_area_size(40)
+            .build_cartesian_2d(0.0..1.0, 0.0..1.0)?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .x_desc("sub-pixel y")
+            .y_desc("time")
+            .label_style((FONT, 13))
+            .draw()?;
+        chart.draw_series(pts.iter().map(|s| {
+            Circle::new(
+                ((s.y - s.y.floor()) as f64, s.t as f64),
+                1,
+                colour(sampler).mix(0.5).filled(),
+            )
+        }))?;
+    }
+    // Row 3: one pixel's sample times per stratum (FIG. 13/14) and the time histograms of
+    // the uniform (FIGS. 13-15) and gradual (FIG. 16) shutters.
+    let panels = rows[2].split_evenly((1, 3));
+    {
+        let pts = study::samples(Sampler::Fig6, 2, 2, 8, 1, 5, Pairing::Decorrelated);
+        let mut chart = ChartBuilder::on(&panels[0])
+            .caption("FIGS. 13/14: 4 samples, one per quarter of the shutter", (FONT, 16))
+            .margin(10)
+            .x_label_area_size(35)
+            .y_label_area_size(40)
+            .build_cartesian_2d(0.0..1.0, -0.5..7.5)?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .x_desc("time")
+            .y_desc("pixel")
+            .label_style((FONT, 13))
+            .draw()?;
+        for q in 0..=4 {
+            let v = q as f64 / 4.0;
+            chart.draw_series(std::iter::once(PathElement::new(
+                vec![(v, -0.5), (v, 7.5)],
+                RGBColor(190, 190, 190),
+            )))?;
+        }
+        chart.draw_series(pts.chunks(4).enumerate().flat_map(|(p, px)| {
+            px.iter().map(move |s| {
+                Circle::new((s.t as f64, p as f64), 4, colour(Sampler::Fig6).filled())
+            })
+        }))?;
+    }
+    for (panel, shape, label) in [
+        (&panels[1], ShutterShape::Uniform, "uniform shutter (FIGS. 13-15): times"),
+        (&panels[2], ShutterShape::Gradual { ramp: 0.3 }, "gradual shutter (FIG. 16): times"),
+    ] {
+        let cfg = HiderConfig { shutter: shape, ..HiderConfig::default() };
+        let frame = Frame::new(64, 64, 0, 16, 16);
+        let hider = Hider::new(cfg, frame);
+        let bins = 40;
+        let mut hist = vec![0usize; bins];
+        let mut n = 0;
+        for b in 0..frame.bucket_count() {
+            for &t in &hider.bucket_samples(b).t {
+                hist[((t * bins as f32) as usize).min(bins - 1)] += 1;
+                n += 1;
+            }
+        }
+        let mut chart = ChartBuilder::on(panel)
+            .caption(label, (FONT, 16))
+            .margin(10)
+            .x_label_area_size(35)
+            .y_label_area_size(40)
+            .build_cartesian_2d(0.0..1.0, 0.0..1.6)?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .x_desc("time")
+            .y_desc("density")
+            .label_style((FONT, 13))
+            .draw()?;
+        chart.draw_series(hist.iter().enumerate().map(|(i, &c)| {
+            let d = c as f64 * bins as f64 / n as f64;
+            Rectangle::new(
+                [(i as f64 / bins as f64, 0.0), ((i + 1) as f64 / bins as f64, d)],
+                colour(Sampler::Fig6).mix(0.5).filled(),
+            )
+        }))?;
+        chart.draw_series(LineSeries::new(
+            (0..=200).map(|i| {
+                let t = i as f32 / 200.0;
+                (t as f64, shape.density(t) as f64)
+            }),
+            BLACK.stroke_width(2),
+        ))?;
+    }
+    root.present()?;
+    Ok(())
+}
+
+/// Periodograms of every pattern (FIGS. 10, 11): 2-D maps and radial averages.
+fn periodograms(out: &Path, windows: u32) -> Res {
+    let (half, step) = (64usize, 0.125);
+    let spectra: Vec<(Sampler, study::Spectrum)> = Sampler::ALL
+        .iter()
+        .map(|&s| (s, study::mean_periodogram(s, 4, 8, windows, half, step, 11)))
+        .collect();
+    let path = out.join("periodograms.png");
+    let root = BitMapBackend::new(&path, (1200, 880)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let root = root.titled(
+        &format!(
+            "Periodograms, 4 x 4 samples per pixel, mean of {windows} windows of 8 x 8 pixels \
+             (log scale: white noise = middle colour)"
+        ),
+        (FONT, 20),
+    )?;
+    let kmax = half as f64 * step;
+    for (panel, (sampler, spec)) in root.split_evenly((2, 3)).iter().zip(&spectra) {
+        let mut chart = ChartBuilder::on(panel)
+            .caption(sampler.label(), (FONT, 18))
+            .margin(8)
+            .x_label_area_size(30)
+            .y_label_area_size(35)
+            .build_cartesian_2d(-kmax..kmax, -kmax..kmax)?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .x_desc("cycles per pixel")
+            .label_style((FONT, 12))
+            .draw()?;
+        let side = spec.side();
+        chart.draw_series((0..side * side).map(|k| {
+            let (i, j) = (k % side, k / side);
+            let (fx, fy) = ((i as f64 - half as f64) * step, (j as f64 - half as f64) * step);
+            // log10 power from -2 (dark) to +2 (yellow); white noise (power 1) in the middle.
+            let u = (spec.power[k].max(1e-12).log10() + 2.0) / 4.0;
+            Rectangle::new(
+                [(fx - step / 2.0, fy - step / 2.0), (fx + step / 2.0, fy + step / 2.0)],
+                viridis(u).filled(),
+            )
+        }))?;
+    }
+    root.present()?;
+
+    let path = out.join("periodogram-radial.png");
+    let root = BitMapBackend::new(&path, (1000, 600)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(
+            "Radially averaged periodogram, 4 x 4 samples per pixel (regular and FIG. 5: spikes only, see the maps)",
+            (FONT, 18),
+        )
+        .margin(15)
+        .x_label_area_size(45)
+        .y_label_area_size(60)
+        .build_cartesian_2d(0.0..kmax, (1e-3..1e1).log_scale())?;
+    chart
+        .configure_mesh()
+        .x_desc("frequency, cycles per pixel (sampling rate: 4)")
+        .y_desc("power (1 = white noise)")
+        .y_label_formatter(&|v| format!("{v}"))
+        .light_line_style(RGBColor(240, 240, 240))
+        .label_style((FONT, 15))
+        .draw()?;
+    // The regular grid and FIG. 5 are pure spikes (power zero between them): see the maps.
+    for (sampler, spec) in
+        spectra.iter().filter(|(s, _)| !matches!(s, Sampler::Regular | Sampler::Fig5))
+    {
+        let c = colour(*sampler);
+        chart
+            .draw_series(LineSeries::new(
+                spec.radial().into_iter().map(|(k, p)| (k, p.max(1e-3))),
+                c.stroke_width(2),
+            ))?
+            .label(sampler.label())
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2)));
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::LowerRight)
+        .label_font((FONT, 15))
+        .background_style(WHITE.mix(0.9))
+        .border_style(BLACK)
+        .draw()?;
+    root.present()?;
+    Ok(())
+}
+
+/// Draw a grey image (linear values) scaled by `scale` into `area`, at (x0, y0).
+fn draw_image(area: &Area, img: &[f32], w: u32, scale: u32, at: (i32, i32)) -> Res {
+    let h = img.len() as u32 / w;
+    for y in 0..h * scale {
+        for x in 0..w * scale {
+            let v = img[((y / scale) * w + x / scale) as usize];
+            area.draw_pixel((at.0 + x as i32, at.1 + y as i32), &grey(v))?;
+        }
+    }
+    Ok(())
+}
+
+/// The picket fence (patent FIGS. 8 and 9) rendered with the regular grid, FIG. 6 jitter and
+/// Owen-Sobol.
+fn picket_fence(root_dir: &Path, path: &Path) -> Res {
+    let regular = reyes_scene::load(&root_dir.join("scenes/picket-fence.ron"))?;
+    let jittered = reyes_scene::load(&root_dir.join("scenes/picket-fence-jittered.ron"))?;
+    let mut sobol = jittered.clone();
+    sobol.hider.pattern = reyes_scene::SpatialPattern::Sobol;
+    let mut random = jittered.clone();
+    random.hider.pattern = reyes_scene::SpatialPattern::Random;
+    let panels = [
+        ("picket-fence.ron: regular grid (FIG. 3 sampling; patent FIG. 8)", regular),
+        ("picket-fence-jittered.ron: FIG. 6 jitter (patent FIG. 9)", jittered),
+        ("the same, pure random", random),
+        ("the same, Owen-Sobol (0,2)", sobol),
+    ];
+    let (w, h) = (panels[0].1.image.width, panels[0].1.image.height);
+    let scale = 2;
+    let (cw, ch) = (w * scale + 20, h * scale + 34);
+    let root = BitMapBackend::new(path, (2 * cw + 20, 2 * ch + 40)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let root = root.titled(
+        "Picket fence, 2 x 2 samples per pixel, one-pixel box filter (shown at 2x)",
+        (FONT, 20),
+    )?;
+    for (i, (label, scene)) in panels.iter().enumerate() {
+        let film = render(scene, &RenderOptions::default())?.film;
+        let img: Vec<f32> = film.rgba().iter().map(|p| p[0]).collect();
+        let (x0, y0) = (20 + (i as i32 % 2) * cw as i32, (i as i32 / 2) * ch as i32);
+        root.draw_text(label, &(FONT, 16).into_text_style(&root), (x0, y0 + 4))?;
+        draw_image(&root, &img, w, scale, (x0, y0 + 28))?;
+    }
+    root.present()?;
+    Ok(())
+}
+
+/// The zone plate point-sampled through every pattern at 1 and 2 x 2 samples per pixel.
+fn zone_plates(path: &Path, size: u32) -> Res {
+    let f = 1.5;
+    let reference = study::zone_plate_reference(size, f);
+    let cols = 1 + Sampler::ALL.len() as u32;
+    let (cw, ch) = (size + 12, size + 28);
+    let root = BitMapBackend::new(path, (cols * cw + 12, 2 * ch + 36)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let root = root.titled(
+        &format!(
+            "Zone plate point-sampled through each pattern, one-pixel box filter; frequency 0 at \
+             the centre, {f} cycles/pixel at the sides' midpoints. Top: 1 sample per pixel; \
+             bottom: 2 x 2."
+        ),
+        (FONT, 16),
+    )?;
+    for (row, n) in [1u32, 2].into_iter().enumerate() {
+        let mut images = vec![("box-filtered truth".to_string(), reference.clone())];
+        for s in Sampler::ALL {
+            images.push((s.label().to_string(), study::zone_plate(s, n, size, f, 3)));
+        }
+        for (i, (label, img)) in images.iter().enumerate() {
+            let (x0, y0) = (12 + i as i32 * cw as i32, row as i32 * ch as i32);
+            root.draw_text(label, &(FONT, 13).into_text_style(&root), (x0, y0 + 4))?;
+            draw_image(&root, img, size, 1, (x0, y0 + 22))?;
+        }
+    }
+    root.present()?;
+    Ok(())
+}
+
+/// RMSE against samples per pixel, log-log, one panel per edge case. The axes are linear in
+/// log10 of the values (labelled with the values), so the grid and labels stay plain.
+fn error_figure(path: &Path, study: &EdgeStudy, results: &[CaseResults]) -> Res {
+    let spp = samples_per_pixel();
+    let lspp: Vec<f64> = spp.iter().map(|s| s.log10()).collect();
+    let root = BitMapBackend::new(path, (1400, 1160)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let root = root.titled(
+        &format!(
+            "RMSE of edge pixels against analytic truth, {} random edges per point \
+             (legend: fitted slope; dashed: slopes -0.5 and -0.75)",
+            study.edges
+        ),
+        (FONT, 18),
+    )?;
+    for (panel, (case, rows)) in root.split_evenly((2, 2)).iter().zip(results) {
+        let all = rows.iter().flat_map(|r| r.1.iter()).cloned();
+        let lo = all.clone().fold(f64::INFINITY, f64::min).log10() - 0.15;
+        let hi = all.fold(0.0, f64::max).log10() + 0.15;
+        let mut chart = ChartBuilder::on(panel)
+            .caption(case.label(), (FONT, 20))
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(60)
+            .build_cartesian_2d(-0.1..2.5, lo..hi)?;
+        chart
+            .configure_mesh()
+            .x_desc("samples per pixel")
+            .y_desc("RMSE")
+            .x_label_formatter(&|v| format!("{:.0}", 10f64.powf(*v)))
+            .y_label_formatter(&|v| significant(10f64.powf(*v)))
+            .light_line_style(WHITE)
+            .bold_line_style(RGBColor(225, 225, 225))
+            .label_style((FONT, 14))
+            .draw()?;
+        // Reference slopes through the random and FIG. 6 curves at 16 samples per pixel.
+        let get = |s: Sampler| &rows.iter().find(|r| r.0 == s).expect("sampler").1;
+        for (slope, at) in
+            [(-0.5, get(Sampler::Random)[2] * 1.3), (-0.75, get(Sampler::Fig6)[2] / 1.3)]
+        {
+            let line = lspp.iter().map(|&x| (x, at.log10() + slope * (x - 16f64.log10())));
+            chart.draw_series(DashedLineSeries::new(
+                line.filter(|p| p.1 >= lo && p.1 <= hi),
+                6,
+                4,
+                RGBColor(120, 120, 120).into(),
+            ))?;
+        }
+        for (sampler, rmse) in rows {
+            let c = colour(*sampler);
+            let slope = fit_slope(&spp, rmse);
+            let pts: Vec<(f64, f64)> =
+                lspp.iter().zip(rmse).map(|(&x, r)| (x, r.log10())).collect();
+            chart
+                .draw_series(LineSeries::new(pts.clone(), c.stroke_width(2)))?
+                .label(format!("{} ({slope:+.2})", sampler.label()))
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2))
+                });
+            chart.draw_series(pts.iter().map(|&p| Circle::new(p, 4, c.filled())))?;
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::LowerLeft)
+            .label_font((FONT, 14))
+            .background_style(WHITE.mix(0.9))
+            .border_style(BLACK)
+            .draw()?;
+    }
+    root.present()?;
+    Ok(())
+}
