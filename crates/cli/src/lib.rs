@@ -99,7 +99,11 @@ pub fn hider_config(scene: &Scene, camera: &CameraSetup) -> HiderConfig {
         original_jitter_tables: h.original.jitter_tables,
         original_moving_clip: h.original.moving_clip,
         matte: if h.original.matte { MatteRule::Original } else { MatteRule::Holdout },
-        csg_order: reyes_hider::CsgOrder::Exact,
+        csg_order: if h.original.csg_order {
+            reyes_hider::CsgOrder::Original
+        } else {
+            reyes_hider::CsgOrder::Exact
+        },
         scan_all: false,
     }
 }
@@ -124,7 +128,7 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<Rendered, RenderErr
     let diced = dice_scene(scene, &frame).map_err(RenderError::Dice)?;
     let t_dice = t0.elapsed();
 
-    let hider = Hider::new(config, frame);
+    let hider = Hider::new(config, frame).with_csg(diced.csg_trees.clone());
     let f = &scene.hider.filter;
     let table = FilterTable::new(
         f.kind,

@@ -144,6 +144,12 @@ impl fmt::Display for RenderStats {
         )?;
         writeln!(
             f,
+            " Hider time (summed over threads): sampling {:.3} s, resolving visible points (CSG, compositing) {:.3} s",
+            self.hider.sample_ns as f64 * 1e-9,
+            self.hider.resolve_ns as f64 * 1e-9
+        )?;
+        writeln!(
+            f,
             " Sample tests per second (bucket loop, all threads): {:.1} million",
             tests as f64 / self.t_hide.as_secs_f64().max(1e-9) / 1e6
         )?;

@@ -217,6 +217,7 @@ fn stats_counts() {
             !l.starts_with(" Time")
                 && !l.starts_with(" Sample tests per second")
                 && !l.starts_with(" Memory")
+                && !l.starts_with(" Hider time")
         })
         .map(|l| format!("{l}\n"))
         .collect();

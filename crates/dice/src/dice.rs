@@ -28,7 +28,7 @@ use crate::split::Patch;
 /// Largest number of micropolygons: bucket lists index them with `u32`.
 pub(crate) const MAX_MICROPOLYGONS: usize = u32::MAX as usize;
 
-/// One object's shading and flag bits.
+/// One object's shading, flag bits and labels.
 #[derive(Debug, Clone)]
 pub(crate) struct ObjectContext {
     /// Object to world at shutter open, for normals (inverse transpose up to a positive
@@ -36,8 +36,21 @@ pub(crate) struct ObjectContext {
     pub normal_to_world: Mat3,
     /// Shader of the object's material.
     pub shader: Shader,
-    /// Flag bits every micropolygon of the object carries (`OPAQUE`, `MATTE`).
+    /// Labels every micropolygon of the object carries.
+    pub labels: Labels,
+}
+
+/// What every micropolygon of one object carries besides its geometry and colour.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Labels {
+    /// Flag bits (`OPAQUE`, `MATTE`, `GOURAUD`, `GLASS`).
     pub flags: u32,
+    /// CSG tree index and slot id (0, 0 when the object is not a CSG operand).
+    pub csg_tree: u16,
+    /// See `csg_tree`.
+    pub csg_node: u16,
+    /// Appendix A `glasshackopacity` (0 unless `GLASS`).
+    pub glass_opacity: f32,
 }
 
 /// One grid vertex at shutter open: position, and the shading used at every time.
@@ -49,13 +62,13 @@ struct GridVertex {
     trans: [f32; 3],
 }
 
-/// A micropolygon's colours and flags, the same in every segment.
+/// A micropolygon's colours, flags and labels, the same in every segment.
 #[derive(Debug, Clone, Copy)]
 struct Shade {
     color: [[f32; 3]; 4],
     trans: [[f32; 3]; 4],
-    /// The object's flag bits.
-    flags: u32,
+    /// The object's flag bits and labels.
+    labels: Labels,
 }
 
 /// A micropolygon's vertices at one time: raster x, raster y, eye z (x and y NaN where z is
@@ -138,7 +151,13 @@ impl Emitter {
                 for i in 0..=nu {
                     let u = Patch::at(patch.u, i, nu);
                     if b == 0 {
-                        // Shutter open: shade here (REYES shades once, before motion).
+                        // Shutter open: shade here (REYES shades once, before motion). The
+                        // shader face-forwards the normal toward the eye (two-sided), which is
+                        // what CSG needs: where a difference A - B shows B's surface through
+                        // a hole in A, the eye sees B from B's inside, i.e. the outside of
+                        // the result, whose outward normal there is B's inward one. The
+                        // geometric (outward) normal itself is not stored: the orientation
+                        // survives only in the vertex winding.
                         let sp = pose.surface.eval(u, v);
                         let (p_world, p_camera) = pose.moment.world_and_camera(sp.p);
                         let n_world = object.normal_to_world * sp.n;
@@ -162,7 +181,7 @@ impl Emitter {
                 let shade = Shade {
                     color: corners.map(|c| grid[c].color),
                     trans: corners.map(|c| grid[c].trans),
-                    flags: object.flags,
+                    labels: object.labels,
                 };
                 let emitted =
                     if poses.len() == 1 {
@@ -242,7 +261,7 @@ impl Emitter {
             return Ok(());
         }
         let crossing = zmin < self.hither || zmax > self.yon;
-        let mut flags = shade.flags;
+        let mut flags = shade.labels.flags;
         if crossing {
             flags |= flags::HITHER_YON_CROSSING;
         }
@@ -262,9 +281,9 @@ impl Emitter {
             color: shade.color,
             trans: shade.trans,
             flags,
-            csg_tree: 0,
-            csg_node: 0,
-            glass_opacity: 0.0,
+            csg_tree: shade.labels.csg_tree,
+            csg_node: shade.labels.csg_node,
+            glass_opacity: shade.labels.glass_opacity,
             time,
         };
         let Some(range) = self.bucketer.range(&mp) else {
@@ -287,12 +306,14 @@ impl Emitter {
 }
 
 /// Per-object setup: shading (seen from `eye_world`, with the object placed by `open`, its
-/// placement at shutter open) and flags.
+/// placement at shutter open), flags, and the CSG label `csg` (`(tree index, slot id)` of
+/// a CSG operand, from [`crate::CsgSetup::leaf`]).
 pub(crate) fn object_context(
     object: &reyes_scene::Object,
     lights: &[reyes_scene::Light],
     eye_world: Vec3,
     open: &Placement,
+    csg: Option<(u16, u16)>,
 ) -> ObjectContext {
     let shader = Shader::new(&object.material, lights, eye_world);
     let mut flags = 0;
@@ -302,5 +323,15 @@ pub(crate) fn object_context(
     if object.matte {
         flags |= flags::MATTE;
     }
-    ObjectContext { normal_to_world: open.normal_to_world(), shader, flags }
+    if object.interpolation == reyes_scene::Interpolation::Gouraud {
+        flags |= flags::GOURAUD;
+    }
+    let mut glass_opacity = 0.0;
+    if let Some(a) = object.glass {
+        flags |= flags::GLASS;
+        glass_opacity = a;
+    }
+    let (csg_tree, csg_node) = csg.unwrap_or((0, 0));
+    let labels = Labels { flags, csg_tree, csg_node, glass_opacity };
+    ObjectContext { normal_to_world: open.normal_to_world(), shader, labels }
 }

@@ -51,6 +51,15 @@
 //! ends, nor all beyond yon at both ends, which are dropped) is flagged
 //! `HITHER_YON_CROSSING` for per-sample clipping in the hider.
 //!
+//! Labels: every micropolygon carries its object's flags (`OPAQUE`, `MATTE`, `GOURAUD` for
+//! `interpolation: Gouraud`, `GLASS` with `glass_opacity = a` for `glass: Some(a)`) and CSG
+//! label: an object that is an operand of a solid has `(csg_tree, csg_node)` = its
+//! `(tree index, slot id)` in [`CsgSetup`] (whose trees are [`Diced::csg_trees`]), every
+//! other object `(0, 0)`. A CSG operand must be a closed solid, so cylinders, cones and
+//! paraboloids used as operands are diced with their end caps as extra surfaces of the same
+//! object (same placement, motion, material and labels), each facing out of the solid; an
+//! object in no solid is diced exactly as without CSG.
+//!
 //! Bucketing: `buckets[b]` lists, in increasing order, every micropolygon whose screen bound
 //! over its segment ([`screen_bound`]: the vertices at both ends, grown by the lens) touches
 //! bucket `b` ([`reyes_hider::Frame::buckets_touched`]).
@@ -59,6 +68,7 @@
 
 mod bucket;
 mod camera;
+mod csg;
 mod dice;
 mod motion;
 mod shade;
@@ -68,9 +78,10 @@ mod xform;
 
 pub use bucket::screen_bound;
 pub use camera::CameraSetup;
+pub use csg::CsgSetup;
 pub use xform::{object_to_world, transform_matrix};
 
-use reyes_hider::{Frame, Micropolygon};
+use reyes_hider::{CsgTree, Frame, Micropolygon};
 use reyes_scene::Scene;
 
 use crate::bucket::Bucketer;
@@ -85,6 +96,9 @@ pub struct Diced {
     pub mpolys: Vec<Micropolygon>,
     /// One list per bucket (raster order of buckets): increasing indices into `mpolys`.
     pub buckets: Vec<Vec<u32>>,
+    /// The CSG tree of every solid ([`CsgSetup::trees`]); a micropolygon with
+    /// `csg_node != 0` belongs to `csg_trees[csg_tree]`.
+    pub csg_trees: Vec<CsgTree>,
     /// Counts.
     pub stats: DiceStats,
 }
@@ -93,7 +107,8 @@ pub struct Diced {
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct DiceStats {
     /// Surfaces entering bound/split/dice: one per quadric or patch, one per mesh face
-    /// (one per fan triangle for faces of more than four vertices).
+    /// (one per fan triangle for faces of more than four vertices), one per end cap of a
+    /// CSG operand.
     pub primitives: u64,
     /// Patches split in two (for any reason).
     pub splits: u64,
@@ -193,12 +208,16 @@ pub fn dice_scene(scene: &Scene, frame: &Frame) -> Result<Diced, DiceError> {
     let mut out = Emitter::new(bucketer, camera.hither(), camera.yon(), splitter.near());
     let mut stats = DiceStats::default();
     let mut stack = Vec::new();
-    for object in &scene.objects {
-        let motion = ObjectMotion::new(object, &camera_motion, &shutter);
+    let csg = CsgSetup::new(scene);
+    for (i, object) in scene.objects.iter().enumerate() {
+        let leaf = csg.leaf.get(i).copied().flatten();
+        // A CSG operand must be a closed solid: it gets its end caps.
+        let motion = ObjectMotion::new(object, &camera_motion, &shutter, leaf.is_some());
         let Some(open) = motion.moments().first() else {
             continue;
         };
-        let ctx = dice::object_context(object, &scene.lights, camera.eye_world(), &open.place);
+        let ctx =
+            dice::object_context(object, &scene.lights, camera.eye_world(), &open.place, leaf);
         for index in 0..motion.surface_count() {
             let poses = motion.poses(index);
             stats.primitives += 1;
@@ -229,7 +248,7 @@ pub fn dice_scene(scene: &Scene, frame: &Frame) -> Result<Diced, DiceError> {
     stats.crossing = out.crossing;
     stats.moving = out.moving;
     stats.bucket_entries = out.bucketer.entries;
-    Ok(Diced { mpolys: out.mpolys, buckets: out.bucketer.buckets, stats })
+    Ok(Diced { mpolys: out.mpolys, buckets: out.bucketer.buckets, csg_trees: csg.trees, stats })
 }
 
 #[cfg(test)]

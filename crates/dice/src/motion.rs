@@ -241,8 +241,15 @@ pub(crate) struct ObjectMotion {
 }
 
 impl ObjectMotion {
-    /// The motion of `object` seen by `camera`, with the scene's `shutter`.
-    pub fn new(object: &Object, camera: &CameraMotion, shutter: &ShutterTime) -> ObjectMotion {
+    /// The motion of `object` seen by `camera`, with the scene's `shutter`. With `closed`
+    /// (the object is a CSG operand) every surface set ends with the shape's end caps
+    /// ([`shapes::end_caps`]), which move with the object.
+    pub fn new(
+        object: &Object,
+        camera: &CameraMotion,
+        shutter: &ShutterTime,
+        closed: bool,
+    ) -> ObjectMotion {
         let xform_times: Vec<f32> =
             object.motion.iter().map(|k| shutter.normalise(k.time)).collect();
         let xforms: Vec<Mat4> =
@@ -282,10 +289,15 @@ impl ObjectMotion {
             times.dedup();
         }
 
+        let caps = if closed { shapes::end_caps(&object.shape) } else { Vec::new() };
+        let with_caps = |mut set: Vec<Surface>| {
+            set.extend(caps.iter().cloned());
+            set
+        };
         let deforming = !deform_points.is_empty();
         let mut shapes = Vec::with_capacity(if deforming { times.len() } else { 1 });
         if !deforming {
-            shapes.push(shapes::surfaces(object));
+            shapes.push(with_caps(shapes::surfaces(object)));
         }
         let mut moments = Vec::with_capacity(times.len());
         for (b, &t) in times.iter().enumerate() {
@@ -308,7 +320,8 @@ impl ObjectMotion {
                         .map(|(a, b)| lerp(*a, *b, f))
                         .collect(),
                 };
-                shapes.push(shapes::shape_surfaces(&object.shape, Some(&points_object)));
+                let set = shapes::shape_surfaces(&object.shape, Some(&points_object));
+                shapes.push(with_caps(set));
             }
             let shape = if deforming { b } else { 0 };
             moments.push(Moment::new(t, place, camera.world_to_camera(t), shape));

@@ -7,6 +7,16 @@
 //! A deforming shape (bilinear patch or mesh) gives, for every set of control points with
 //! the shape's point count, surfaces in the same order and number, so surface `i` at one
 //! time and surface `i` at another are the same piece of the object.
+//!
+//! The parametric orientation agrees with the normal: `dP/du x dP/dv` points the same way
+//! as `eval`'s `n` wherever it is not degenerate, for every surface but the side of a cone
+//! of negative height (which winds inward; its `n` is flipped outward, and it is left so,
+//! since changing it would change how existing scenes dice). The dicer emits micropolygon
+//! vertices in the order (u, v), (u+, v), (u+, v+), (u, v+), so a micropolygon's vector
+//! area `(v2 - v0) x (v3 - v1) / 2` points along `dP/du x dP/dv`.
+//!
+//! CSG operands must be closed solids: [`end_caps`] gives the disks that close cylinders,
+//! cones and paraboloids, each facing out of the solid.
 
 use glam::Vec3;
 use reyes_scene::{Object, Shape};
@@ -54,8 +64,12 @@ pub(crate) enum Surface {
     Cylinder { radius: f32, zmin: f32, zmax: f32, theta_max: f32 },
     /// Cone from the base circle (z = 0) to the apex (z = height).
     Cone { height: f32, radius: f32, theta_max: f32 },
-    /// Disk (annulus-free) in the plane z = height.
-    Disk { height: f32, radius: f32, theta_max: f32 },
+    /// Paraboloid `r = rmax * sqrt(z / zmax)`, `v` running over `zmin..zmax`.
+    Paraboloid { rmax: f32, zmin: f32, zmax: f32, theta_max: f32 },
+    /// Disk (annulus-free) in the plane z = height, facing +z, or -z when `flip`. The flipped
+    /// disk runs `v` the other way (`r = radius v`), so that its parametric orientation
+    /// `dP/du x dP/dv` is -z too.
+    Disk { height: f32, radius: f32, theta_max: f32, flip: bool },
     /// Torus; `v` runs over the tube angle `phi_min..phi_max`.
     Torus { major: f32, minor: f32, phi_min: f32, phi_max: f32, theta_max: f32 },
     /// Bilinear patch (also every mesh face).
@@ -87,9 +101,15 @@ impl Surface {
                 let r = radius * (1.0 - v);
                 Vec3::new(r * ct, r * st, v * height)
             }
-            Surface::Disk { height, radius, theta_max } => {
+            Surface::Paraboloid { rmax, zmin, zmax, theta_max } => {
                 let (st, ct) = (u * theta_max).sin_cos();
-                let r = radius * (1.0 - v);
+                let z = zmin + v * (zmax - zmin);
+                let r = rmax * (z / zmax).max(0.0).sqrt();
+                Vec3::new(r * ct, r * st, z)
+            }
+            Surface::Disk { height, radius, theta_max, flip } => {
+                let (st, ct) = (u * theta_max).sin_cos();
+                let r = if *flip { radius * v } else { radius * (1.0 - v) };
                 Vec3::new(r * ct, r * st, *height)
             }
             Surface::Torus { major, minor, phi_min, phi_max, theta_max } => {
@@ -122,7 +142,13 @@ impl Surface {
                 let n = Vec3::new(s * height * ct, s * height * st, s * radius);
                 (n.try_normalize().unwrap_or(Vec3::Z), white)
             }
-            Surface::Disk { .. } => (Vec3::Z, white),
+            Surface::Paraboloid { rmax, zmax, .. } => {
+                // Gradient of x^2 + y^2 - (rmax^2 / zmax) z: away from the axis and down,
+                // out of the solid bowl; (0, 0, -1) at the apex.
+                let n = Vec3::new(2.0 * p.x, 2.0 * p.y, -rmax * rmax / zmax);
+                (n.try_normalize().unwrap_or(-Vec3::Z), white)
+            }
+            Surface::Disk { flip, .. } => (if *flip { Vec3::NEG_Z } else { Vec3::Z }, white),
             Surface::Torus { phi_min, phi_max, theta_max, .. } => {
                 let (st, ct) = (u * theta_max).sin_cos();
                 let (sp, cp) = (phi_min + v * (phi_max - phi_min)).sin_cos();
@@ -189,10 +215,17 @@ pub(crate) fn shape_surfaces(shape: &Shape, points_object: Option<&[Vec3]>) -> V
             radius: *radius,
             theta_max: thetamax.to_radians(),
         }],
+        Shape::Paraboloid { rmax, zmin, zmax, thetamax } => vec![Surface::Paraboloid {
+            rmax: *rmax,
+            zmin: *zmin,
+            zmax: *zmax,
+            theta_max: thetamax.to_radians(),
+        }],
         Shape::Disk { height, radius, thetamax } => vec![Surface::Disk {
             height: *height,
             radius: *radius,
             theta_max: thetamax.to_radians(),
+            flip: false,
         }],
         Shape::Torus { major_radius, minor_radius, phimin, phimax, thetamax } => {
             vec![Surface::Torus {
@@ -243,6 +276,42 @@ pub(crate) fn shape_surfaces(shape: &Shape, points_object: Option<&[Vec3]>) -> V
             }
             out
         }
+    }
+}
+
+/// The end caps that close `shape` into a solid, each facing out of it, for an object that
+/// is a CSG operand (appended after the shape's own surfaces, with the same sweep): a
+/// cylinder's disks at `zmin` (facing -z) and `zmax` (+z); a cone's base disk at z = 0
+/// (facing away from the apex); a paraboloid's disk at `zmax` (+z) and, when `zmin > 0`, at
+/// `zmin` (-z). Other shapes need none (spheres, tori and meshes are closed as they are, or
+/// cannot be closed by disks) and give an empty list.
+pub(crate) fn end_caps(shape: &Shape) -> Vec<Surface> {
+    let disk = |height: f32, radius: f32, thetamax: f32, flip: bool| Surface::Disk {
+        height,
+        radius,
+        theta_max: thetamax.to_radians(),
+        flip,
+    };
+    match *shape {
+        Shape::Cylinder { radius, zmin, zmax, thetamax } => {
+            vec![disk(zmin, radius, thetamax, true), disk(zmax, radius, thetamax, false)]
+        }
+        // The cone lies on the apex's side of its base: a base below the apex faces -z.
+        Shape::Cone { height, radius, thetamax } => vec![disk(0.0, radius, thetamax, height > 0.0)],
+        Shape::Paraboloid { rmax, zmin, zmax, thetamax } => {
+            let mut caps = Vec::with_capacity(2);
+            if zmin > 0.0 {
+                let r = rmax * (zmin / zmax).max(0.0).sqrt();
+                caps.push(disk(zmin, r, thetamax, true));
+            }
+            caps.push(disk(zmax, rmax, thetamax, false));
+            caps
+        }
+        Shape::Sphere { .. }
+        | Shape::Disk { .. }
+        | Shape::Torus { .. }
+        | Shape::BilinearPatch { .. }
+        | Shape::Mesh { .. } => Vec::new(),
     }
 }
 
@@ -364,6 +433,94 @@ mod tests {
             assert_eq!(sp.n, Vec3::Z);
         }
         check_unit_and_consistent(s);
+    }
+
+    #[test]
+    fn paraboloid_points_on_surface_with_outward_normals() {
+        for (zmin, zmax, thetamax) in [(0.0_f32, 2.0_f32, 360.0_f32), (0.5, 3.0, 250.0)] {
+            let rmax = 1.5_f32;
+            let k = rmax * rmax / zmax;
+            let obj = object(Shape::Paraboloid { rmax, zmin, zmax, thetamax });
+            let s = &surfaces(&obj)[0];
+            for (u, v) in params() {
+                let sp = s.eval(u, v);
+                // On the surface x^2 + y^2 = k z, with z running linearly over the cut.
+                let rho2 = sp.p.x * sp.p.x + sp.p.y * sp.p.y;
+                assert!((rho2 - k * sp.p.z).abs() < 1e-5, "({u},{v}): {}", sp.p);
+                assert!((sp.p.z - (zmin + v * (zmax - zmin))).abs() < 1e-5);
+                let theta = sp.p.y.atan2(sp.p.x).rem_euclid(std::f32::consts::TAU);
+                if rho2 > 1e-8 && u < 1.0 {
+                    assert!((theta - u * thetamax.to_radians()).abs() < 1e-4, "({u},{v})");
+                }
+                // Outward: the normalised gradient (2x, 2y, -k), down and away from the axis.
+                let grad = Vec3::new(2.0 * sp.p.x, 2.0 * sp.p.y, -k).normalize();
+                assert!((sp.n - grad).length() < 1e-5, "({u},{v}): {} vs {grad}", sp.n);
+                assert!(sp.n.z < 0.0);
+                // A point just along the normal is outside the solid bowl (x^2 + y^2 > k z).
+                let q = sp.p + sp.n * 1e-2;
+                assert!(q.x * q.x + q.y * q.y - k * q.z > 0.0, "({u},{v})");
+            }
+            assert_eq!(s.position(0.3, 0.0).z, zmin);
+            let top = s.position(0.0, 1.0);
+            assert!((top - Vec3::new(rmax, 0.0, zmax)).length() < 1e-5, "radius rmax at zmax");
+            check_unit_and_consistent(s);
+        }
+    }
+
+    #[test]
+    fn end_caps_close_the_solids_facing_out() {
+        let cap = |s: &Surface| match s {
+            Surface::Disk { height, radius, flip, .. } => (*height, *radius, *flip),
+            other => panic!("not a disk: {other:?}"),
+        };
+        let cyl = Shape::Cylinder { radius: 1.5, zmin: -1.0, zmax: 2.0, thetamax: 360.0 };
+        let caps = end_caps(&cyl);
+        assert_eq!(
+            caps.iter().map(cap).collect::<Vec<_>>(),
+            [(-1.0, 1.5, true), (2.0, 1.5, false)]
+        );
+        for (height, down) in [(2.0_f32, true), (-2.0, false)] {
+            let caps = end_caps(&Shape::Cone { height, radius: 0.7, thetamax: 360.0 });
+            assert_eq!(caps.iter().map(cap).collect::<Vec<_>>(), [(0.0, 0.7, down)], "h {height}");
+        }
+        let para = |zmin| Shape::Paraboloid { rmax: 2.0, zmin, zmax: 4.0, thetamax: 360.0 };
+        let caps: Vec<_> = end_caps(&para(1.0)).iter().map(cap).collect();
+        assert_eq!(caps, [(1.0, 1.0, true), (4.0, 2.0, false)], "rmax sqrt(zmin/zmax) at zmin");
+        let caps: Vec<_> = end_caps(&para(0.0)).iter().map(cap).collect();
+        assert_eq!(caps, [(4.0, 2.0, false)], "no cap at the apex");
+        for closed in [
+            Shape::Sphere { radius: 1.0, zmin: None, zmax: None, thetamax: 360.0 },
+            Shape::Torus {
+                major_radius: 2.0,
+                minor_radius: 0.5,
+                phimin: 0.0,
+                phimax: 360.0,
+                thetamax: 360.0,
+            },
+            Shape::Mesh { points: vec![], faces: vec![], colors: None },
+        ] {
+            assert!(end_caps(&closed).is_empty());
+        }
+        // Every cap: on its plane, inside its circle, with the parametric orientation of the
+        // micropolygon winding equal to its geometric normal, which points out of the solid
+        // (away from the side the rest of the solid lies on).
+        for (shape, inside) in [
+            (cyl, Vec3::new(0.0, 0.0, 0.5)),
+            (Shape::Cone { height: 2.0, radius: 0.7, thetamax: 360.0 }, Vec3::new(0.0, 0.0, 1.0)),
+            (Shape::Cone { height: -2.0, radius: 0.7, thetamax: 360.0 }, Vec3::new(0.0, 0.0, -1.0)),
+            (para(1.0), Vec3::new(0.0, 0.0, 2.5)),
+        ] {
+            for c in end_caps(&shape) {
+                let (height, radius, _) = cap(&c);
+                check_unit_and_consistent(&c);
+                for (u, v) in params() {
+                    let sp = c.eval(u, v);
+                    assert_eq!(sp.p.z, height);
+                    assert!(sp.p.truncate().length() <= radius * (1.0 + 1e-6));
+                    assert!(sp.n.dot(Vec3::new(0.0, 0.0, height) - inside) > 0.0, "{c:?}");
+                }
+            }
+        }
     }
 
     #[test]

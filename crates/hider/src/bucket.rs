@@ -144,6 +144,7 @@ impl Hider {
             lens: self.config.lens.is_some(),
         };
         samples.generate(&self.tables, &self.spec, bucket, left, top, bw, bh, needs);
+        let t_sample = std::time::Instant::now();
         for &m in list {
             let mp = &mpolys[m as usize];
             scratch.stats.micropolygons += 1;
@@ -172,6 +173,8 @@ impl Hider {
         }
         scratch.stats.peak_points = scratch.stats.peak_points.max(scratch.points.len() as u64);
         scratch.stats.points += scratch.points.len() as u64;
+        let t_resolve = std::time::Instant::now();
+        scratch.stats.sample_ns += (t_resolve - t_sample).as_nanos() as u64;
         // CSGResolve: every sample, front to back.
         scratch.rgba.clear();
         scratch.z.clear();
@@ -189,6 +192,7 @@ impl Hider {
             scratch.z.push(c.z);
         }
         scratch.stats.lerps += lerps;
+        scratch.stats.resolve_ns += t_resolve.elapsed().as_nanos() as u64;
         scratch.samples = samples;
     }
 

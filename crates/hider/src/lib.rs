@@ -117,6 +117,10 @@ pub struct Stats {
     pub peak_points: u64,
     /// Visible points created in all.
     pub points: u64,
+    /// Time spent testing samples (`VisEndBucket`'s loops), summed over threads, in ns.
+    pub sample_ns: u64,
+    /// Time spent resolving visible-point lists (`CSGResolve`), summed over threads, in ns.
+    pub resolve_ns: u64,
 }
 
 impl Stats {
@@ -128,6 +132,8 @@ impl Stats {
         self.micropolygons += o.micropolygons;
         self.peak_points = self.peak_points.max(o.peak_points);
         self.points += o.points;
+        self.sample_ns += o.sample_ns;
+        self.resolve_ns += o.resolve_ns;
     }
 }
 

@@ -217,3 +217,30 @@ fn hither_crossing_quad_is_clipped_per_sample() {
         }
     }
 }
+
+#[test]
+fn gouraud_reproduces_vertex_colours_and_varies_smoothly() {
+    use reyes_hider::gouraud;
+    let mut m = quad([[0.0, 0.0], [4.0, 0.0], [4.0, 4.0], [0.0, 4.0]], 3.0, [0.0; 3]);
+    m.color = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 1.0, 1.0]];
+    m.trans = [[0.0; 3], [0.5; 3], [0.25; 3], [1.0; 3]];
+    let rel = |x: f32, y: f32| m.v.map(|p| [p[0] - x, p[1] - y, p[2]]);
+    // At each vertex: exactly that vertex's colour and transmittance.
+    for k in 0..4 {
+        let (c, t) = gouraud(&rel(m.v[k][0], m.v[k][1]), &m);
+        assert_eq!((c, t), (m.color[k], m.trans[k]), "vertex {k}");
+    }
+    // Along a line across the quad, values change smoothly: Shepard weights are Lipschitz
+    // away from the vertices, so with steps of 1/64 pixel no channel may jump by more than a
+    // small multiple of the step (a flat lookup would jump by a whole colour difference, 1).
+    let mut prev = gouraud(&rel(0.25, 1.3), &m).0;
+    for i in 1..=224 {
+        let x = 0.25 + i as f32 / 64.0;
+        let c = gouraud(&rel(x, 1.3), &m).0;
+        for a in 0..3 {
+            assert!((c[a] - prev[a]).abs() < 0.05, "jump at x = {x}: {prev:?} -> {c:?}");
+            assert!((0.0..=1.0).contains(&c[a]), "convex combination");
+        }
+        prev = c;
+    }
+}

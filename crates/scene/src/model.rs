@@ -485,6 +485,20 @@ pub enum Shape {
         #[serde(default = "deg360")]
         thetamax: f32,
     },
+    /// RenderMan paraboloid: radius `rmax` at `zmax`, `r = rmax * sqrt(z / zmax)`, cut to
+    /// `zmin..zmax`.
+    Paraboloid {
+        /// Radius at `zmax` (> 0).
+        rmax: f32,
+        /// Lower cut (>= 0).
+        #[serde(default)]
+        zmin: f32,
+        /// Top (> zmin).
+        zmax: f32,
+        /// Sweep angle in degrees, (0, 360].
+        #[serde(default = "deg360")]
+        thetamax: f32,
+    },
     /// Bilinear patch. Corners in RenderMan order: (u,v) = (0,0), (1,0), (0,1), (1,1).
     BilinearPatch {
         /// The four corners.

@@ -361,6 +361,7 @@ fn shape_name(shape: &Shape) -> &'static str {
         Shape::Cone { .. } => "Cone",
         Shape::Disk { .. } => "Disk",
         Shape::Torus { .. } => "Torus",
+        Shape::Paraboloid { .. } => "Paraboloid",
         Shape::BilinearPatch { .. } => "BilinearPatch",
         Shape::Mesh { .. } => "Mesh",
     }
@@ -411,6 +412,18 @@ fn shape(at: &str, shape: &Shape) -> Check {
         Shape::Disk { height, radius, thetamax } => {
             finite(&field("height"), *height)?;
             positive(&field("radius"), *radius)?;
+            sweep(&field("thetamax"), *thetamax)
+        }
+        Shape::Paraboloid { rmax, zmin, zmax, thetamax } => {
+            positive(&field("rmax"), *rmax)?;
+            finite(&field("zmin"), *zmin)?;
+            finite(&field("zmax"), *zmax)?;
+            if *zmin < 0.0 {
+                return fail(field("zmin"), format!("must be >= 0, got {zmin}"));
+            }
+            if zmax <= zmin {
+                return fail(field("zmax"), format!("must be > zmin ({zmin}), got {zmax}"));
+            }
             sweep(&field("thetamax"), *thetamax)
         }
         Shape::Torus { major_radius, minor_radius, phimin, phimax, thetamax } => {
@@ -735,6 +748,7 @@ fn closure(shape: &Shape) -> Closure {
         }
         Shape::Cylinder { thetamax, .. } => sweep("Cylinder", *thetamax),
         Shape::Cone { thetamax, .. } => sweep("Cone", *thetamax),
+        Shape::Paraboloid { thetamax, .. } => sweep("Paraboloid", *thetamax),
         Shape::Torus { phimin, phimax, thetamax, .. } => {
             let tube = f64::from(*phimax) - f64::from(*phimin);
             if tube != 360.0 {

@@ -340,6 +340,7 @@ impl Builder {
                 Shape::Sphere { .. }
                     | Shape::Cylinder { .. }
                     | Shape::Cone { .. }
+                    | Shape::Paraboloid { .. }
                     | Shape::Disk { .. }
                     | Shape::Torus { .. }
             )
@@ -368,6 +369,7 @@ impl Builder {
             Shape::Sphere { .. }
             | Shape::Cylinder { .. }
             | Shape::Cone { .. }
+            | Shape::Paraboloid { .. }
             | Shape::Disk { .. }
             | Shape::Torus { .. } => {
                 if let Some(q) = Quadric::from_shape(&object.shape) {

@@ -4,8 +4,8 @@
 //! stage) evaluates: it sweeps around object z with `theta = atan2(y, x)` in
 //! `[0, thetamax]` and `u = theta / thetamax`; `v` and the outward normal follow the
 //! dicer's parametrisation of each shape (sphere latitude between the clamped z cuts,
-//! cylinder height, cone `z = v height`, disk `r = radius (1 - v)`, torus tube angle in
-//! `[phimin, phimax]`). `intersect` returns the nearest hit with object parameter `s > 0`,
+//! cylinder height, cone `z = v height`, paraboloid `z = zmin + v (zmax - zmin)`, disk
+//! `r = radius (1 - v)`, torus tube angle in `[phimin, phimax]`). `intersect` returns the nearest hit with object parameter `s > 0`,
 //! whatever the caller's `t_max`, so the same ray always gives the same answer.
 
 use std::f64::consts::TAU;
@@ -80,6 +80,8 @@ pub(crate) enum Quadric {
     Cylinder { radius: f64, zmin: f64, zmax: f64, sweep: Sweep },
     /// Cone from the base circle at z = 0 to the apex at z = height.
     Cone { height: f64, radius: f64, sweep: Sweep },
+    /// Paraboloid `x^2 + y^2 = (rmax^2 / zmax) z`, cut to `zmin..=zmax` (`0 <= zmin < zmax`).
+    Paraboloid { rmax: f64, zmin: f64, zmax: f64, sweep: Sweep },
     /// Disk in the plane z = height.
     Disk { height: f64, radius: f64, sweep: Sweep },
     /// Torus; the tube angle runs over `phi_min..=phi_max`.
@@ -116,6 +118,12 @@ impl Quadric {
                 radius: f64::from(*radius),
                 sweep: Sweep::new(*thetamax),
             },
+            Shape::Paraboloid { rmax, zmin, zmax, thetamax } => Quadric::Paraboloid {
+                rmax: f64::from(*rmax),
+                zmin: f64::from(*zmin),
+                zmax: f64::from(*zmax),
+                sweep: Sweep::new(*thetamax),
+            },
             Shape::Disk { height, radius, thetamax } => Quadric::Disk {
                 height: f64::from(*height),
                 radius: f64::from(*radius),
@@ -145,6 +153,9 @@ impl Quadric {
             Quadric::Sphere { radius, zmin, zmax, .. } => box_of(*radius, *zmin, *zmax),
             Quadric::Cylinder { radius, zmin, zmax, .. } => box_of(*radius, *zmin, *zmax),
             Quadric::Cone { height, radius, .. } => box_of(*radius, 0.0, *height),
+            // The widest circle is the one at zmax (zmax > 0 for a valid paraboloid; the box
+            // still encloses the surface otherwise, as |r| <= rmax on the cut).
+            Quadric::Paraboloid { rmax, zmin, zmax, .. } => box_of(*rmax, *zmin, *zmax),
             Quadric::Disk { height, radius, .. } => box_of(*radius, *height, *height),
             Quadric::Torus { major, minor, .. } => box_of(major + minor, -minor, *minor),
         }
@@ -207,6 +218,29 @@ impl Quadric {
                     let rho = p.x.hypot(p.y);
                     let (cx, cy) = if rho > 0.0 { (p.x / rho, p.y / rho) } else { (1.0, 0.0) };
                     let n = DVec3::new(h.abs() * cx, h.abs() * cy, r.copysign(h));
+                    return Some(LocalHit { s, p, n, u: sweep.u(theta), v });
+                }
+                None
+            }
+            Quadric::Paraboloid { rmax, zmin, zmax, sweep } => {
+                // x^2 + y^2 - k z = 0 with k = rmax^2 / zmax: a quadratic in s.
+                let (o, d) = (ray.o, ray.d);
+                let k = rmax * rmax / zmax;
+                let a = d.x * d.x + d.y * d.y;
+                let b = 2.0 * (o.x * d.x + o.y * d.y) - k * d.z;
+                let c = o.x * o.x + o.y * o.y - k * o.z;
+                for &s in quadratic(a, b, c).as_slice() {
+                    if s.is_nan() || s <= 0.0 {
+                        continue;
+                    }
+                    let p = o + d * s;
+                    if p.z < *zmin || p.z > *zmax {
+                        continue;
+                    }
+                    let Some(theta) = sweep.angle(p.x, p.y) else { continue };
+                    // The gradient: away from the axis and down, out of the solid bowl.
+                    let n = DVec3::new(2.0 * p.x, 2.0 * p.y, -k);
+                    let v = (p.z - zmin) / (zmax - zmin);
                     return Some(LocalHit { s, p, n, u: sweep.u(theta), v });
                 }
                 None

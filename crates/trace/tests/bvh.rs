@@ -12,7 +12,7 @@ use reyes_trace::{Ray, Tracer};
 
 fn random_shape(rng: &mut Rng) -> Shape {
     let sweep = |rng: &mut Rng| if rng.unit() < 0.5 { 360.0 } else { rng.range(30.0, 360.0) };
-    match rng.below(7) {
+    match rng.below(8) {
         0 => {
             let radius = rng.range(0.3, 1.5);
             let zmin = (rng.unit() < 0.4).then(|| rng.range(-radius, 0.0));
@@ -50,7 +50,16 @@ fn random_shape(rng: &mut Rng) -> Shape {
                 thetamax: sweep(rng),
             }
         }
-        5 => Shape::BilinearPatch { points: std::array::from_fn(|_| rng.in_cube(1.0).to_array()) },
+        5 => {
+            let zmin = if rng.unit() < 0.5 { 0.0 } else { rng.range(0.0, 0.5) };
+            Shape::Paraboloid {
+                rmax: rng.range(0.2, 1.0),
+                zmin,
+                zmax: zmin + rng.range(0.2, 1.5),
+                thetamax: sweep(rng),
+            }
+        }
+        6 => Shape::BilinearPatch { points: std::array::from_fn(|_| rng.in_cube(1.0).to_array()) },
         _ => {
             // A small grid mesh with a random height field: quads, triangles and a pentagon.
             let n = 3;
@@ -170,7 +179,7 @@ fn hierarchy_equals_brute_force_and_occluded_agrees() {
         }
     }
     assert!(hits > 2_000, "enough rays hit something: {hits}");
-    assert_eq!(kinds.len(), 7, "every shape kind was hit");
+    assert_eq!(kinds.len(), 8, "every shape kind was hit");
 }
 
 #[test]

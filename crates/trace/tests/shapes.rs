@@ -172,6 +172,101 @@ fn cone_points_hit_for_both_signs_of_height() {
     assert!(shoot(&t, Vec3::new(-0.3, -0.3, 10.0), Vec3::NEG_Z).is_none(), "theta 225");
 }
 
+/// The dicer's paraboloid at `(u, v)` and its outward normal `(2x, 2y, -rmax^2 / zmax)`.
+fn paraboloid(rmax: f32, z0: f32, z1: f32, tmax: f32, u: f32, v: f32) -> (Vec3, Vec3) {
+    let theta = u * tmax.to_radians();
+    let z = z0 + v * (z1 - z0);
+    let r = rmax * (z / z1).sqrt();
+    let p = Vec3::new(r * theta.cos(), r * theta.sin(), z);
+    (p, Vec3::new(2.0 * p.x, 2.0 * p.y, -rmax * rmax / z1).normalize())
+}
+
+#[test]
+fn paraboloid_points_hit_with_outward_normals() {
+    for (z0, z1, tmax) in [(0.5_f32, 2.0_f32, 270.0_f32), (0.0, 1.5, 360.0)] {
+        let rmax = 1.5;
+        for xf in placements() {
+            let m = object_to_world(&xf);
+            let shape = Shape::Paraboloid { rmax, zmin: z0, zmax: z1, thetamax: tmax };
+            let t = tracer(shape, xf.clone());
+            for i in 0..=8 {
+                for j in 0..=6 {
+                    let u = 0.02 + 0.96 * i as f32 / 8.0;
+                    let v = 0.02 + 0.96 * j as f32 / 6.0;
+                    let (p, n) = paraboloid(rmax, z0, z1, tmax, u, v);
+                    check_point(&t, m, p, n, (u, v), "paraboloid");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn paraboloid_cuts_and_sweep_miss() {
+    // k = rmax^2 / zmax = 1.125: the surface is x^2 + y^2 = 1.125 z for 0.5 <= z <= 2.
+    let k = 1.125_f32;
+    let cut = |thetamax: f32| {
+        tracer(Shape::Paraboloid { rmax: 1.5, zmin: 0.5, zmax: 2.0, thetamax }, vec![])
+    };
+    let t = cut(360.0);
+    let down = Vec3::NEG_Z;
+    assert!(shoot(&t, Vec3::new(-10.0, 0.0, 3.0), Vec3::X).is_none(), "above zmax");
+    assert!(shoot(&t, Vec3::new(-10.0, 0.0, 0.25), Vec3::X).is_none(), "below zmin");
+    // Down the axis near the apex: the surface there (z = 0.009) is cut away.
+    assert!(shoot(&t, Vec3::new(0.1, 0.0, 10.0), down).is_none(), "through the bottom hole");
+    // Down into the bowl: meets the inside of the wall, normal still outward.
+    let hit = shoot(&t, Vec3::new(1.0, 0.5, 10.0), down).expect("inside of the wall");
+    let z = 1.25 / k;
+    assert!(close(hit.t, 10.0 - z, REL), "{}", hit.t);
+    assert!(close_v(hit.n_world, Vec3::new(2.0, 1.0, -k).normalize(), 1e-5));
+    assert!(close(hit.v, (z - 0.5) / 1.5, 1e-5));
+    // From inside the bowl sideways.
+    let hit = shoot(&t, Vec3::new(0.0, 0.0, 1.0), Vec3::X).expect("wall from inside");
+    assert!(close(hit.t, k.sqrt(), REL) && close(hit.u, 0.0, 1e-6));
+    // Far away: the quadratic stays accurate.
+    let hit = shoot(&t, Vec3::new(-1.0e4, 0.0, 1.0), Vec3::X).expect("far");
+    assert!(close(hit.t, 1.0e4 - k.sqrt(), 1e-6), "{}", hit.t);
+    assert!(close(hit.u, 0.5, 1e-5), "theta 180 of 360");
+    // A quarter sweep: theta 225 is not there, theta 27 is.
+    let quarter = cut(90.0);
+    assert!(shoot(&quarter, Vec3::new(-0.7, -0.7, 10.0), down).is_none(), "theta 225");
+    let hit = shoot(&quarter, Vec3::new(1.0, 0.5, 10.0), down).expect("theta 27");
+    assert!(close(hit.u, 0.5_f32.atan2(1.0).to_degrees() / 90.0, 1e-5));
+    // Along +y at x = 0.5, z = 1: the near crossing (theta 298) is cut away, the far one
+    // (theta 62) is hit from inside the bowl.
+    let hit = shoot(&quarter, Vec3::new(0.5, -10.0, 1.0), Vec3::Y).expect("far wall");
+    let y = (k - 0.25).sqrt();
+    assert!(close(hit.t, 10.0 + y, REL), "{}", hit.t);
+    // With zmin = 0 the apex is there, facing -z, hit from above and below.
+    let t = tracer(Shape::Paraboloid { rmax: 1.5, zmin: 0.0, zmax: 2.0, thetamax: 360.0 }, vec![]);
+    let hit = shoot(&t, Vec3::new(0.0, 0.0, 10.0), down).expect("apex from inside");
+    assert!(close(hit.t, 10.0, REL) && close_v(hit.n_world, Vec3::NEG_Z, 1e-6));
+    assert!(close(hit.v, 0.0, 1e-6));
+    let hit = shoot(&t, Vec3::new(0.0, 0.0, -10.0), Vec3::Z).expect("apex from below");
+    assert!(close(hit.t, 10.0, REL) && close_v(hit.n_world, Vec3::NEG_Z, 1e-6));
+    assert!(shoot(&t, Vec3::new(0.0, 0.0, -10.0), Vec3::X).is_none(), "beside, below");
+}
+
+#[test]
+fn paraboloid_hits_invert_to_the_dicer_parametrisation() {
+    let (rmax, z0, z1, tmax) = (1.2_f32, 0.3_f32, 1.8_f32, 300.0_f32);
+    let t = tracer(Shape::Paraboloid { rmax, zmin: z0, zmax: z1, thetamax: tmax }, vec![]);
+    let mut rng = common::Rng::new(23);
+    let mut hits = 0;
+    for _ in 0..3_000 {
+        let origin = rng.direction() * 6.0;
+        let dir = rng.in_cube(1.5) + Vec3::new(0.0, 0.0, 1.0) - origin;
+        let Some(h) = shoot(&t, origin, dir) else { continue };
+        hits += 1;
+        assert!((0.0..=1.0).contains(&h.u) && (0.0..=1.0).contains(&h.v), "{h:?}");
+        let (p, n) = paraboloid(rmax, z0, z1, tmax, h.u, h.v);
+        assert!(close_v(h.p_world, p, 2e-4), "{} vs {p}", h.p_world);
+        assert!(close_v(h.n_world, n, 2e-3), "{} vs {n}", h.n_world);
+        assert!(close_v(origin + dir * h.t, h.p_world, 2e-4));
+    }
+    assert!(hits > 500, "{hits}");
+}
+
 #[test]
 fn disk_points_hit_facing_plus_z() {
     let (h, r) = (0.5_f32, 3.0_f32);
