@@ -7,6 +7,7 @@
 #![deny(missing_docs)]
 
 pub mod golden;
+pub mod measure;
 mod stats;
 pub mod study;
 
