@@ -18,7 +18,7 @@ use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::{FontStyle, register_font};
 use reyes_hider::{Frame, Hider, HiderConfig, Pairing, ShutterShape};
-use reyes_render::study::{self, EdgeCase, EdgeStudy, Sampler, fit_slope};
+use reyes_render::study::{self, EdgeCase, EdgeStudy, Measured, Sampler, fit_slope};
 use reyes_render::{RenderOptions, render};
 
 type Res<T = ()> = Result<T, Box<dyn Error>>;
@@ -76,7 +76,7 @@ struct Sizes {
 }
 
 /// One edge case's RMSE per sampler, in the order of [`SIDES`].
-type CaseResults = (EdgeCase, Vec<(Sampler, Vec<f64>)>);
+type CaseResults = (EdgeCase, Vec<(Sampler, Vec<Measured>)>);
 
 /// Sample counts of the error curves: n x n per pixel.
 const SIDES: [u32; 5] = [1, 2, 4, 8, 16];
@@ -111,7 +111,7 @@ pub fn run(root: &Path, args: &[String]) -> Res {
     step("time against position (time.png)", t);
 
     let t = Instant::now();
-    periodograms(&out, sizes.windows)?;
+    let bands = periodograms(&out, sizes.windows)?;
     step("periodograms (periodograms.png, periodogram-radial.png)", t);
 
     let t = Instant::now();
@@ -129,11 +129,11 @@ pub fn run(root: &Path, args: &[String]) -> Res {
         let tc = Instant::now();
         let mut rows = Vec::new();
         for sampler in Sampler::ALL {
-            let mut rmse = Vec::new();
+            let mut m = Vec::new();
             for n in SIDES {
-                rmse.push(study.rmse(case, sampler, n)?);
+                m.push(study.measure(case, sampler, n)?);
             }
-            rows.push((sampler, rmse));
+            rows.push((sampler, m));
         }
         println!("study:   {} ({:.1} s)", case.label(), tc.elapsed().as_secs_f64());
         results.push((case, rows));
@@ -142,7 +142,7 @@ pub fn run(root: &Path, args: &[String]) -> Res {
     step("edge error curves (edge-errors.png)", t);
 
     let total = start.elapsed().as_secs_f64();
-    let md = results_markdown(&study, &results, &log, total, quick);
+    let md = results_markdown(&study, &results, &bands, &log, total, quick);
     std::fs::write(out.join("results.md"), &md)?;
     println!("{md}");
     println!("study: wrote {} in {total:.1} s", out.display());
@@ -153,9 +153,14 @@ fn samples_per_pixel() -> Vec<f64> {
     SIDES.iter().map(|&n| (n * n) as f64).collect()
 }
 
+fn rmse_of(m: &[Measured]) -> Vec<f64> {
+    m.iter().map(|m| m.rmse).collect()
+}
+
 fn results_markdown(
     study: &EdgeStudy,
     results: &[CaseResults],
+    bands: &[(Sampler, Vec<f64>)],
     log: &str,
     total: f64,
     quick: bool,
@@ -172,7 +177,8 @@ fn results_markdown(
         md,
         "Edge study: {} random edges per cell of each table, {} x {} images, motion {} px over \
          the shutter, circle of confusion radius {} px; RMSE over every pixel the edge touches \
-         (analytic value strictly between 0 and 1).\n",
+         (analytic value strictly between 0 and 1), +- one standard error with edges as the \
+         independent units (`Measured::from_edges`).\n",
         study.edges, study.image, study.image, study.motion_px, study.blur_px
     );
     md.push_str("## Fitted convergence slopes (log RMSE against log samples per pixel)\n\n");
@@ -188,7 +194,7 @@ fn results_markdown(
     for (i, sampler) in Sampler::ALL.iter().enumerate() {
         let _ = write!(md, "| {} |", sampler.label());
         for (_, rows) in results {
-            let _ = write!(md, " {:.2} |", fit_slope(&spp, &rows[i].1));
+            let _ = write!(md, " {:.2} |", fit_slope(&spp, &rmse_of(&rows[i].1)));
         }
         md.push('\n');
     }
@@ -203,27 +209,51 @@ fn results_markdown(
             md.push_str("---|");
         }
         md.push('\n');
-        for (sampler, rmse) in rows {
+        for (sampler, m) in rows {
             let _ = write!(md, "| {} |", sampler.label());
-            for r in rmse {
-                let _ = write!(md, " {r:.5} |");
+            for m in m {
+                let _ = write!(md, " {:.5} +- {:.5} |", m.rmse, m.se);
             }
             md.push('\n');
         }
     }
-    md.push_str("\n## Owen-Sobol against Appendix A's jitter (FIG. 6): RMSE ratio\n\n");
+    md.push_str(
+        "\n## Owen-Sobol against Appendix A's jitter (FIG. 6): RMSE ratio\n\n\
+         Standard error of a ratio from both standard errors (the two samplers see the same \
+         edges, so this overstates it a little).\n\n",
+    );
     md.push_str("| case | 16 spp | 64 spp | 256 spp |\n|---|---|---|---|\n");
     for (case, rows) in results {
         let get = |s: Sampler| &rows.iter().find(|r| r.0 == s).expect("sampler").1;
         let (sob, fig6) = (get(Sampler::Sobol), get(Sampler::Fig6));
-        let _ = writeln!(
-            md,
-            "| {} | {:.3} | {:.3} | {:.3} |",
-            case.label(),
-            sob[2] / fig6[2],
-            sob[3] / fig6[3],
-            sob[4] / fig6[4]
-        );
+        let _ = write!(md, "| {} |", case.label());
+        for k in 2..5 {
+            let r = sob[k].rmse / fig6[k].rmse;
+            let se = r
+                * ((sob[k].se / sob[k].rmse).powi(2) + (fig6[k].se / fig6[k].rmse).powi(2)).sqrt();
+            let _ = write!(md, " {r:.3} +- {se:.3} |");
+        }
+        md.push('\n');
+    }
+    md.push_str(
+        "\n## Periodogram power by frequency band\n\nMean of the averaged periodogram \
+         (4 x 4 samples per pixel; 1 = white noise) over rings of frequency |k| in cycles per \
+         pixel, zero frequency left out.\n\n| pattern |",
+    );
+    for (lo, hi) in BANDS {
+        let _ = write!(md, " {lo}-{hi} |");
+    }
+    md.push_str("\n|---|");
+    for _ in BANDS {
+        md.push_str("---|");
+    }
+    md.push('\n');
+    for (sampler, p) in bands {
+        let _ = write!(md, "| {} |", sampler.label());
+        for v in p {
+            let _ = write!(md, " {v:.3} |");
+        }
+        md.push('\n');
     }
     md.push_str("\n## Wall time (2 cores)\n\n| step | seconds |\n|---|---|\n");
     md.push_str(log);
@@ -440,12 +470,20 @@ fn time_figure(path: &Path) -> Res {
     Ok(())
 }
 
-/// Periodograms of every pattern (FIGS. 10, 11): 2-D maps and radial averages.
-fn periodograms(out: &Path, windows: u32) -> Res {
+/// Frequency bands (cycles per pixel) of the periodogram table in results.md.
+const BANDS: [(f64, f64); 5] = [(0.0, 0.5), (0.5, 1.0), (1.0, 2.0), (2.0, 4.0), (4.0, 8.0)];
+
+/// Periodograms of every pattern (FIGS. 10, 11): 2-D maps and radial averages. Returns each
+/// pattern's mean power in [`BANDS`].
+fn periodograms(out: &Path, windows: u32) -> Res<Vec<(Sampler, Vec<f64>)>> {
     let (half, step) = (64usize, 0.125);
     let spectra: Vec<(Sampler, study::Spectrum)> = Sampler::ALL
         .iter()
         .map(|&s| (s, study::mean_periodogram(s, 4, 8, windows, half, step, 11)))
+        .collect();
+    let bands = spectra
+        .iter()
+        .map(|(s, spec)| (*s, BANDS.iter().map(|&(lo, hi)| spec.band(lo, hi)).collect()))
         .collect();
     let path = out.join("periodograms.png");
     let root = BitMapBackend::new(&path, (1200, 880)).into_drawing_area();
@@ -526,7 +564,7 @@ fn periodograms(out: &Path, windows: u32) -> Res {
         .border_style(BLACK)
         .draw()?;
     root.present()?;
-    Ok(())
+    Ok(bands)
 }
 
 /// Draw a grey image (linear values) scaled by `scale` into `area`, at (x0, y0).
@@ -623,7 +661,7 @@ fn error_figure(path: &Path, study: &EdgeStudy, results: &[CaseResults]) -> Res 
         (FONT, 18),
     )?;
     for (panel, (case, rows)) in root.split_evenly((2, 2)).iter().zip(results) {
-        let all = rows.iter().flat_map(|r| r.1.iter()).cloned();
+        let all = rows.iter().flat_map(|r| r.1.iter()).map(|m| m.rmse);
         let lo = all.clone().fold(f64::INFINITY, f64::min).log10() - 0.15;
         let hi = all.fold(0.0, f64::max).log10() + 0.15;
         let mut chart = ChartBuilder::on(panel)
@@ -645,7 +683,7 @@ fn error_figure(path: &Path, study: &EdgeStudy, results: &[CaseResults]) -> Res 
         // Reference slopes through the random and FIG. 6 curves at 16 samples per pixel.
         let get = |s: Sampler| &rows.iter().find(|r| r.0 == s).expect("sampler").1;
         for (slope, at) in
-            [(-0.5, get(Sampler::Random)[2] * 1.3), (-0.75, get(Sampler::Fig6)[2] / 1.3)]
+            [(-0.5, get(Sampler::Random)[2].rmse * 1.3), (-0.75, get(Sampler::Fig6)[2].rmse / 1.3)]
         {
             let line = lspp.iter().map(|&x| (x, at.log10() + slope * (x - 16f64.log10())));
             chart.draw_series(DashedLineSeries::new(
@@ -655,7 +693,8 @@ fn error_figure(path: &Path, study: &EdgeStudy, results: &[CaseResults]) -> Res 
                 RGBColor(120, 120, 120).into(),
             ))?;
         }
-        for (sampler, rmse) in rows {
+        for (sampler, m) in rows {
+            let rmse = &rmse_of(m);
             let c = colour(*sampler);
             let slope = fit_slope(&spp, rmse);
             let pts: Vec<(f64, f64)> =

@@ -184,6 +184,23 @@ impl Spectrum {
         2 * self.half + 1
     }
 
+    /// Mean power over the frequencies with `lo < |k| <= hi` (cycles per pixel).
+    pub fn band(&self, lo: f64, hi: f64) -> f64 {
+        let n = self.side();
+        let (mut sum, mut count) = (0.0, 0usize);
+        for j in 0..n {
+            for i in 0..n {
+                let (fi, fj) = (i as f64 - self.half as f64, j as f64 - self.half as f64);
+                let r = (fi * fi + fj * fj).sqrt() * self.step;
+                if r > lo && r <= hi {
+                    sum += self.power[j * n + i];
+                    count += 1;
+                }
+            }
+        }
+        sum / count.max(1) as f64
+    }
+
     /// Power averaged over rings of width `step`, from 0 to `half * step`: (|k|, power).
     /// The zero-frequency bin is left out.
     pub fn radial(&self) -> Vec<(f64, f64)> {
@@ -508,15 +525,14 @@ impl EdgeStudy {
     }
 
     /// Per-pixel errors (rendered alpha minus the analytic value) of every pixel the edge
-    /// passes over (analytic value strictly between 0 and 1), for all the study's edges.
-    pub fn errors(
+    /// passes over (analytic value strictly between 0 and 1), one list per edge.
+    pub fn errors_by_edge(
         &self,
         case: EdgeCase,
         sampler: Sampler,
         n: u32,
-    ) -> Result<Vec<f64>, RenderError> {
-        let edges = self.edges(case);
-        let per_edge: Result<Vec<Vec<f64>>, RenderError> = edges
+    ) -> Result<Vec<Vec<f64>>, RenderError> {
+        self.edges(case)
             .par_iter()
             .enumerate()
             .map(|(i, edge)| {
@@ -537,19 +553,65 @@ impl EdgeStudy {
                 }
                 Ok(errs)
             })
-            .collect();
-        Ok(per_edge?.concat())
+            .collect()
+    }
+
+    /// All of [`EdgeStudy::errors_by_edge`] in one list.
+    pub fn errors(
+        &self,
+        case: EdgeCase,
+        sampler: Sampler,
+        n: u32,
+    ) -> Result<Vec<f64>, RenderError> {
+        Ok(self.errors_by_edge(case, sampler, n)?.concat())
     }
 
     /// Root-mean-square of [`EdgeStudy::errors`].
     pub fn rmse(&self, case: EdgeCase, sampler: Sampler, n: u32) -> Result<f64, RenderError> {
-        Ok(rms(&self.errors(case, sampler, n)?))
+        Ok(self.measure(case, sampler, n)?.rmse)
+    }
+
+    /// RMSE with its standard error (see [`Measured::from_edges`]).
+    pub fn measure(
+        &self,
+        case: EdgeCase,
+        sampler: Sampler,
+        n: u32,
+    ) -> Result<Measured, RenderError> {
+        Ok(Measured::from_edges(&self.errors_by_edge(case, sampler, n)?))
     }
 }
 
-/// Root mean square.
-pub fn rms(e: &[f64]) -> f64 {
-    (e.iter().map(|x| x * x).sum::<f64>() / e.len().max(1) as f64).sqrt()
+/// An RMSE and its standard error.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Measured {
+    /// Root-mean-square error over all pixels of all edges.
+    pub rmse: f64,
+    /// Its standard error, treating edges (not pixels, which are correlated along an edge) as
+    /// the independent units: the squared errors' total over the pixel count is a ratio
+    /// estimator, whose variance is `sum_e (S_e - mse n_e)^2 / (E (E-1) nbar^2)` over edges
+    /// `e` with `n_e` pixels and squared-error sum `S_e`; then `se(rmse) = se(mse) / (2 rmse)`.
+    pub se: f64,
+}
+
+impl Measured {
+    /// From per-edge error lists.
+    pub fn from_edges(edges: &[Vec<f64>]) -> Measured {
+        let n: usize = edges.iter().map(Vec::len).sum();
+        let sums: Vec<(f64, f64)> =
+            edges.iter().map(|e| (e.iter().map(|x| x * x).sum::<f64>(), e.len() as f64)).collect();
+        let mse = sums.iter().map(|s| s.0).sum::<f64>() / n.max(1) as f64;
+        let rmse = mse.sqrt();
+        let k = edges.len() as f64;
+        let nbar = n as f64 / k;
+        let var = if k > 1.0 {
+            sums.iter().map(|(s, m)| (s - mse * m).powi(2)).sum::<f64>()
+                / (k * (k - 1.0) * nbar * nbar)
+        } else {
+            f64::NAN
+        };
+        Measured { rmse, se: var.sqrt() / (2.0 * rmse) }
+    }
 }
 
 /// `max(s, 0)^k / k!` summed with the signs of the corners of a box spline: for `a, b > 0`,
