@@ -87,6 +87,11 @@ pub fn hider_config(scene: &Scene, camera: &CameraSetup) -> HiderConfig {
         } else {
             Pairing::Decorrelated
         },
+        time_pattern: match h.time_pattern {
+            reyes_scene::TimePattern::Fig13 => reyes_hider::TimePattern::Fig13,
+            reyes_scene::TimePattern::Fig14 => reyes_hider::TimePattern::Fig14,
+            reyes_scene::TimePattern::Fig15 => reyes_hider::TimePattern::Fig15,
+        },
         shutter: match scene.camera.shutter.shape {
             reyes_scene::ShutterShape::Uniform => ShutterShape::Uniform,
             reyes_scene::ShutterShape::Gradual { ramp } => ShutterShape::Gradual { ramp },

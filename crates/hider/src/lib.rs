@@ -23,7 +23,9 @@ pub use frame::{Frame, border_for_filter_width};
 pub use lens::LensSetup;
 pub use mpoly::{Micropolygon, flags};
 pub use reyes_csg::{CsgExpr, CsgOp, CsgOrder, CsgTree, MatteRule, VisPoint};
-pub use samples::{BucketSamples, LensShape, Needs, Pairing, Pattern, SampleSpec, ShutterShape};
+pub use samples::{
+    BucketSamples, LensShape, Needs, Pairing, Pattern, SampleSpec, ShutterShape, TimePattern,
+};
 pub use tables::Tables;
 
 /// Everything the hider needs to know about a frame (the arguments of `VisParam`,
@@ -38,6 +40,8 @@ pub struct HiderConfig {
     pub pattern: Pattern,
     /// Time pairing.
     pub time_pairing: Pairing,
+    /// Time pattern within each stratum (FIGS. 13-15).
+    pub time_pattern: TimePattern,
     /// Shutter shape (time density).
     pub shutter: ShutterShape,
     /// Lens sample shape.
@@ -72,6 +76,7 @@ impl Default for HiderConfig {
             ny: 4,
             pattern: Pattern::Fig6,
             time_pairing: Pairing::Decorrelated,
+            time_pattern: TimePattern::Fig14,
             shutter: ShutterShape::Uniform,
             lens_shape: LensShape::Disk,
             lens: None,
@@ -181,6 +186,7 @@ impl Hider {
         let spec = SampleSpec {
             pattern: config.pattern,
             time_pairing: config.time_pairing,
+            time_pattern: config.time_pattern,
             shutter: config.shutter,
             lens_shape: config.lens_shape,
             seed: config.seed,

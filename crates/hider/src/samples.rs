@@ -76,6 +76,19 @@ fn leading(x: u32, bits: u32) -> u32 {
     ((x as u64) >> (32 - bits)) as u32
 }
 
+/// How a time is chosen within its stratum (patent FIGS. 13-15, the temporal counterparts of
+/// the spatial FIGS. 5-7). With jitter off every pattern gives the stratum's centre.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum TimePattern {
+    /// FIG. 13: one pseudo-random time per stratum, the same in every pixel.
+    Fig13,
+    /// FIG. 14: a new pseudo-random time anywhere in the stratum for every pixel (Appendix A).
+    #[default]
+    Fig14,
+    /// FIG. 15: a FIG. 13 reference time plus a pseudo-random shift of at most a quarter stratum.
+    Fig15,
+}
+
 /// How sample indices are paired with time and lens strata.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Pairing {
@@ -214,6 +227,8 @@ pub struct SampleSpec {
     pub pattern: Pattern,
     /// Time pairing.
     pub time_pairing: Pairing,
+    /// Time pattern within each stratum.
+    pub time_pattern: TimePattern,
     /// Shutter shape.
     pub shutter: ShutterShape,
     /// Lens shape (and lens pairing: decorrelated for the disk, Appendix A's for the square).
@@ -386,7 +401,20 @@ impl BucketSamples {
                         let u = if sobol.is_some() {
                             net_t[tau]
                         } else {
-                            tau as f32 / fns + tables.get(Table::T, off[2] + i + 2)
+                            let own = tables.get(Table::T, off[2] + i + 2);
+                            let jt = match spec.time_pattern {
+                                TimePattern::Fig14 => own,
+                                TimePattern::Fig13 => tables.get(Table::T, 7 * tau + 2),
+                                TimePattern::Fig15 => {
+                                    let refu = tables.get(Table::T, 7 * tau + 2) * fns;
+                                    let offu = 2.0 * own * fns - 1.0;
+                                    (FIG7_REACH
+                                        + (1.0 - 2.0 * FIG7_REACH) * refu
+                                        + FIG7_REACH * offu)
+                                        / fns
+                                }
+                            };
+                            tau as f32 / fns + jt
                         };
                         self.t[k] = spec.shutter.warp(u.min(1.0));
                         self.by_time[tau * p_count + pixel] = s as u32;
@@ -464,6 +492,7 @@ mod tests {
         SampleSpec {
             pattern,
             time_pairing: pairing,
+            time_pattern: TimePattern::Fig14,
             shutter: ShutterShape::Uniform,
             lens_shape: LensShape::Disk,
             seed: 5,

@@ -2,7 +2,9 @@
 //! distribution of sample times for each shutter shape, decorrelation of time from sub-pixel
 //! position, and piecewise-linear motion segments.
 
-use reyes_hider::{Frame, Hider, HiderConfig, Micropolygon, Pairing, Scratch, ShutterShape, flags};
+use reyes_hider::{
+    Frame, Hider, HiderConfig, Micropolygon, Pairing, Scratch, ShutterShape, TimePattern, flags,
+};
 
 fn moving_rect(x0: f32, x1: f32, y0: f32, y1: f32, dx: f32, time: [f32; 2]) -> Micropolygon {
     let v = [[x0, y0, 5.0], [x1, y0, 5.0], [x1, y1, 5.0], [x0, y1, 5.0]];
@@ -180,5 +182,43 @@ fn motion_segments_cover_the_shutter_piecewise() {
             })
             .sum();
         assert!((m - exact).abs() < 0.065, "column {x}: {m} vs {exact}");
+    }
+}
+
+#[test]
+fn time_patterns_of_figs_13_to_15() {
+    // Per pixel and time stratum tau, the time's offset within its stratum, in strata.
+    let offsets = |tp: TimePattern| -> Vec<Vec<f32>> {
+        let cfg = HiderConfig { time_pattern: tp, ..HiderConfig::default() };
+        let hider = Hider::new(cfg, Frame::new(64, 64, 0, 16, 16));
+        let mut per_tau = vec![Vec::new(); 16];
+        for b in [0, 5, 10] {
+            let s = hider.bucket_samples(b);
+            for tau in 0..16 {
+                for pixel in 0..256 {
+                    let k = s.by_time[tau * 256 + pixel] as usize * 256 + pixel;
+                    let off = s.t[k] * 16.0 - tau as f32;
+                    assert!((0.0..1.0).contains(&off), "{tp:?}: time outside its stratum");
+                    per_tau[tau].push(off);
+                }
+            }
+        }
+        per_tau
+    };
+    let spread = |v: &[f32]| {
+        v.iter().cloned().fold(f32::NEG_INFINITY, f32::max)
+            - v.iter().cloned().fold(f32::INFINITY, f32::min)
+    };
+    for (tau, v) in offsets(TimePattern::Fig13).iter().enumerate() {
+        // One time per stratum in every pixel (up to the rounding of tau/16 + jitter).
+        assert!(spread(v) < 1e-4, "FIG. 13 stratum {tau}: spread {}", spread(v));
+    }
+    for v in offsets(TimePattern::Fig14) {
+        assert!(spread(&v) > 0.9, "FIG. 14 must use the whole stratum");
+    }
+    for v in offsets(TimePattern::Fig15) {
+        // A shared reference plus a shift of at most a quarter stratum either way.
+        let s = spread(&v);
+        assert!(s > 0.3 && s <= 0.5 + 1e-4, "FIG. 15 spread {s}");
     }
 }

@@ -191,6 +191,8 @@ pub struct Hider {
     pub jitter: bool,
     /// Which jittered spatial pattern (FIGS. 5-7) to use when `jitter` is on.
     pub pattern: SpatialPattern,
+    /// How each sample's time is chosen within its time stratum (FIGS. 13-15).
+    pub time_pattern: TimePattern,
     /// Reconstruction filter.
     pub filter: Filter,
     /// Bucket size in pixels (x, y).
@@ -211,6 +213,7 @@ impl Default for Hider {
             pixel_samples: (4, 4),
             jitter: true,
             pattern: SpatialPattern::default(),
+            time_pattern: TimePattern::default(),
             filter: Filter::default(),
             bucket_size: (16, 16),
             shading_rate: 1.0,
@@ -235,6 +238,19 @@ pub enum SpatialPattern {
     Random,
     /// Owen-scrambled Sobol (0,2) per pixel; needs power-of-two `pixel_samples`, else `Fig6`.
     Sobol,
+}
+
+/// Temporal patterns of the patent (FIGS. 13-15), the counterparts in time of FIGS. 5-7.
+/// With `jitter: false` every sample takes its time stratum's centre.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub enum TimePattern {
+    /// FIG. 13: one pseudo-random time per stratum, the same in every pixel.
+    Fig13,
+    /// FIG. 14: a new pseudo-random time anywhere in the stratum for every pixel (Appendix A).
+    #[default]
+    Fig14,
+    /// FIG. 15: a FIG. 13 reference time plus a pseudo-random shift of at most a quarter stratum.
+    Fig15,
 }
 
 /// Reconstruction filter (`VisFilter`).

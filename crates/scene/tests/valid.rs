@@ -48,6 +48,7 @@ fn the_full_example_parses_with_the_expected_values() {
             pixel_samples: (4, 4),
             jitter: true,
             pattern: SpatialPattern::Fig6,
+            time_pattern: reyes_scene::TimePattern::Fig14,
             filter: Filter { kind: FilterKind::Gaussian, width: 2.0 },
             bucket_size: (16, 16),
             shading_rate: 1.0,
