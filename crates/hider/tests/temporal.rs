@@ -194,12 +194,12 @@ fn time_patterns_of_figs_13_to_15() {
         let mut per_tau = vec![Vec::new(); 16];
         for b in [0, 5, 10] {
             let s = hider.bucket_samples(b);
-            for tau in 0..16 {
+            for (tau, offs) in per_tau.iter_mut().enumerate() {
                 for pixel in 0..256 {
                     let k = s.by_time[tau * 256 + pixel] as usize * 256 + pixel;
                     let off = s.t[k] * 16.0 - tau as f32;
                     assert!((0.0..1.0).contains(&off), "{tp:?}: time outside its stratum");
-                    per_tau[tau].push(off);
+                    offs.push(off);
                 }
             }
         }
