@@ -34,7 +34,6 @@
 //!   This is far tighter than the binomial bound `p (1 - p) / N` of unstratified sampling,
 //!   which would ignore that only cells cut by the surface vary at all.
 
-use std::collections::HashMap;
 use std::fmt;
 use std::path::{Path, PathBuf};
 
@@ -294,102 +293,35 @@ fn shape_name(shape: &Shape) -> &'static str {
 }
 
 /// The closed quadric of a shape, `Ok(None)` for a mesh, or why the shape bounds no volume.
-/// The same rules as the scene's CSG operands: full sweeps, a sphere uncut (cuts at or beyond
-/// the poles do not cut), a torus's whole tube; no disks or patches; meshes closed.
+/// Whether it is closed is the scene's own rule ([`reyes_scene::closure`], the one CSG
+/// operands obey); a mesh's face orientation does not matter to the parity test.
 fn closed_quadric(shape: &Shape) -> Result<Option<Quadric>, String> {
-    let sweep = |kind: &str, thetamax: f32| {
-        if thetamax >= 360.0 { Ok(()) } else { Err(format!("{kind} with thetamax {thetamax}")) }
-    };
-    let q = match *shape {
-        Shape::Sphere { radius, zmin, zmax, thetamax } => {
-            if let Some(z) = zmin
-                && z > -radius
-            {
-                return Err(format!("Sphere cut at zmin {z}"));
-            }
-            if let Some(z) = zmax
-                && z < radius
-            {
-                return Err(format!("Sphere cut at zmax {z}"));
-            }
-            sweep("Sphere", thetamax)?;
+    if let reyes_scene::Closure::Open(why) = reyes_scene::closure(shape) {
+        return Err(why);
+    }
+    Ok(Some(match *shape {
+        Shape::Sphere { radius, .. } => {
             let r = f64::from(radius);
             Quadric::Sphere { r2: r * r }
         }
-        Shape::Cylinder { radius, zmin, zmax, thetamax } => {
-            sweep("Cylinder", thetamax)?;
+        Shape::Cylinder { radius, zmin, zmax, .. } => {
             let r = f64::from(radius);
             Quadric::Cylinder { r2: r * r, zmin: f64::from(zmin), zmax: f64::from(zmax) }
         }
-        Shape::Cone { height, radius, thetamax } => {
-            sweep("Cone", thetamax)?;
+        Shape::Cone { height, radius, .. } => {
             Quadric::Cone { height: f64::from(height), radius: f64::from(radius) }
         }
-        Shape::Paraboloid { rmax, zmin, zmax, thetamax } => {
-            sweep("Paraboloid", thetamax)?;
+        Shape::Paraboloid { rmax, zmin, zmax, .. } => {
             let (r, z1) = (f64::from(rmax), f64::from(zmax));
             Quadric::Paraboloid { k: r * r / z1, zmin: f64::from(zmin), zmax: z1 }
         }
-        Shape::Torus { major_radius, minor_radius, phimin, phimax, thetamax } => {
-            let tube = f64::from(phimax) - f64::from(phimin);
-            if tube != 360.0 {
-                return Err(format!("Torus with phimax - phimin = {tube}"));
-            }
-            sweep("Torus", thetamax)?;
+        Shape::Torus { major_radius, minor_radius, .. } => {
             Quadric::Torus { major: f64::from(major_radius), minor: f64::from(minor_radius) }
         }
-        Shape::Disk { .. } => return Err("Disk".into()),
-        Shape::BilinearPatch { .. } => return Err("BilinearPatch".into()),
-        Shape::Mesh { ref faces, .. } => {
-            return match mesh_open(faces) {
-                Some(why) => Err(why),
-                None => Ok(None),
-            };
-        }
-    };
-    Ok(Some(q))
-}
-
-/// Why a mesh is not closed, or `None` when every edge is shared by exactly two faces (the
-/// scene's rule for CSG operands, without its orientation check: the parity test does not
-/// need one). A face first drops repeated consecutive indices; one left with fewer than 3
-/// points has no area and is ignored.
-fn mesh_open(faces: &[Vec<u32>]) -> Option<String> {
-    let mut uses: HashMap<(u32, u32), (usize, usize)> = HashMap::new();
-    let mut any = false;
-    for (f, face) in faces.iter().enumerate() {
-        let mut v: Vec<u32> = Vec::with_capacity(face.len());
-        for &i in face {
-            if v.last() != Some(&i) {
-                v.push(i);
-            }
-        }
-        while v.len() > 1 && v.first() == v.last() {
-            v.pop();
-        }
-        if v.len() < 3 {
-            continue;
-        }
-        any = true;
-        for k in 0..v.len() {
-            let (a, b) = (v[k], v[(k + 1) % v.len()]);
-            uses.entry((a.min(b), a.max(b))).or_insert((0, f)).0 += 1;
-        }
-    }
-    if !any {
-        return Some("Mesh: no face has an area".into());
-    }
-    // (first face, edge, faces) of every edge not shared by exactly two faces.
-    let mut bad: Vec<(usize, (u32, u32), usize)> =
-        uses.iter().filter(|(_, (n, _))| *n != 2).map(|(e, (n, f))| (*f, *e, *n)).collect();
-    bad.sort_unstable();
-    bad.first().map(|(f, (a, b), n)| {
-        if *n == 1 {
-            format!("Mesh: edge ({a}, {b}) of faces[{f}] belongs to no other face")
-        } else {
-            format!("Mesh: edge ({a}, {b}) is shared by {n} faces")
-        }
-    })
+        Shape::Mesh { .. } => return Ok(None),
+        // `closure` calls these open.
+        Shape::Disk { .. } | Shape::BilinearPatch { .. } => return Err(shape_name(shape).into()),
+    }))
 }
 
 /// Ray directions of the mesh parity test: irrational-ish, far from the axes and each other.
@@ -995,9 +927,14 @@ mod tests {
 
     #[test]
     fn open_meshes_are_named() {
+        let mesh = |faces: &[Vec<u32>]| Shape::Mesh {
+            points: vec![[0.0; 3]; 4],
+            faces: faces.to_vec(),
+            colors: None,
+        };
         let tetra = vec![vec![0, 1, 2], vec![0, 3, 1], vec![1, 3, 2], vec![2, 3, 0]];
-        assert_eq!(mesh_open(&tetra), None);
-        let why = mesh_open(&tetra[..3]).unwrap_or_default();
+        assert_eq!(closed_quadric(&mesh(&tetra)), Ok(None));
+        let why = closed_quadric(&mesh(&tetra[..3])).err().unwrap_or_default();
         assert!(why.contains("belongs to no other face"), "{why}");
     }
 }

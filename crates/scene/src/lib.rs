@@ -5,6 +5,7 @@
 //! displays as one line naming the file, the position and the field path when known.
 #![deny(missing_docs)]
 
+pub mod closure;
 mod error;
 mod locate;
 pub mod model;
@@ -13,6 +14,7 @@ mod validate;
 
 use std::path::Path;
 
+pub use closure::{Closure, closure};
 pub use error::{LoadError, SceneError};
 pub use model::*;
 
