@@ -532,6 +532,7 @@ fn member(scene: &Scene, index: usize, what: &str) -> Result<(Member, Aabb), Mea
                 lights: Vec::new(),
                 objects: vec![object.clone()],
                 solids: Vec::new(),
+                raytrace: scene.raytrace,
             };
             Ok((Member::Mesh(Box::new(Tracer::new(&alone))), bounds))
         }

@@ -234,6 +234,7 @@ mod tests {
             lights: vec![],
             objects: vec![],
             solids: vec![],
+            raytrace: Default::default(),
         }
     }
 

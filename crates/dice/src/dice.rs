@@ -22,15 +22,27 @@ use crate::DiceError;
 use crate::bucket::Bucketer;
 use crate::camera::CameraSetup;
 use crate::motion::{Placement, Pose};
+use crate::hook::{VertexContext, VertexShader};
 use crate::shade::Shader;
 use crate::split::Patch;
 
 /// Largest number of micropolygons: bucket lists index them with `u32`.
 pub(crate) const MAX_MICROPOLYGONS: usize = u32::MAX as usize;
 
+/// A vertex shader from [`crate::DiceOptions`], with where the dicer is.
+#[derive(Clone, Copy)]
+pub(crate) struct Hook<'a> {
+    /// The shader.
+    pub shader: &'a dyn VertexShader,
+    /// Index of the object in the scene.
+    pub object: usize,
+    /// Index of the surface being diced.
+    pub surface: usize,
+}
+
 /// One object's shading, flag bits and labels.
-#[derive(Debug, Clone)]
-pub(crate) struct ObjectContext {
+#[derive(Clone)]
+pub(crate) struct ObjectContext<'a> {
     /// Object to world at shutter open, for normals (inverse transpose up to a positive
     /// factor).
     pub normal_to_world: Mat3,
@@ -38,6 +50,8 @@ pub(crate) struct ObjectContext {
     pub shader: Shader,
     /// Labels every micropolygon of the object carries.
     pub labels: Labels,
+    /// Shades the vertices instead of `shader` when present.
+    pub hook: Option<Hook<'a>>,
 }
 
 /// What every micropolygon of one object carries besides its geometry and colour.
@@ -124,7 +138,7 @@ impl Emitter {
     pub fn dice(
         &mut self,
         camera: &CameraSetup,
-        object: &ObjectContext,
+        object: &ObjectContext<'_>,
         poses: &[Pose<'_>],
         patch: &Patch,
         (nu, nv): (u32, u32),
@@ -161,7 +175,23 @@ impl Emitter {
                         let sp = pose.surface.eval(u, v);
                         let (p_world, p_camera) = pose.moment.world_and_camera(sp.p);
                         let n_world = object.normal_to_world * sp.n;
-                        let (color, trans) = object.shader.shade(p_world, n_world, sp.tint);
+                        let (color, trans) = match &object.hook {
+                            None => object.shader.shade(p_world, n_world, sp.tint),
+                            Some(hook) => hook.shader.shade(&VertexContext {
+                                object: hook.object,
+                                surface: hook.surface,
+                                patch_u: patch.u,
+                                patch_v: patch.v,
+                                i: i as u32,
+                                j: j as u32,
+                                nu: nu as u32,
+                                nv: nv as u32,
+                                p_world,
+                                n_world: n_world.normalize_or_zero(),
+                                p_object: sp.p,
+                                tint: sp.tint,
+                            }),
+                        };
                         grid.push(GridVertex { v: project(p_camera), color, trans });
                     } else {
                         let p_object = pose.surface.position(u, v);
@@ -314,7 +344,7 @@ pub(crate) fn object_context(
     eye_world: Vec3,
     open: &Placement,
     csg: Option<(u16, u16)>,
-) -> ObjectContext {
+) -> ObjectContext<'static> {
     let shader = Shader::new(&object.material, lights, eye_world);
     let mut flags = 0;
     if shader.opaque() {
@@ -333,5 +363,5 @@ pub(crate) fn object_context(
     }
     let (csg_tree, csg_node) = csg.unwrap_or((0, 0));
     let labels = Labels { flags, csg_tree, csg_node, glass_opacity };
-    ObjectContext { normal_to_world: open.normal_to_world(), shader, labels }
+    ObjectContext { normal_to_world: open.normal_to_world(), shader, labels, hook: None }
 }

@@ -70,6 +70,7 @@ mod bucket;
 mod camera;
 mod csg;
 mod dice;
+mod hook;
 mod motion;
 mod shade;
 mod shapes;
@@ -79,6 +80,7 @@ mod xform;
 pub use bucket::screen_bound;
 pub use camera::CameraSetup;
 pub use csg::CsgSetup;
+pub use hook::{DiceOptions, VertexContext, VertexShader};
 pub use xform::{object_to_world, transform_matrix};
 
 use reyes_hider::{CsgTree, Frame, Micropolygon};
@@ -197,6 +199,15 @@ fn check_frame(scene: &Scene, frame: &Frame) -> Result<(), DiceError> {
 /// Dice every object of `scene` into shaded micropolygons and sort them into the buckets
 /// of `frame` (which must be the layout of the scene's image).
 pub fn dice_scene(scene: &Scene, frame: &Frame) -> Result<Diced, DiceError> {
+    dice_scene_with(scene, frame, &DiceOptions::default())
+}
+
+/// [`dice_scene`] with options (a vertex shader replacing the local illumination).
+pub fn dice_scene_with(
+    scene: &Scene,
+    frame: &Frame,
+    options: &DiceOptions,
+) -> Result<Diced, DiceError> {
     check_frame(scene, frame)?;
     camera::check_camera(&scene.camera)?;
     let camera_motion = CameraMotion::new(scene);
@@ -216,10 +227,14 @@ pub fn dice_scene(scene: &Scene, frame: &Frame) -> Result<Diced, DiceError> {
         let Some(open) = motion.moments().first() else {
             continue;
         };
-        let ctx =
+        let mut ctx =
             dice::object_context(object, &scene.lights, camera.eye_world(), &open.place, leaf);
+        ctx.hook = options.vertex_shader.map(|shader| dice::Hook { shader, object: i, surface: 0 });
         for index in 0..motion.surface_count() {
             let poses = motion.poses(index);
+            if let Some(hook) = &mut ctx.hook {
+                hook.surface = index;
+            }
             stats.primitives += 1;
             stack.clear();
             stack.push(Patch::root());

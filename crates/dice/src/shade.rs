@@ -64,16 +64,18 @@ impl Shader {
         for light in lights {
             match *light {
                 Light::Ambient { color, intensity } => ambient += intensity * Vec3::from(color),
-                Light::Distant { from, to, color, intensity } => {
+                Light::Distant { from, to, color, intensity, .. } => {
                     // A light with from == to has no direction and lights nothing.
                     if let Some(l) = (Vec3::from(from) - Vec3::from(to)).try_normalize() {
                         direct.push(DirectLight::Distant { l, cl: intensity * Vec3::from(color) });
                     }
                 }
-                Light::Point { from, color, intensity } => direct.push(DirectLight::Point {
+                Light::Point { from, color, intensity, .. } => direct.push(DirectLight::Point {
                     from: Vec3::from(from),
                     cl: intensity * Vec3::from(color),
                 }),
+                // Area lights are sampled by the ray-traced shading (reyes-shade).
+                Light::Area { .. } => {}
             }
         }
         Shader { model, cs: Vec3::from(cs), os: Vec3::from(os), ambient, lights: direct, eye_world }
@@ -177,6 +179,7 @@ mod tests {
                 to: [0.0, 0.0, 0.0],
                 color: [1.0, 1.0, 1.0],
                 intensity: 0.8,
+                shadows: false,
             },
         ];
         let s = Shader::new(&m, &lights, EYE);
@@ -192,7 +195,7 @@ mod tests {
     fn point_light_falls_off_with_distance_squared() {
         let m = Material::Matte { color: [1.0; 3], opacity: [1.0; 3], ka: 1.0, kd: 1.0 };
         let lights =
-            [Light::Point { from: [0.0, 0.0, -4.0], color: [1.0, 0.5, 1.0], intensity: 8.0 }];
+            [Light::Point { from: [0.0, 0.0, -4.0], color: [1.0, 0.5, 1.0], intensity: 8.0, shadows: false }];
         let s = Shader::new(&m, &lights, EYE);
         let (c, _) = s.shade(Vec3::ZERO, Vec3::NEG_Z, Vec3::ONE);
         assert!(close3(c, Vec3::new(0.5, 0.25, 0.5)), "{c:?}");
@@ -222,6 +225,7 @@ mod tests {
             to: [0.0; 3],
             color: [1.0; 3],
             intensity: 1.0,
+            shadows: false,
         }];
         let s = Shader::new(&m, &lights, EYE);
         let (c, _) = s.shade(Vec3::ZERO, Vec3::NEG_Z, Vec3::ONE);
@@ -232,6 +236,7 @@ mod tests {
             to: [0.0; 3],
             color: [1.0; 3],
             intensity: 1.0,
+            shadows: false,
         }];
         let s = Shader::new(&m, &tilted, EYE);
         let (c, _) = s.shade(Vec3::ZERO, Vec3::NEG_Z, Vec3::ONE);
@@ -245,6 +250,7 @@ mod tests {
             to: [0.0; 3],
             color: [1.0; 3],
             intensity: 1.0,
+            shadows: false,
         }];
         let s = Shader::new(&m, &behind, EYE);
         let (c, _) = s.shade(Vec3::ZERO, Vec3::NEG_Z, Vec3::ONE);

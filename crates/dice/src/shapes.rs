@@ -331,6 +331,10 @@ mod tests {
             deform: vec![],
             interpolation: Default::default(),
             glass: None,
+            reflect: None,
+            refract: None,
+            pattern: None,
+            roll: None,
         }
     }
 

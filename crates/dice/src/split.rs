@@ -419,6 +419,7 @@ mod tests {
             lights: vec![],
             objects: vec![],
             solids: vec![],
+            raytrace: Default::default(),
         }
     }
 
@@ -433,6 +434,10 @@ mod tests {
             deform: vec![],
             interpolation: Default::default(),
             glass: None,
+            reflect: None,
+            refract: None,
+            pattern: None,
+            roll: None,
         }
     }
 

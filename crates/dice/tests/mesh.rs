@@ -36,6 +36,10 @@ fn mesh_object(material: Material, matte: bool) -> Object {
         deform: Vec::new(),
         interpolation: Default::default(),
         glass: None,
+        reflect: None,
+        refract: None,
+        pattern: None,
+        roll: None,
     }
 }
 

@@ -131,6 +131,7 @@ fn static_scenes() -> Vec<Scene> {
             from: [2.0, 3.0, 2.0],
             color: [1.0; 3],
             intensity: 5.0,
+            shadows: false,
         });
         out.push(s);
     }

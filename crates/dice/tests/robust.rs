@@ -81,6 +81,10 @@ fn odd_shapes_and_transforms_do_not_panic() {
                 deform: Vec::new(),
                 interpolation: Default::default(),
                 glass: None,
+                reflect: None,
+                refract: None,
+                pattern: None,
+                roll: None,
             });
         }
     }
@@ -91,6 +95,7 @@ fn odd_shapes_and_transforms_do_not_panic() {
             from: [0.0, 0.0, 5.0],
             color: [1.0; 3],
             intensity: 3.0,
+            shadows: false,
         });
         s.hider.max_grid_size = 1;
         s.hider.shading_rate = 8.0;

@@ -35,6 +35,30 @@ pub struct Scene {
     /// part of it, and may be used in one solid only.
     #[serde(default)]
     pub solids: Vec<Solid>,
+    /// Settings of the distributed ray tracing (shadows, glossy reflection, translucency).
+    #[serde(default)]
+    pub raytrace: RayTrace,
+}
+
+/// Distributed ray tracing (patent FIGS. 19-22, Appendix B): limits and cost.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RayTrace {
+    /// Deepest chain of secondary rays (reflection and refraction bounces) followed from a
+    /// shaded point; at least 1 when any object reflects or refracts.
+    pub max_depth: u32,
+    /// A secondary ray whose weight (the product of the reflection or transmission colours
+    /// along its path, largest channel) falls below this is not traced.
+    pub min_weight: f32,
+    /// Rays per effect (each shadowing light, glossy reflection, refraction) per grid
+    /// vertex when the stochastic hider shades vertices (>= 1).
+    pub vertex_rays: u32,
+}
+
+impl Default for RayTrace {
+    fn default() -> Self {
+        RayTrace { max_depth: 4, min_weight: 0.01, vertex_rays: 1 }
+    }
 }
 
 /// One CSG solid (Appendix A's CSG tree).
@@ -185,6 +209,8 @@ pub struct Lens {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Hider {
+    /// Which visibility algorithm renders the frame.
+    pub method: HiderMethod,
     /// Samples per pixel as (nx, ny): NS = nx * ny strata per pixel.
     pub pixel_samples: (u32, u32),
     /// Appendix A's `jitter on/off`. `false` is the regular grid of FIG. 3 and overrides `pattern`.
@@ -210,6 +236,7 @@ pub struct Hider {
 impl Default for Hider {
     fn default() -> Self {
         Hider {
+            method: HiderMethod::default(),
             pixel_samples: (4, 4),
             jitter: true,
             pattern: SpatialPattern::default(),
@@ -222,6 +249,17 @@ impl Default for Hider {
             original: Original::default(),
         }
     }
+}
+
+/// The visibility algorithm.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub enum HiderMethod {
+    /// Appendix A: dice into micropolygons, shade the vertices, point-sample the micropolygons.
+    #[default]
+    Stochastic,
+    /// Appendix B: trace a primary ray per sample (same positions, times, lens positions and
+    /// filter) and shade where it hits, with the distributed rays of the materials and lights.
+    RayTrace,
 }
 
 /// Jittered spatial sampling patterns of the patent (FIG. 3 is `jitter: false`).
@@ -341,6 +379,9 @@ pub enum Light {
         /// Scale on colour.
         #[serde(default = "one")]
         intensity: f32,
+        /// Cast hard shadows (traced shadow rays).
+        #[serde(default)]
+        shadows: bool,
     },
     /// A point light with inverse-square fall-off.
     Point {
@@ -352,7 +393,75 @@ pub enum Light {
         /// Scale on colour: radiance arriving at distance d is `intensity * color / d^2`.
         #[serde(default = "one")]
         intensity: f32,
+        /// Cast hard shadows (traced shadow rays).
+        #[serde(default)]
+        shadows: bool,
     },
+    /// A light with extent: a point light of `intensity` spread evenly over `shape`. Each
+    /// shading sample sends a shadow ray to a pseudo-randomly chosen, stratified point of
+    /// the shape, so a partly hidden light gives a penumbra (FIG. 22). Always shadows.
+    /// The light itself is invisible to camera rays (put an object there to see it).
+    Area {
+        /// The emitting shape.
+        shape: AreaShape,
+        /// Colour.
+        #[serde(default = "white")]
+        color: Rgb,
+        /// Scale on colour, as for a point light at the shape's centre.
+        #[serde(default = "one")]
+        intensity: f32,
+        /// Motion (Appendix B's moving lights): the shape's displacement and the intensity
+        /// at two or more times within the shutter, in increasing time order, interpolated
+        /// linearly and held outside. Empty: still, at `intensity`.
+        #[serde(default)]
+        motion: Vec<LightKey>,
+    },
+}
+
+/// The shape of an area light, in world space.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum AreaShape {
+    /// A ball (Appendix B's spherical lights).
+    Sphere {
+        /// Centre.
+        center: V3,
+        /// Radius (> 0).
+        radius: f32,
+    },
+    /// A disk emitting to both sides.
+    Disk {
+        /// Centre.
+        center: V3,
+        /// Normal (non-zero).
+        normal: V3,
+        /// Radius (> 0).
+        radius: f32,
+    },
+    /// A parallelogram `corner + a * edge_u + b * edge_v`, `a, b` in [0, 1], emitting to
+    /// both sides.
+    Rectangle {
+        /// One corner.
+        corner: V3,
+        /// First edge (non-zero, not parallel to `edge_v`).
+        edge_u: V3,
+        /// Second edge.
+        edge_v: V3,
+    },
+}
+
+/// An area light at one time.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LightKey {
+    /// Scene time, within the shutter.
+    pub time: f32,
+    /// Displacement of the shape from where `shape` puts it.
+    #[serde(default)]
+    pub offset: V3,
+    /// Intensity at that time (>= 0).
+    #[serde(default = "one")]
+    pub intensity: f32,
 }
 
 pub(crate) fn white() -> Rgb {
@@ -402,6 +511,94 @@ pub struct Object {
     /// `C *= a + (1 - a) * c_behind` (a in [0, 1]; 1 is no tint).
     #[serde(default)]
     pub glass: Option<f32>,
+    /// Reflection by traced rays (FIGS. 19-20): mirror or glossy.
+    #[serde(default)]
+    pub reflect: Option<Reflect>,
+    /// Refraction by traced rays (FIG. 21): clear or blurry translucency.
+    #[serde(default)]
+    pub refract: Option<Refract>,
+    /// A procedural texture replacing the material colour.
+    #[serde(default)]
+    pub pattern: Option<Pattern>,
+    /// Appendix B's rolling: the object is a ball rolling without slipping along `path`;
+    /// expanded at load time into `motion` keys. Excludes `motion`.
+    #[serde(default)]
+    pub roll: Option<Roll>,
+}
+
+/// Traced reflection, added to the shaded colour.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Reflect {
+    /// Reflectivity per channel (in [0, 1]): weight of the reflected ray's colour.
+    pub color: Rgb,
+    /// Gloss: half-angle in degrees of the cone around the mirror direction from which each
+    /// sample's reflection direction is chosen (Appendix B's `disperseray`); 0 is a mirror.
+    #[serde(default)]
+    pub gloss: f32,
+}
+
+/// Traced refraction, added to the shaded colour.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Refract {
+    /// Index of refraction of the object's inside relative to the outside (> 0).
+    pub ior: f32,
+    /// Transmission per channel (in [0, 1]): weight of the refracted ray's colour.
+    #[serde(default = "white")]
+    pub color: Rgb,
+    /// Blur: half-angle in degrees of the cone around the Snell direction from which each
+    /// sample's refraction direction is chosen; 0 is clear glass.
+    #[serde(default)]
+    pub blur: f32,
+}
+
+/// Procedural textures.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum Pattern {
+    /// Appendix B's pool ball, around the object's z axis (its pole): a coloured band
+    /// `|z| < 0.4722 r` (striped balls) or colour everywhere (solid balls), a dark ring
+    /// `0.85 r <= |z| < 0.9 r` and an ivory number disk `|z| >= 0.9 r` at each pole.
+    PoolBall {
+        /// The ball's colour.
+        color: Rgb,
+        /// Striped (colour in the band only, ivory elsewhere) or solid.
+        #[serde(default)]
+        striped: bool,
+    },
+}
+
+/// A ball rolling without slipping on a plane (Appendix B's `h` command and `spinangle`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Roll {
+    /// Ball radius (> 0): turning angle = distance travelled / radius.
+    pub radius: f32,
+    /// Normal of the plane it rolls on (non-zero).
+    #[serde(default = "default_up")]
+    pub up: V3,
+    /// Positions of the ball's centre at two or more times within the shutter, in
+    /// increasing time order; straight between them.
+    pub path: Vec<RollKey>,
+    /// Transform keys generated per path segment (>= 1): rotation keys are interpolated
+    /// linearly, so more keys follow the rotation more closely.
+    #[serde(default = "default_roll_steps")]
+    pub steps: u32,
+}
+
+/// A rolling ball's centre at one time.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RollKey {
+    /// Scene time, within the shutter.
+    pub time: f32,
+    /// Centre.
+    pub position: V3,
+}
+
+fn default_roll_steps() -> u32 {
+    8
 }
 
 /// Colour interpolation across a micropolygon.

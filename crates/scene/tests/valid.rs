@@ -45,6 +45,7 @@ fn the_full_example_parses_with_the_expected_values() {
             motion: vec![],
         },
         hider: Hider {
+            method: reyes_scene::HiderMethod::Stochastic,
             pixel_samples: (4, 4),
             jitter: true,
             pattern: SpatialPattern::Fig6,
@@ -63,6 +64,7 @@ fn the_full_example_parses_with_the_expected_values() {
                 to: [0.0, 0.0, 0.0],
                 color: [1.0, 1.0, 1.0],
                 intensity: 1.0,
+                shadows: false,
             },
         ],
         objects: vec![Object {
@@ -83,8 +85,13 @@ fn the_full_example_parses_with_the_expected_values() {
             deform: vec![],
             interpolation: Interpolation::Flat,
             glass: None,
+            reflect: None,
+            refract: None,
+            pattern: None,
+            roll: None,
         }],
         solids: vec![],
+        raytrace: reyes_scene::RayTrace::default(),
     };
     assert_eq!(scene, expected);
 }
@@ -142,7 +149,8 @@ fn partial_hider_and_object_defaults() {
             from: [0.0, 1.0, 0.0],
             to: [0.0, 0.0, 0.0],
             color: [1.0, 1.0, 1.0],
-            intensity: 1.0
+            intensity: 1.0,
+            shadows: false,
         }
     );
     let object = &scene.objects[0];

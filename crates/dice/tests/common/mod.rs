@@ -35,10 +35,12 @@ pub fn scene(width: u32, height: u32, camera: Camera, objects: Vec<Object>) -> S
                 to: [0.0; 3],
                 color: [1.0; 3],
                 intensity: 1.0,
+                shadows: false,
             },
         ],
         objects,
         solids: Vec::new(),
+        raytrace: Default::default(),
     }
 }
 
@@ -54,6 +56,10 @@ pub fn object(shape: Shape, transform: Vec<Transform>) -> Object {
         deform: Vec::new(),
         interpolation: Default::default(),
         glass: None,
+        reflect: None,
+        refract: None,
+        pattern: None,
+        roll: None,
     }
 }
 
