@@ -73,10 +73,11 @@ impl<'a> Shading<'a> {
         unimplemented!("reyes-shade: in progress")
     }
 
-    /// Follow `ray` (time normalised over the shutter) through the scene: composite the
-    /// surfaces it meets front to back, shading each with the distributed rays.
-    pub fn trace(&self, ray: &Ray, strata: &mut Strata) -> Traced {
-        let _ = (ray, strata);
+    /// Follow `ray` (time normalised over the shutter) through the scene up to ray
+    /// parameter `t_max`: composite the surfaces it meets front to back, shading each with
+    /// the distributed rays.
+    pub fn trace(&self, ray: &Ray, t_max: f32, strata: &mut Strata) -> Traced {
+        let _ = (ray, t_max, strata);
         unimplemented!("reyes-shade: in progress")
     }
 }
