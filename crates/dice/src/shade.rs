@@ -3,6 +3,10 @@
 //! Invariants: lighting is two-sided (the normal is face-forwarded toward the eye), the
 //! output colour is premultiplied by opacity (`Os * Ci`) and `trans = 1 - Os`; every output
 //! is finite for finite input (a point light at the shaded point contributes nothing).
+//!
+//! The illumination models themselves ([`Shader::illuminate`]) are public so that the
+//! ray-traced shading (reyes-shade) evaluates the same Constant, Matte and Plastic models
+//! under its own lights (shadowed, area-sampled) without a second copy of them.
 
 use glam::Vec3;
 use reyes_scene::{Light, Material};
@@ -24,9 +28,10 @@ enum Model {
     Plastic { ka: f32, kd: f32, ks: f32, exponent: f32, specular: Vec3 },
 }
 
-/// Shades points of one object.
+/// Shades points of one object: its material's illumination model, colour and opacity,
+/// and the scene's ambient, distant and point lights.
 #[derive(Debug, Clone, PartialEq)]
-pub(crate) struct Shader {
+pub struct Shader {
     model: Model,
     /// Surface colour `Cs` (before mesh tints).
     cs: Vec3,
@@ -86,62 +91,112 @@ impl Shader {
         self.os == Vec3::ONE
     }
 
+    /// The material's surface colour `Cs` (before tints and patterns).
+    pub fn color(&self) -> Vec3 {
+        self.cs
+    }
+
+    /// The material's opacity `Os`.
+    pub fn opacity(&self) -> Vec3 {
+        self.os
+    }
+
+    /// The sum of the scene's ambient lights (`intensity * color` each).
+    pub fn ambient(&self) -> Vec3 {
+        self.ambient
+    }
+
+    /// True if the material ignores lights (`Constant`): [`Shader::illuminate`] then never
+    /// reads its light list.
+    pub fn unlit(&self) -> bool {
+        self.model == Model::Constant
+    }
+
+    /// The colour `Ci` (not premultiplied) of a point of surface colour `cs`, with unit
+    /// normal `n` already face-forwarded toward the viewer and unit vector `v` toward the
+    /// viewer, under the ambient lights and the direct lights `lights`: pairs of the unit
+    /// vector `L` toward the light and the colour `Cl` arriving (already divided by any
+    /// distance fall-off and multiplied by any shadowing). Per model:
+    ///
+    /// * Constant: `cs` (the lights are not read);
+    /// * Matte: `cs * (ka * ambient + kd * sum Cl max(0, N.L))`;
+    /// * Plastic: the Matte terms with its `ka`, `kd`, plus
+    ///   `specular_color * ks * sum Cl max(0, N.H)^(1/roughness)`, `H = normalize(L + V)`,
+    ///   over the lights with `N.L > 0`.
+    pub fn illuminate(
+        &self,
+        cs: Vec3,
+        n: Vec3,
+        v: Vec3,
+        lights: impl IntoIterator<Item = (Vec3, Vec3)>,
+    ) -> Vec3 {
+        match self.model {
+            Model::Constant => cs,
+            Model::Matte { ka, kd } => {
+                let (diffuse, _) = direct(n, None, lights);
+                cs * (ka * self.ambient + kd * diffuse)
+            }
+            Model::Plastic { ka, kd, ks, exponent, specular } => {
+                let (diffuse, spec) = direct(n, Some((v, exponent)), lights);
+                cs * (ka * self.ambient + kd * diffuse) + specular * ks * spec
+            }
+        }
+    }
+
     /// Premultiplied colour `Os * Ci` and transmittance `1 - Os` at a world-space point with
     /// (not necessarily face-forwarded) normal `n_world`; `tint` multiplies `Cs`.
     pub fn shade(&self, p_world: Vec3, n_world: Vec3, tint: Vec3) -> ([f32; 3], [f32; 3]) {
         let cs = self.cs * tint;
-        let ci = match self.model {
-            Model::Constant => cs,
-            Model::Matte { ka, kd } => {
-                let (n, _) = self.facing(p_world, n_world);
-                let (diffuse, _) = self.direct(p_world, n, None);
-                cs * (ka * self.ambient + kd * diffuse)
-            }
-            Model::Plastic { ka, kd, ks, exponent, specular } => {
-                let (n, v) = self.facing(p_world, n_world);
-                let (diffuse, spec) = self.direct(p_world, n, Some((v, exponent)));
-                cs * (ka * self.ambient + kd * diffuse) + specular * ks * spec
-            }
-        };
-        ((self.os * ci).to_array(), (Vec3::ONE - self.os).to_array())
-    }
-
-    /// The unit normal face-forwarded toward the eye, and the unit vector to the eye.
-    fn facing(&self, p_world: Vec3, n_world: Vec3) -> (Vec3, Vec3) {
-        let v = (self.eye_world - p_world).normalize_or_zero();
-        let n = n_world.normalize_or_zero();
-        (if n.dot(v) < 0.0 { -n } else { n }, v)
-    }
-
-    /// Sums over the non-ambient lights of `Cl * max(0, N.L)` and, when `specular` gives
-    /// `(V, 1/roughness)`, of `Cl * max(0, N.H)^(1/roughness)` where `N.L > 0`.
-    fn direct(&self, p_world: Vec3, n: Vec3, specular: Option<(Vec3, f32)>) -> (Vec3, Vec3) {
-        let mut diffuse = Vec3::ZERO;
-        let mut spec = Vec3::ZERO;
-        for light in &self.lights {
-            let (l, cl) = match *light {
-                DirectLight::Distant { l, cl } => (l, cl),
+        let ci = if self.unlit() {
+            cs
+        } else {
+            let (n, v) = facing(p_world, n_world, self.eye_world);
+            let lights = self.lights.iter().filter_map(|light| match *light {
+                DirectLight::Distant { l, cl } => Some((l, cl)),
                 DirectLight::Point { from, cl } => {
                     let d = from - p_world;
                     let d2 = d.length_squared();
                     if !d2.is_finite() || d2 <= MIN_DIST2 {
-                        continue;
+                        return None;
                     }
-                    (d / d2.sqrt(), cl / d2)
+                    Some((d / d2.sqrt(), cl / d2))
                 }
-            };
-            let n_dot_l = n.dot(l);
-            if n_dot_l <= 0.0 {
-                continue;
-            }
-            diffuse += cl * n_dot_l;
-            if let Some((v, exponent)) = specular {
-                let h = (l + v).normalize_or_zero();
-                spec += cl * n.dot(h).max(0.0).powf(exponent);
-            }
-        }
-        (diffuse, spec)
+            });
+            self.illuminate(cs, n, v, lights)
+        };
+        ((self.os * ci).to_array(), (Vec3::ONE - self.os).to_array())
     }
+}
+
+/// The unit normal `n_world` face-forwarded toward `from` (two-sided lighting: flipped when
+/// it faces away), and the unit vector from `p_world` to `from` (zero if they coincide).
+pub fn facing(p_world: Vec3, n_world: Vec3, from: Vec3) -> (Vec3, Vec3) {
+    let v = (from - p_world).normalize_or_zero();
+    let n = n_world.normalize_or_zero();
+    (if n.dot(v) < 0.0 { -n } else { n }, v)
+}
+
+/// Sums over `lights` of `Cl * max(0, N.L)` and, when `specular` gives `(V, 1/roughness)`,
+/// of `Cl * max(0, N.H)^(1/roughness)` where `N.L > 0`.
+fn direct(
+    n: Vec3,
+    specular: Option<(Vec3, f32)>,
+    lights: impl IntoIterator<Item = (Vec3, Vec3)>,
+) -> (Vec3, Vec3) {
+    let mut diffuse = Vec3::ZERO;
+    let mut spec = Vec3::ZERO;
+    for (l, cl) in lights {
+        let n_dot_l = n.dot(l);
+        if n_dot_l <= 0.0 {
+            continue;
+        }
+        diffuse += cl * n_dot_l;
+        if let Some((v, exponent)) = specular {
+            let h = (l + v).normalize_or_zero();
+            spec += cl * n.dot(h).max(0.0).powf(exponent);
+        }
+    }
+    (diffuse, spec)
 }
 
 #[cfg(test)]
@@ -194,8 +249,12 @@ mod tests {
     #[test]
     fn point_light_falls_off_with_distance_squared() {
         let m = Material::Matte { color: [1.0; 3], opacity: [1.0; 3], ka: 1.0, kd: 1.0 };
-        let lights =
-            [Light::Point { from: [0.0, 0.0, -4.0], color: [1.0, 0.5, 1.0], intensity: 8.0, shadows: false }];
+        let lights = [Light::Point {
+            from: [0.0, 0.0, -4.0],
+            color: [1.0, 0.5, 1.0],
+            intensity: 8.0,
+            shadows: false,
+        }];
         let s = Shader::new(&m, &lights, EYE);
         let (c, _) = s.shade(Vec3::ZERO, Vec3::NEG_Z, Vec3::ONE);
         assert!(close3(c, Vec3::new(0.5, 0.25, 0.5)), "{c:?}");

@@ -58,6 +58,14 @@ impl Strata {
         ((cx as f32 + jx) / self.gx as f32, (cy as f32 + jy) / gy as f32)
     }
 
+    /// Pass over `dims` dimensions without drawing them: afterwards the stream is where
+    /// `dims` calls of [`Strata::next_2d`] would have left it. A shader that may or may not
+    /// use a dimension (a light whose sample is not needed) skips it, so that the set's
+    /// members keep drawing the same dimension for the same effect.
+    pub fn skip(&mut self, dims: u32) {
+        self.dim = self.dim.saturating_add(dims);
+    }
+
     /// The next dimension's number in `[0, 1)`: this member's stratum of `count`, jittered.
     pub fn next_1d(&mut self) -> f32 {
         let d = u64::from(self.dim);
@@ -72,7 +80,7 @@ impl Strata {
 /// as `n` allows (a prime `n` gives one row of `n` strata in y).
 fn grid_width(n: u32) -> u32 {
     let mut g = (n as f64).sqrt() as u32;
-    while g > 1 && n % g != 0 {
+    while g > 1 && !n.is_multiple_of(g) {
         g -= 1;
     }
     g.max(1)
@@ -128,7 +136,8 @@ mod tests {
         for count in [1, 4, 6, 16, 7] {
             let gx = grid_width(count);
             let gy = count / gx;
-            let mut streams: Vec<Strata> = (0..count).map(|i| Strata::new(3, 9, i, count)).collect();
+            let mut streams: Vec<Strata> =
+                (0..count).map(|i| Strata::new(3, 9, i, count)).collect();
             for _dim in 0..5 {
                 let mut seen = vec![false; count as usize];
                 for s in &mut streams {

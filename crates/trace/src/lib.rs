@@ -92,6 +92,10 @@ pub struct Hit {
     pub surface: u32,
     /// Index of the mesh face in `Shape::Mesh::faces` (0 for other shapes).
     pub face: u32,
+    /// The hit point in the object's own coordinates, before its transform (the dicer's
+    /// `SurfacePoint::p`): for a moving object, in the frame at the ray's time; for a
+    /// deforming mesh or patch, on the shape as deformed at the ray's time.
+    pub p_object: Vec3,
 }
 
 impl Hit {
@@ -99,9 +103,18 @@ impl Hit {
     /// surface to the side `dir` goes to, so that it does not hit the same surface at
     /// `t ~ 0` through rounding. The nudge is `1e-5 * (1 + max |p|)` along the normal.
     pub fn spawn(&self, dir: Vec3, time: f32) -> Ray {
-        let eps = 1e-5 * (1.0 + self.p_world.abs().max_element());
-        let side = if dir.dot(self.n_world) >= 0.0 { self.n_world } else { -self.n_world };
-        Ray { origin: self.p_world + side * eps, dir, time }
+        Ray::spawn(self.p_world, self.n_world, dir, time)
+    }
+}
+
+impl Ray {
+    /// A ray leaving the surface point `p` (normal `n`, either orientation) in direction
+    /// `dir` at `time`, nudged off the surface as [`Hit::spawn`] does: by
+    /// `1e-5 * (1 + max |p|)` along the normal, to the side `dir` goes to.
+    pub fn spawn(p: Vec3, n: Vec3, dir: Vec3, time: f32) -> Ray {
+        let eps = 1e-5 * (1.0 + p.abs().max_element());
+        let side = if dir.dot(n) >= 0.0 { n } else { -n };
+        Ray { origin: p + side * eps, dir, time }
     }
 }
 
@@ -143,6 +156,9 @@ struct ObjectData {
     placement: Placement,
     /// Deformation keys (two or more) of a deforming mesh or patch; empty otherwise.
     deform: Vec<PointKey>,
+    /// World to object for an object whose still, affine transform was baked into its
+    /// points (placement `Identity` but not object space), to report `Hit::p_object`.
+    unbake: Option<DMat4>,
 }
 
 /// A candidate hit: world `t` and what is needed to report it.
@@ -155,6 +171,9 @@ struct Candidate {
     n: DVec3,
     u: f64,
     v: f64,
+    /// The hit point in the primitive's placement space (object space, or world space for
+    /// `Identity` placements).
+    p: DVec3,
 }
 
 impl Candidate {
@@ -301,6 +320,7 @@ impl Builder {
             keys.push(MatrixKey { time: 0.0, matrix: still });
         }
         let mut placement = Placement::from_keys(keys);
+        let mut unbake = None;
         if placement == Placement::Degenerate {
             return;
         }
@@ -351,6 +371,10 @@ impl Builder {
                 }
             }
             placement = Placement::Identity;
+            // `Static` means invertible; identity matrices need no unbaking.
+            if still != DMat4::IDENTITY {
+                unbake = still.try_inverse().filter(|m| m.is_finite());
+            }
         }
         let matrices = placement.key_matrices();
         let deforming = point_keys.len() > 1;
@@ -428,9 +452,13 @@ impl Builder {
         let deform = if deforming { point_keys } else { Vec::new() };
         // Keep `objects[index]` aligned with scene indices.
         while self.objects.len() < index as usize {
-            self.objects.push(ObjectData { placement: Placement::Degenerate, deform: Vec::new() });
+            self.objects.push(ObjectData {
+                placement: Placement::Degenerate,
+                deform: Vec::new(),
+                unbake: None,
+            });
         }
-        self.objects.push(ObjectData { placement, deform });
+        self.objects.push(ObjectData { placement, deform, unbake });
     }
 }
 
@@ -443,7 +471,11 @@ impl Tracer {
         }
         let mut objects = builder.objects;
         while objects.len() < scene.objects.len() {
-            objects.push(ObjectData { placement: Placement::Degenerate, deform: Vec::new() });
+            objects.push(ObjectData {
+                placement: Placement::Degenerate,
+                deform: Vec::new(),
+                unbake: None,
+            });
         }
         let (bounded, unbounded): (Vec<_>, Vec<_>) =
             builder.prims.into_iter().partition(|(_, b)| b.is_some());
@@ -619,7 +651,7 @@ impl Tracer {
     fn test(&self, slot: usize, ray: &Ray, cache: &mut FrameCache) -> Option<Candidate> {
         let prim = self.prims.get(slot)?;
         let space = self.space(prim.object, ray.time, cache)?;
-        let make = |t: f64, n: DVec3, u: f64, v: f64| {
+        let make = |t: f64, n: DVec3, u: f64, v: f64, p: DVec3| {
             (t > 0.0 && t.is_finite()).then_some(Candidate {
                 t,
                 id: prim.id,
@@ -627,6 +659,7 @@ impl Tracer {
                 n,
                 u,
                 v,
+                p,
             })
         };
         let local_ray = |space: &Space| match space {
@@ -638,16 +671,18 @@ impl Tracer {
                 Space::World => h.n,
                 Space::Object(frame) => frame.normal_to_world(h.p, h.n),
             };
-            make(local.world_t(h.s), n, h.u, h.v)
+            make(local.world_t(h.s), n, h.u, h.v, h.p)
         };
         let triangle = |tri: &[Vec3; 3]| match &space {
             Space::World => {
                 let h = patch::triangle(tri, ray.origin, ray.dir)?;
+                let t = f64::from(h.t);
                 make(
-                    f64::from(h.t),
+                    t,
                     patch::triangle_normal(tri).as_dvec3(),
                     f64::from(h.u),
                     f64::from(h.v),
+                    ray.origin.as_dvec3() + ray.dir.as_dvec3() * t,
                 )
             }
             Space::Object(frame) => {
@@ -656,7 +691,7 @@ impl Tracer {
                 let s = f64::from(h.t);
                 let p = local.o + local.d * s;
                 let n = frame.normal_to_world(p, patch::triangle_normal(tri).as_dvec3());
-                make(local.world_t(s), n, f64::from(h.u), f64::from(h.v))
+                make(local.world_t(s), n, f64::from(h.u), f64::from(h.v), p)
             }
         };
         match &prim.geometry {
@@ -689,6 +724,10 @@ impl Tracer {
             self.prims.get(c.slot as usize).map_or((0, 0, 0), |p| (p.object, p.surface, p.face));
         let p = ray.origin.as_dvec3() + ray.dir.as_dvec3() * c.t;
         let n = c.n.try_normalize().unwrap_or(DVec3::Z);
+        let p_object = match self.objects.get(object as usize).and_then(|o| o.unbake) {
+            Some(to_object) => to_object.transform_point3(c.p),
+            None => c.p,
+        };
         Hit {
             t: c.t as f32,
             p_world: p.as_vec3(),
@@ -698,6 +737,7 @@ impl Tracer {
             object,
             surface,
             face,
+            p_object: p_object.as_vec3(),
         }
     }
 }
