@@ -119,6 +119,60 @@ fn bad_scenes_exit_2_with_one_line_and_no_output() {
     insta::assert_snapshot!("bad_scenes", snapshot);
 }
 
+/// Bad distributed ray tracing values: exit 2, exactly one line with the field and position,
+/// no output.
+#[test]
+fn bad_ray_tracing_values_exit_2_with_one_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let ball = "material: Matte(color: (1.0, 0.5, 0.2))";
+    let cases: [(&str, &str, &str, &str); 5] = [
+        (
+            "ior-0",
+            ball,
+            "material: Matte(color: (1.0, 0.5, 0.2)), refract: Some((ior: 0.0))",
+            "ior-0.ron:6:117: objects[0].refract.ior: must be > 0, got 0",
+        ),
+        (
+            "gloss-negative",
+            ball,
+            "material: Matte(color: (1.0, 0.5, 0.2)), reflect: Some((color: (0.5, 0.5, 0.5), gloss: -2.0))",
+            "gloss-negative.ron:6:143: objects[0].reflect.gloss: must be in [0, 90) degrees, got -2",
+        ),
+        (
+            "depth-0",
+            "(1.0, 0.5, 0.2)))],\n)",
+            "(1.0, 0.5, 0.2)), reflect: Some((color: (0.5, 0.5, 0.5))))],\n  raytrace: (max_depth: 0),\n)",
+            "depth-0.ron:7:25: raytrace.max_depth: must be >= 1 when an object reflects or refracts (objects[0].reflect asks for rays), got 0",
+        ),
+        (
+            "area-radius",
+            "Ambient(intensity: 1.0)",
+            "Ambient(intensity: 1.0), Area(shape: Sphere(center: (0.0, 3.0, -1.0), radius: -0.5))",
+            "area-radius.ron:5:90: lights[1].shape.radius: must be > 0, got -0.5",
+        ),
+        (
+            "roll-steps",
+            ball,
+            "material: Matte(color: (1.0, 0.5, 0.2)), roll: Some((radius: 1.0, steps: 0, path: [(time: 0.0, position: (0.0, 0.0, 0.0)), (time: 1.0, position: (1.0, 0.0, 0.0))]))",
+            "roll-steps.ron:6:129: objects[0].roll.steps: must be in 1..=1024, got 0",
+        ),
+    ];
+    for (name, from, to, expected) in cases {
+        let scene = scene_with(dir.path(), &format!("{name}.ron"), |t| {
+            assert_eq!(t.matches(from).count(), 1, "{name}");
+            t.replacen(from, to, 1)
+        });
+        let out = dir.path().join(format!("{name}.exr"));
+        let o = run(&[scene.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{name}: {err}");
+        assert_eq!(err.lines().count(), 1, "{name}: {err}");
+        let shown = err.trim_end().replace(&dir.path().display().to_string(), "DIR");
+        assert_eq!(shown, format!("reyes-render: error: DIR/{expected}"), "{name}");
+        assert!(!out.exists(), "{name}: output written");
+    }
+}
+
 #[test]
 fn mesh_index_out_of_range_is_a_scene_error() {
     let dir = tempfile::tempdir().unwrap();

@@ -9,6 +9,7 @@ pub mod closure;
 mod error;
 mod locate;
 pub mod model;
+mod roll;
 mod syntax;
 mod validate;
 
@@ -20,6 +21,9 @@ pub use model::*;
 
 /// Parses and validates the RON scene `text`. `file` is used only in error messages.
 ///
+/// After validation every object's `roll` is expanded into its `motion` keys (see
+/// [`Roll`]); `roll` itself is kept, so a `Scene` written back out reads back the same.
+///
 /// A leading byte-order mark is ignored. Errors carry the line and column of the offending
 /// text and the path of the offending field, e.g.
 /// `scenes/x.ron:12:30: objects[0].shape.radius: must be > 0, got -1`.
@@ -30,7 +34,7 @@ pub fn parse(text: &str, file: &Path) -> Result<Scene, SceneError> {
         Err(err) => return Err(syntax::from_ron(text, file, &err)),
     };
     match validate::check(&scene) {
-        None => Ok(scene),
+        None => Ok(expand_rolls(scene)),
         Some(issue) => {
             let pos = locate::SourceMap::scan(text).find(&issue.path);
             Err(SceneError {
@@ -42,6 +46,16 @@ pub fn parse(text: &str, file: &Path) -> Result<Scene, SceneError> {
             })
         }
     }
+}
+
+/// Replaces the `motion` of every object with a `roll` by the keys the roll expands to.
+fn expand_rolls(mut scene: Scene) -> Scene {
+    for object in &mut scene.objects {
+        if let Some(r) = &object.roll {
+            object.motion = roll::expand(r, &object.transform);
+        }
+    }
+    scene
 }
 
 /// Reads, parses and validates the scene file at `path`.

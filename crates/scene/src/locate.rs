@@ -647,6 +647,46 @@ mod tests {
         assert_eq!(map.path_at(Pos { line: 1, col: 46 }), "tree[0][1]");
     }
 
+    /// The paths of the ray-tracing fields: an area light's shape and motion keys, `Some(..)`
+    /// around `reflect`, `refract`, `pattern` and `roll` (transparent), the roll's path keys,
+    /// and the `hider.method` and `raytrace` values.
+    #[test]
+    fn ray_tracing_paths() {
+        let src = "(hider: (method: RayTrace),
+ lights: [Point(from: (0.0, 1.0, 0.0), shadows: true),
+  Area(shape: Sphere(center: (0.0, 9.0, 0.0), radius: -1.0),
+       motion: [(time: 0.0), (time: 2.0, offset: (1.0, 0.0, 0.0))])],
+ objects: [(reflect: Some((color: (1.0, 1.0, 1.0), gloss: -5.0)),
+            refract: Some(Refract(ior: -1.0, blur: 1.0)),
+            pattern: Some(PoolBall(color: (2.0, 0.0, 0.0))),
+            roll: Some((radius: 1.0, path: [(time: 0.0, position: (0.0, 1.0, 0.0)),
+                                             (time: 0.5, position: (1.0, 1.0, 0.0)),
+                                             (time: 0.4, position: (2.0, 1.0, 0.0))]))),
+ ],
+ raytrace: (max_depth: 0))";
+        let map = SourceMap::scan(src);
+        assert_eq!(map.find("hider.method"), at(1, 18));
+        assert_eq!(map.find("lights[0].shadows"), at(2, 49));
+        assert_eq!(map.find("lights[1].shape.radius"), at(3, 55));
+        assert_eq!(map.find("lights[1].shape.center[1]"), at(3, 36));
+        assert_eq!(map.find("lights[1].motion[1].time"), at(4, 37));
+        assert_eq!(map.find("lights[1].motion[1].offset[0]"), at(4, 51));
+        // Absent: the key itself.
+        assert_eq!(map.find("lights[1].motion[0].intensity"), at(4, 17));
+        assert_eq!(map.find("objects[0].reflect.gloss"), at(5, 59));
+        assert_eq!(map.find("objects[0].refract.ior"), at(6, 40));
+        // Absent: the nearest value written, `Some(..)`, which shares the path of its content.
+        assert_eq!(map.find("objects[0].refract.color[0]"), at(6, 22));
+        assert_eq!(map.find("objects[0].pattern.color[0]"), at(7, 44));
+        assert_eq!(map.find("objects[0].roll"), at(8, 19));
+        assert_eq!(map.find("objects[0].roll.radius"), at(8, 33));
+        assert_eq!(map.find("objects[0].roll.path[2].time"), at(10, 53));
+        assert_eq!(map.find("objects[0].roll.path[1].position[0]"), at(9, 69));
+        assert_eq!(map.find("objects[0].roll.steps"), at(8, 19));
+        assert_eq!(map.find("raytrace.max_depth"), at(12, 24));
+        assert_eq!(map.find("raytrace.vertex_rays"), at(12, 12));
+    }
+
     #[test]
     fn strings_comments_and_raw_literals_are_skipped() {
         let src = "#![enable(implicit_some)]\n( /* a: (1) /* nested */ */ a: \"x:(\\\"\", // b: 9\n b: r#\"]\"#, c: 'x', d: r#e, f: [1e-3, -inf])";

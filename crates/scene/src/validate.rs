@@ -1,7 +1,7 @@
 //! Semantic validation of a deserialised [`Scene`]: ranges, finiteness and consistency.
 //!
-//! Invariants: checks run in a fixed order (image, camera, hider, lights, objects, solids, each
-//! in field order) and stop at the first failure, so the reported error is stable; each failure
+//! Invariants: checks run in a fixed order (image, camera, hider, lights, objects, solids,
+//! raytrace, each in field order) and stop at the first failure, so the reported error is stable; each failure
 //! names the path of the offending value as the source map spells it (`objects[0].shape.radius`).
 //! Every `f32` is checked finite before any range test on it. No check can panic: geometric
 //! tests are done in `f64`, where products of finite `f32`s cannot overflow.
@@ -14,7 +14,14 @@
 //!
 //! Motion keys (`camera.motion`, `objects[i].motion`, `objects[i].deform`) are checked after
 //! the still values they replace, key by key: the list length first, then each key's time
-//! (finite, inside the shutter, after the previous key's), then the key's contents.
+//! (finite, inside the shutter, after the previous key's), then the key's contents. Area light
+//! motion (`lights[i].motion`) and a rolling ball's path (`objects[i].roll.path`) follow the
+//! same rules.
+//!
+//! Rules that tie two places together are reported at the value that breaks them: the
+//! ray-tracing hider with solids at `hider.method`, a zero depth limit with reflecting or
+//! refracting objects at `raytrace.max_depth`, a `roll` with hand-written `motion` at
+//! `objects[i].roll`, a rest transform that moves a rolling ball's centre at that transform.
 
 use std::collections::HashMap;
 
@@ -23,9 +30,10 @@ use glam::{DMat4, DVec3, DVec4};
 use crate::closure::{Closure, closure};
 use crate::error::clip;
 use crate::model::{
-    Camera, Csg, Hider, Image, Light, Material, Object, Rgb, Scene, Shape, Shutter, ShutterShape,
-    Transform, V3,
+    AreaShape, Camera, Csg, Hider, HiderMethod, Image, Light, Material, Object, Pattern, RayTrace,
+    Rgb, Roll, Scene, Shape, Shutter, ShutterShape, Transform, V3,
 };
+use crate::roll;
 
 /// Most solids in a scene: the renderer numbers CSG trees with `u16`.
 pub(crate) const MAX_SOLIDS: usize = 65535;
@@ -59,15 +67,24 @@ pub(crate) fn check(scene: &Scene) -> Option<Issue> {
 fn check_scene(scene: &Scene) -> Check {
     image(&scene.image)?;
     camera(&scene.camera)?;
-    hider(&scene.hider)?;
+    hider(&scene.hider, scene)?;
+    let shutter = &scene.camera.shutter;
     for (i, light) in scene.lights.iter().enumerate() {
-        self::light(&format!("lights[{i}]"), light)?;
+        self::light(&format!("lights[{i}]"), light, shutter)?;
     }
     for (i, object) in scene.objects.iter().enumerate() {
-        self::object(&format!("objects[{i}]"), object, &scene.camera.shutter)?;
+        self::object(&format!("objects[{i}]"), object, shutter)?;
     }
-    solids(scene)
+    solids(scene)?;
+    raytrace(&scene.raytrace, scene)
 }
+
+/// Most `raytrace.max_depth`: deeper chains of mirror bounces add nothing visible.
+pub(crate) const MAX_DEPTH: u32 = 64;
+/// Most `raytrace.vertex_rays`.
+pub(crate) const MAX_VERTEX_RAYS: u32 = 4096;
+/// Gloss and blur cone half-angles must be below this, in degrees.
+const MAX_SPREAD: f32 = 90.0;
 
 /// `value` must be finite.
 fn finite(path: &str, value: f32) -> Check {
@@ -101,6 +118,25 @@ fn int_in(path: &str, value: u32, lo: u32, hi: u32) -> Check {
     } else {
         fail(path, format!("must be in {lo}..={hi}, got {value}"))
     }
+}
+
+/// A cone half-angle (gloss, blur) in `[0, 90)` degrees.
+fn spread(path: &str, degrees: f32) -> Check {
+    finite(path, degrees)?;
+    if (0.0..MAX_SPREAD).contains(&degrees) {
+        Ok(())
+    } else {
+        fail(path, format!("must be in [0, 90) degrees, got {degrees}"))
+    }
+}
+
+/// Every component finite, and not all zero.
+fn nonzero_vector(path: &str, v: &V3) -> Check {
+    finite_all(path, v)?;
+    if v.iter().all(|&a| a == 0.0) {
+        return fail(path, "must be non-zero");
+    }
+    Ok(())
 }
 
 /// A sweep angle in `(0, 360]` degrees.
@@ -242,7 +278,13 @@ fn keys<K>(
     Ok(())
 }
 
-fn hider(h: &Hider) -> Check {
+fn hider(h: &Hider, scene: &Scene) -> Check {
+    if h.method == HiderMethod::RayTrace && !scene.solids.is_empty() {
+        return fail(
+            "hider.method",
+            "the ray-tracing hider does not evaluate CSG solids; use method: Stochastic",
+        );
+    }
     int_in("hider.pixel_samples[0]", h.pixel_samples.0, 1, 64)?;
     int_in("hider.pixel_samples[1]", h.pixel_samples.1, 1, 64)?;
     finite("hider.filter.width", h.filter.width)?;
@@ -261,7 +303,7 @@ fn hider(h: &Hider) -> Check {
     Ok(())
 }
 
-fn light(at: &str, light: &Light) -> Check {
+fn light(at: &str, light: &Light, shutter: &Shutter) -> Check {
     let (color, intensity) = match light {
         Light::Ambient { color, intensity } => (color, intensity),
         Light::Distant { from, to, color, intensity, .. } => {
@@ -276,13 +318,56 @@ fn light(at: &str, light: &Light) -> Check {
             finite_all(&format!("{at}.from"), from)?;
             (color, intensity)
         }
-        // Shape and motion checks: TODO(area lights) in progress this session.
-        Light::Area { color, intensity, .. } => (color, intensity),
+        Light::Area { shape, color, intensity, .. } => {
+            area_shape(&format!("{at}.shape"), shape)?;
+            (color, intensity)
+        }
     };
     for (i, v) in color.iter().enumerate() {
         non_negative(&format!("{at}.color[{i}]"), *v)?;
     }
-    non_negative(&format!("{at}.intensity"), *intensity)
+    non_negative(&format!("{at}.intensity"), *intensity)?;
+    if let Light::Area { motion, .. } = light {
+        let at = format!("{at}.motion");
+        keys(
+            &at,
+            motion,
+            |k| k.time,
+            shutter,
+            |i, key| {
+                finite_all(&format!("{at}[{i}].offset"), &key.offset)?;
+                non_negative(&format!("{at}[{i}].intensity"), key.intensity)
+            },
+        )?;
+    }
+    Ok(())
+}
+
+/// The shape of an area light: finite; radii > 0; a disk's normal non-zero; a rectangle's
+/// edges non-zero and not parallel.
+fn area_shape(at: &str, shape: &AreaShape) -> Check {
+    let field = |name: &str| format!("{at}.{name}");
+    match shape {
+        AreaShape::Sphere { center, radius } => {
+            finite_all(&field("center"), center)?;
+            positive(&field("radius"), *radius)
+        }
+        AreaShape::Disk { center, normal, radius } => {
+            finite_all(&field("center"), center)?;
+            nonzero_vector(&field("normal"), normal)?;
+            positive(&field("radius"), *radius)
+        }
+        AreaShape::Rectangle { corner, edge_u, edge_v } => {
+            finite_all(&field("corner"), corner)?;
+            nonzero_vector(&field("edge_u"), edge_u)?;
+            nonzero_vector(&field("edge_v"), edge_v)?;
+            let (u, v) = (dvec(edge_u), dvec(edge_v));
+            if u.cross(v).length() <= 1e-6 * u.length() * v.length() {
+                return fail(field("edge_v"), "must not be parallel to edge_u");
+            }
+            Ok(())
+        }
+    }
 }
 
 fn object(at: &str, object: &Object, shutter: &Shutter) -> Check {
@@ -300,7 +385,163 @@ fn object(at: &str, object: &Object, shutter: &Shutter) -> Check {
             return fail(path, format!("must be in [0, 1], got {a}"));
         }
     }
+    if let Some(r) = &object.reflect {
+        unit_rgb(&format!("{at}.reflect.color"), &r.color)?;
+        spread(&format!("{at}.reflect.gloss"), r.gloss)?;
+    }
+    if let Some(r) = &object.refract {
+        positive(&format!("{at}.refract.ior"), r.ior)?;
+        unit_rgb(&format!("{at}.refract.color"), &r.color)?;
+        spread(&format!("{at}.refract.blur"), r.blur)?;
+    }
+    if let Some(Pattern::PoolBall { color, .. }) = &object.pattern {
+        unit_rgb(&format!("{at}.pattern.color"), color)?;
+    }
+    if let Some(r) = &object.roll {
+        self::roll(at, r, object, shutter)?;
+    }
     Ok(())
+}
+
+/// A rolling ball: radius > 0; `up` non-zero; a path of 2 or more keys by the motion key
+/// rules, each position finite and (but for rounding) in the plane normal to `up` through the
+/// previous one; `steps` in 1..=1024 and fine enough that no step turns the ball more than
+/// [`roll::MAX_STEP_DEGREES`]; a bounded expansion; a rest transform that keeps the centre (the
+/// object's origin) in place; no `motion` but the one the roll expands to.
+fn roll(at: &str, r: &Roll, object: &Object, shutter: &Shutter) -> Check {
+    let at = format!("{at}.roll");
+    let field = |name: &str| format!("{at}.{name}");
+    positive(&field("radius"), r.radius)?;
+    nonzero_vector(&field("up"), &r.up)?;
+    let up = roll::unit_up(r);
+    let path = field("path");
+    if r.path.len() < 2 {
+        return fail(&path, format!("a roll needs at least 2 path keys, got {}", r.path.len()));
+    }
+    keys(
+        &path,
+        &r.path,
+        |k| k.time,
+        shutter,
+        |i, key| {
+            let here = format!("{path}[{i}].position");
+            finite_all(&here, &key.position)?;
+            let Some(before) = i.checked_sub(1).and_then(|b| r.path.get(b)) else {
+                return Ok(());
+            };
+            let seg = roll::Segment::new(up, &before.position, &key.position);
+            if seg.rise.abs() > roll::PLANE_TOLERANCE * seg.d.length() {
+                return fail(
+                    here,
+                    format!(
+                        "the ball must roll on a plane normal to roll.up, but its centre moves \
+                         {} along up from path[{}]",
+                        seg.rise as f32,
+                        i - 1
+                    ),
+                );
+            }
+            Ok(())
+        },
+    )?;
+    let steps = field("steps");
+    int_in(&steps, r.steps, 1, roll::MAX_STEPS)?;
+    let radius = f64::from(r.radius);
+    for (i, pair) in r.path.windows(2).enumerate() {
+        let [a, b] = pair else { continue };
+        let turn =
+            (roll::Segment::new(up, &a.position, &b.position).distance() / radius).to_degrees();
+        if turn / f64::from(r.steps) > roll::MAX_STEP_DEGREES {
+            let needed = (turn / roll::MAX_STEP_DEGREES).ceil();
+            let advice = if needed <= f64::from(roll::MAX_STEPS) {
+                format!("steps must be at least {needed}")
+            } else {
+                format!("more than {} steps would be needed: add path keys", roll::MAX_STEPS)
+            };
+            return fail(
+                steps,
+                format!(
+                    "the ball turns {} degrees from path[{i}] to path[{}], more than {} degrees \
+                     per step (steps {}); {advice}",
+                    turn as f32,
+                    i + 1,
+                    roll::MAX_STEP_DEGREES,
+                    r.steps
+                ),
+            );
+        }
+    }
+    let count = roll::key_count(r);
+    let transforms = count.saturating_mul(object.transform.len() + 3);
+    if transforms > roll::MAX_TRANSFORMS {
+        return fail(
+            steps,
+            format!(
+                "the roll would generate {count} keys of up to {} transforms each, more than {} \
+                 transforms in all: use fewer steps or path keys",
+                object.transform.len() + 3,
+                roll::MAX_TRANSFORMS
+            ),
+        );
+    }
+    for (j, t) in object.transform.iter().enumerate() {
+        let moves = match t {
+            Transform::Translate(v) => v.iter().any(|&x| x != 0.0),
+            Transform::Matrix(rows) => rows.iter().take(3).any(|row| row[3] != 0.0),
+            Transform::Rotate { .. } | Transform::Scale(_) => false,
+        };
+        if moves {
+            return fail(
+                format!("{}.transform[{j}]", parent(&at)),
+                "with roll, the transform is the ball's rest orientation and must keep its \
+                 centre (the object's origin) in place; roll.path places the ball",
+            );
+        }
+    }
+    if !object.motion.is_empty() && object.motion != roll::expand(r, &object.transform) {
+        return fail(
+            at,
+            "an object cannot have both roll and motion: roll generates the motion keys; \
+             remove one of them",
+        );
+    }
+    Ok(())
+}
+
+/// `objects[0].roll` -> `objects[0]`.
+fn parent(path: &str) -> &str {
+    crate::locate::parent_path(path)
+}
+
+/// The ray-tracing limits: `max_depth` in 0..=64 and at least 1 when any object reflects or
+/// refracts; `min_weight` in [0, 1); `vertex_rays` in 1..=4096.
+fn raytrace(rt: &RayTrace, scene: &Scene) -> Check {
+    int_in("raytrace.max_depth", rt.max_depth, 0, MAX_DEPTH)?;
+    if rt.max_depth == 0 {
+        let rays = scene.objects.iter().enumerate().find_map(|(i, o)| {
+            if o.reflect.is_some() {
+                Some(format!("objects[{i}].reflect"))
+            } else if o.refract.is_some() {
+                Some(format!("objects[{i}].refract"))
+            } else {
+                None
+            }
+        });
+        if let Some(which) = rays {
+            return fail(
+                "raytrace.max_depth",
+                format!(
+                    "must be >= 1 when an object reflects or refracts ({which} asks for rays), \
+                     got 0"
+                ),
+            );
+        }
+    }
+    finite("raytrace.min_weight", rt.min_weight)?;
+    if !(0.0..1.0).contains(&rt.min_weight) {
+        return fail("raytrace.min_weight", format!("must be in [0, 1), got {}", rt.min_weight));
+    }
+    int_in("raytrace.vertex_rays", rt.vertex_rays, 1, MAX_VERTEX_RAYS)
 }
 
 /// Transform motion: key times, then each key's transforms by the rules of `transform`.

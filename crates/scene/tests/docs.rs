@@ -113,6 +113,22 @@ fn the_document_covers_every_variant() {
         "interpolation: Gouraud",
         "glass: Some(",
         "csg_order:",
+        "method: RayTrace",
+        "raytrace: (",
+        "shadows: true",
+        "Area(",
+        "Sphere(center:",
+        "Disk(center:",
+        "Rectangle(",
+        "offset:",
+        "reflect: Some(",
+        "gloss:",
+        "refract: Some(",
+        "blur:",
+        "PoolBall(",
+        "striped: true",
+        "roll: Some(",
+        "steps:",
     ] {
         assert!(ron_blocks().iter().any(|b| b.contains(name)), "no ```ron example uses {name}");
     }
