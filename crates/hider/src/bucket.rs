@@ -11,15 +11,22 @@
 //! between hither and yon) gets a visible point pushed on its list. Then every sample's list is
 //! resolved front to back (`CSGResolve`). Invariants: nothing here allocates once the scratch
 //! buffers have grown to the bucket's needs; results depend only on the bucket's inputs.
+//!
+//! Layout for speed (docs/performance.md, "Hider inner loop"): each path gathers a
+//! micropolygon's candidate samples, in scan order, into a [`Batch`] of [`LANES`] on the stack
+//! and tests them together with [`inside_mask`] (the unrolled test's exact arithmetic, lane by
+//! lane, so the compiler vectorises it); hits go to [`Hider::hit`]. Paths D and M read their
+//! samples from [`SliceSamples`], built once per bucket in slice order. The same (sample,
+//! micropolygon) pairs are tested as by a plain port, and each sample's list gets its points
+//! in the same order, so images and statistics are unchanged bit for bit.
 
 use reyes_csg::{
     Composite, LERP_DONE, NIL, Resolver, VisPoint, lerpz, resolve_sample, shepard_weights,
 };
 
-use crate::inside::inside;
 use crate::mpoly::{Micropolygon, flags};
 use crate::samples::{BucketSamples, Needs};
-use crate::{Hider, Scratch};
+use crate::{Hider, LensSetup, Scratch};
 
 /// Port of `bound`: the x, y, z bounding box of four points. (The original's two-compare
 /// sorting network is an optimisation of exactly this.)
@@ -59,6 +66,320 @@ struct Surface<'a> {
     crossing: bool,
 }
 
+/// Samples tested together by the batched inside test: a multiple of 4 so the lanes fill
+/// whole SSE/NEON registers.
+const LANES: usize = 8;
+
+/// Capacity of a [`Batch`] in samples: one batch of [`LANES`]. (Larger buffers, filled
+/// branch-free, measured no faster.)
+const BUF: usize = LANES;
+
+/// Candidate samples of one micropolygon, gathered from its scan ranges and tested [`LANES`] at
+/// a time (structure of arrays on the stack: no allocation). Entry `i < fill` is sample `n[i]`
+/// (`pixel*NS + s`) at bucket-local `(x[i], y[i])` — for a lens, minus the depth-independent
+/// shift `l * Dof_b` — with lens shift at depth 1 `(ax[i], ay[i])` (paths D and M with a lens)
+/// and motion fraction `alpha[i]` (path M). Entries are appended in scan order and tested in
+/// that order, as soon as the batch is [full](Batch::full); so `fill < BUF` at every append.
+#[derive(Clone, Copy)]
+struct Batch {
+    fill: usize,
+    x: [f32; BUF],
+    y: [f32; BUF],
+    ax: [f32; BUF],
+    ay: [f32; BUF],
+    alpha: [f32; BUF],
+    n: [u32; BUF],
+    /// Samples tested and visible points created, for the statistics.
+    tests: u64,
+    hits: u64,
+}
+
+impl Batch {
+    fn new() -> Batch {
+        Batch {
+            fill: 0,
+            x: [f32::NAN; BUF],
+            y: [f32::NAN; BUF],
+            ax: [0.0; BUF],
+            ay: [0.0; BUF],
+            alpha: [0.0; BUF],
+            n: [0; BUF],
+            tests: 0,
+            hits: 0,
+        }
+    }
+
+    /// Append a sample; returns its entry.
+    #[inline(always)]
+    fn push(&mut self, x: f32, y: f32, n: usize) -> usize {
+        let i = self.fill & (BUF - 1);
+        self.x[i] = x;
+        self.y[i] = y;
+        self.n[i] = n as u32;
+        self.fill = i + 1;
+        i
+    }
+
+    /// Append a slice-ordered sample; returns its entry.
+    #[inline(always)]
+    fn push_sample(&mut self, r: &SliceSample) -> usize {
+        let i = self.fill & (BUF - 1);
+        self.x[i] = r.x;
+        self.y[i] = r.y;
+        self.ax[i] = r.ax;
+        self.ay[i] = r.ay;
+        self.n[i] = r.n;
+        self.fill = i + 1;
+        i
+    }
+
+    /// True when the batch must be tested before the next append.
+    #[inline(always)]
+    fn full(&self) -> bool {
+        self.fill == BUF
+    }
+}
+
+/// One sample as paths D and M read it: position less the lens's depth-independent shift
+/// (`x - lx * Dof_b`, or `x` for a pinhole), lens shift at depth 1 (`lx * Dof_a`), time and
+/// list index `pixel*NS + s` — exactly the values the paths would compute from
+/// [`BucketSamples`] per test, computed once per bucket instead.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct SliceSample {
+    x: f32,
+    y: f32,
+    ax: f32,
+    ay: f32,
+    t: f32,
+    n: u32,
+}
+
+/// A bucket's samples in time-slice order (`by_time[tau*P + pixel]`, path M) and lens-slice
+/// order (`by_lens[lambda*P + pixel]`, path D), so the paths read a row of a slice's samples
+/// contiguously instead of through `BucketSamples::by_time` / `by_lens`. Reused from bucket
+/// to bucket (no allocation once grown); each is built only when a bucket reads it.
+#[derive(Debug, Default, Clone)]
+pub(crate) struct SliceSamples {
+    by_time: Vec<SliceSample>,
+    by_lens: Vec<SliceSample>,
+}
+
+impl SliceSamples {
+    fn build(
+        &mut self,
+        smp: &BucketSamples,
+        lens: Option<LensSetup>,
+        (time, static_lens): (bool, bool),
+        ns: usize,
+        p_count: usize,
+    ) {
+        let record = |slice_order: &[u32], slice: usize, pixel: usize| {
+            let s = slice_order[slice * p_count + pixel] as usize;
+            let k = s * p_count + pixel;
+            let n = (pixel * ns + s) as u32;
+            let t = if time { smp.t[k] } else { 0.0 };
+            match &lens {
+                Some(l) => {
+                    let (lx, ly) = (smp.lx[k], smp.ly[k]);
+                    SliceSample {
+                        x: smp.x[k] - lx * l.x_b,
+                        y: smp.y[k] - ly * l.y_b,
+                        ax: lx * l.x_a,
+                        ay: ly * l.y_a,
+                        t,
+                        n,
+                    }
+                }
+                None => SliceSample { x: smp.x[k], y: smp.y[k], ax: 0.0, ay: 0.0, t, n },
+            }
+        };
+        self.by_time.clear();
+        if time {
+            for tau in 0..ns {
+                for pixel in 0..p_count {
+                    self.by_time.push(record(&smp.by_time, tau, pixel));
+                }
+            }
+        }
+        self.by_lens.clear();
+        if static_lens && lens.is_some() {
+            for lambda in 0..ns {
+                for pixel in 0..p_count {
+                    self.by_lens.push(record(&smp.by_lens, lambda, pixel));
+                }
+            }
+        }
+    }
+}
+
+/// How a path places the micropolygon's vertices relative to a batch's samples: lane by lane
+/// for the test (vectorised), and for one entry on a hit. Both must compute exactly the same
+/// values, operation for operation.
+trait Place {
+    /// `x[j][l]`, `y[j][l]`: vertex `j` relative to the sample of entry `base + l`.
+    fn lanes(&self, b: &Batch, base: usize) -> ([[f32; LANES]; 4], [[f32; LANES]; 4]);
+    /// Vertices relative to the sample of entry `i`, with their depths.
+    fn one(&self, b: &Batch, i: usize) -> [[f32; 3]; 4];
+}
+
+/// `LANES` entries of a batch array from `base`.
+#[inline(always)]
+fn lanes(a: &[f32; BUF], base: usize) -> &[f32; LANES] {
+    a[base..base + LANES].try_into().unwrap()
+}
+
+/// Path P: the vertices translated to the sample.
+struct PlacePinhole {
+    vx: [f32; 4],
+    vy: [f32; 4],
+    vz: [f32; 4],
+}
+
+impl Place for PlacePinhole {
+    #[inline(always)]
+    fn lanes(&self, b: &Batch, base: usize) -> ([[f32; LANES]; 4], [[f32; LANES]; 4]) {
+        let (bx, by) = (lanes(&b.x, base), lanes(&b.y, base));
+        let mut x = [[0.0; LANES]; 4];
+        let mut y = [[0.0; LANES]; 4];
+        for j in 0..4 {
+            for l in 0..LANES {
+                x[j][l] = self.vx[j] - bx[l];
+                y[j][l] = self.vy[j] - by[l];
+            }
+        }
+        (x, y)
+    }
+    #[inline(always)]
+    fn one(&self, b: &Batch, i: usize) -> [[f32; 3]; 4] {
+        let mut v = [[0.0; 3]; 4];
+        for (j, v) in v.iter_mut().enumerate() {
+            *v = [self.vx[j] - b.x[i], self.vy[j] - b.y[i], self.vz[j]];
+        }
+        v
+    }
+}
+
+/// Path D: each vertex also shifted by the lens offset over its depth.
+struct PlaceLens {
+    vx: [f32; 4],
+    vy: [f32; 4],
+    vz: [f32; 4],
+    inv_z: [f32; 4],
+}
+
+impl Place for PlaceLens {
+    #[inline(always)]
+    fn lanes(&self, b: &Batch, base: usize) -> ([[f32; LANES]; 4], [[f32; LANES]; 4]) {
+        let (bx, by) = (lanes(&b.x, base), lanes(&b.y, base));
+        let (ax, ay) = (lanes(&b.ax, base), lanes(&b.ay, base));
+        let mut x = [[0.0; LANES]; 4];
+        let mut y = [[0.0; LANES]; 4];
+        for j in 0..4 {
+            for l in 0..LANES {
+                x[j][l] = self.vx[j] - bx[l] + ax[l] * self.inv_z[j];
+                y[j][l] = self.vy[j] - by[l] + ay[l] * self.inv_z[j];
+            }
+        }
+        (x, y)
+    }
+    #[inline(always)]
+    fn one(&self, b: &Batch, i: usize) -> [[f32; 3]; 4] {
+        let mut v = [[0.0; 3]; 4];
+        for (j, v) in v.iter_mut().enumerate() {
+            *v = [
+                self.vx[j] - b.x[i] + b.ax[i] * self.inv_z[j],
+                self.vy[j] - b.y[i] + b.ay[i] * self.inv_z[j],
+                self.vz[j],
+            ];
+        }
+        v
+    }
+}
+
+/// Path M: the vertices moved to the sample's time, then (`LENS`) shifted by the lens offset
+/// over their depth at that time, then translated to the sample.
+struct PlaceMoving<const LENS: bool> {
+    v: [[f32; 4]; 3],
+    speed: [[f32; 4]; 3],
+}
+
+impl<const LENS: bool> Place for PlaceMoving<LENS> {
+    #[inline(always)]
+    fn lanes(&self, b: &Batch, base: usize) -> ([[f32; LANES]; 4], [[f32; LANES]; 4]) {
+        let (bx, by) = (lanes(&b.x, base), lanes(&b.y, base));
+        let (ax, ay) = (lanes(&b.ax, base), lanes(&b.ay, base));
+        let alpha = lanes(&b.alpha, base);
+        let mut x = [[0.0; LANES]; 4];
+        let mut y = [[0.0; LANES]; 4];
+        for j in 0..4 {
+            for l in 0..LANES {
+                let a = alpha[l];
+                let mut px = self.v[0][j] + a * self.speed[0][j];
+                let mut py = self.v[1][j] + a * self.speed[1][j];
+                if LENS {
+                    let pz = self.v[2][j] + a * self.speed[2][j];
+                    px += ax[l] / pz;
+                    py += ay[l] / pz;
+                }
+                x[j][l] = px - bx[l];
+                y[j][l] = py - by[l];
+            }
+        }
+        (x, y)
+    }
+    #[inline(always)]
+    fn one(&self, b: &Batch, i: usize) -> [[f32; 3]; 4] {
+        let a = b.alpha[i];
+        let mut v = [[0.0; 3]; 4];
+        for (j, v) in v.iter_mut().enumerate() {
+            let mut px = self.v[0][j] + a * self.speed[0][j];
+            let mut py = self.v[1][j] + a * self.speed[1][j];
+            let pz = self.v[2][j] + a * self.speed[2][j];
+            if LENS {
+                px += b.ax[i] / pz;
+                py += b.ay[i] / pz;
+            }
+            *v = [px - b.x[i], py - b.y[i], pz];
+        }
+        v
+    }
+}
+
+/// The bit mask of the lanes whose vertices `(x[j][l], y[j][l])` (relative to the sample)
+/// enclose the origin: [`crate::inside::inside_xy`] lane by lane, in lane-major form so the compiler keeps
+/// lanes in vector registers; every lane computes exactly what the scalar test computes
+/// (same products, same comparisons), as the tests check.
+// `!(t < 0.0)` on purpose: a NaN counts as "up" there, as in `inside`.
+#[allow(clippy::neg_cmp_op_on_partial_ord)]
+#[inline(always)]
+fn inside_mask(x: &[[f32; LANES]; 4], y: &[[f32; LANES]; 4]) -> u32 {
+    // 0 or !0 per lane.
+    let m = |b: bool| (b as u32).wrapping_neg();
+    let mut up = [[0u32; LANES]; 4];
+    for l in 0..LANES {
+        let y0_up = m(y[0][l] > 0.0);
+        for j in 0..4 {
+            let t = y[j][l];
+            up[j][l] = (y0_up & m(!(t < 0.0))) | (!y0_up & m(t > 0.0));
+        }
+    }
+    let mut parity = [0u32; LANES];
+    for i in 0..4 {
+        let j = (i + 1) & 3;
+        for l in 0..LANES {
+            let a = x[i][l] * y[j][l];
+            let b = y[i][l] * x[j][l];
+            let crosses = (up[j][l] & m(a > b)) | (!up[j][l] & m(b > a));
+            parity[l] ^= (up[i][l] ^ up[j][l]) & crosses;
+        }
+    }
+    let mut mask = 0;
+    for (l, p) in parity.iter().enumerate() {
+        mask |= (p >> 31) << l;
+    }
+    mask
+}
+
 impl Hider {
     /// Scan range of one axis, or the whole bucket when bound culling is off.
     #[inline]
@@ -66,30 +387,28 @@ impl Hider {
         if self.config.scan_all { (0, n as i32 - 1) } else { scan(lo, hi, rmin, rmax, n) }
     }
 
-    /// Port of `sample`: test one sample (at the origin of `v`) against a micropolygon and
-    /// push a visible point on list `nsample` if it is hit.
-    #[inline(always)]
-    fn sample(&self, nsample: usize, s: &Surface, v: &[[f32; 3]; 4], scratch: &mut Scratch) {
+    /// Port of the tail of `sample`, once a sample is known to be inside: reject a moving
+    /// hither/yon-straddling micropolygon under `original_moving_clip`, clip a crossing one at
+    /// the sample's depth, and push a visible point on list `nsample`. `v` holds the vertices
+    /// relative to the sample, as tested. Returns whether a point was created (otherwise the
+    /// test is a miss, as in Appendix A, where those checks came first and rejected the
+    /// sample whatever the inside test said). Out of line so the test loops stay small.
+    #[inline(never)]
+    fn hit(&self, nsample: usize, s: &Surface, v: &[[f32; 3]; 4], scratch: &mut Scratch) -> bool {
         if s.crossing && self.config.original_moving_clip && s.mp.has(flags::MOVING) {
             // Appendix A: a moving micropolygon straddling hither or yon at this sample's time
             // is rejected outright instead of clipped (appendix-a.md 3.6).
             let zlo = v[0][2].min(v[1][2]).min(v[2][2]).min(v[3][2]);
             let zhi = v[0][2].max(v[1][2]).max(v[2][2]).max(v[3][2]);
             if zlo < self.config.hither || zhi > self.config.yon {
-                scratch.stats.misses += 1;
-                return;
+                return false;
             }
-        }
-        if !inside(v) {
-            scratch.stats.misses += 1;
-            return;
         }
         let (minz, maxz, lerped) = if s.crossing {
             let z = lerpz(v);
             scratch.stats.lerps += 1;
             if !(z >= self.config.hither && z <= self.config.yon) {
-                scratch.stats.misses += 1;
-                return;
+                return false;
             }
             (z, z, LERP_DONE)
         } else {
@@ -112,7 +431,55 @@ impl Hider {
             next: scratch.heads[nsample],
         });
         scratch.heads[nsample] = index;
-        scratch.stats.hits += 1;
+        true
+    }
+
+    /// Test the batch's entries against the micropolygon, [`LANES`] at a time, and push a
+    /// visible point for each hit, in entry order (the order the samples were gathered). With
+    /// `all`, every entry; otherwise only whole batches, the rest moving to the front.
+    #[inline(always)]
+    fn drain(
+        &self,
+        b: &mut Batch,
+        place: &impl Place,
+        surf: &Surface,
+        scratch: &mut Scratch,
+        all: bool,
+    ) {
+        let end = if all { b.fill.div_ceil(LANES) } else { b.fill / LANES } * LANES;
+        // NaN positions past the entries (never inside: every vertex counts as "down").
+        for i in b.fill..end {
+            b.x[i] = f32::NAN;
+            b.y[i] = f32::NAN;
+        }
+        for base in (0..end).step_by(LANES) {
+            let (x, y) = place.lanes(b, base);
+            let mut mask = inside_mask(&x, &y);
+            while mask != 0 {
+                let i = base + mask.trailing_zeros() as usize;
+                mask &= mask - 1;
+                let v = place.one(b, i);
+                b.hits += self.hit(b.n[i] as usize, surf, &v, scratch) as u64;
+            }
+        }
+        let tested = end.min(b.fill);
+        b.tests += tested as u64;
+        let rest = b.fill - tested;
+        for i in 0..rest {
+            b.x[i] = b.x[tested + i];
+            b.y[i] = b.y[tested + i];
+            b.ax[i] = b.ax[tested + i];
+            b.ay[i] = b.ay[tested + i];
+            b.alpha[i] = b.alpha[tested + i];
+            b.n[i] = b.n[tested + i];
+        }
+        b.fill = rest;
+    }
+
+    /// Add a batch's counts to the statistics.
+    fn count(b: &Batch, scratch: &mut Scratch) {
+        scratch.stats.hits += b.hits;
+        scratch.stats.misses += b.tests - b.hits;
     }
 
     /// Port of `VisEndBucket` up to `CSGResolve`: sample every micropolygon of the bucket
@@ -144,6 +511,13 @@ impl Hider {
             lens: self.config.lens.is_some(),
         };
         samples.generate(&self.tables, &self.spec, bucket, left, top, bw, bh, needs);
+        let static_lens = needs.lens
+            && list.iter().any(|&m| {
+                let mp = &mpolys[m as usize];
+                !mp.has(flags::MOVING) && mp.whole_shutter()
+            });
+        let mut slices = std::mem::take(&mut scratch.slices);
+        slices.build(&samples, self.config.lens, (needs.time, static_lens), ns, p_count);
         let t_sample = std::time::Instant::now();
         for &m in list {
             let mp = &mpolys[m as usize];
@@ -162,10 +536,10 @@ impl Hider {
                 crossing: mp.has(flags::HITHER_YON_CROSSING),
             };
             if mp.has(flags::MOVING) || !mp.whole_shutter() {
-                self.path_moving(&samples, &vertex, mp, lo, hi, ns, bw, bh, scratch);
+                self.path_moving(&samples, &slices, &vertex, mp, lo, hi, ns, bw, bh, scratch);
             } else if self.config.lens.is_some() {
                 let s = surface_z(lo, hi);
-                self.path_lens(&samples, &vertex, &s, lo, hi, ns, bw, bh, scratch);
+                self.path_lens(&samples, &slices, &vertex, &s, lo, hi, ns, bw, bh, scratch);
             } else {
                 let s = surface_z(lo, hi);
                 self.path_pinhole(&samples, &vertex, &s, lo, hi, ns, bw, bh, scratch);
@@ -177,26 +551,30 @@ impl Hider {
         scratch.stats.sample_ns += (t_resolve - t_sample).as_nanos() as u64;
         // CSGResolve: every sample, front to back.
         scratch.rgba.clear();
+        scratch.rgba.resize(n, [0.0; 4]);
         scratch.z.clear();
+        scratch.z.resize(n, 0.0);
         let mut lerps = 0;
         let resolver =
             Resolver { matte: self.config.matte, trees: &self.csg, order: self.config.csg_order };
-        for nsample in 0..n {
-            let head = scratch.heads[nsample];
+        let out = scratch.rgba.iter_mut().zip(scratch.z.iter_mut());
+        for ((rgba, z), &head) in out.zip(&scratch.heads) {
             let c = if head == NIL {
                 Composite::EMPTY
             } else {
                 resolve_sample(&mut scratch.points, head, &resolver, &mut lerps)
             };
-            scratch.rgba.push([c.rgb[0], c.rgb[1], c.rgb[2], c.alpha]);
-            scratch.z.push(c.z);
+            *rgba = [c.rgb[0], c.rgb[1], c.rgb[2], c.alpha];
+            *z = c.z;
         }
         scratch.stats.lerps += lerps;
         scratch.stats.resolve_ns += t_resolve.elapsed().as_nanos() as u64;
         scratch.samples = samples;
+        scratch.slices = slices;
     }
 
-    /// Path P: static micropolygon, pinhole camera.
+    /// Path P: static micropolygon, pinhole camera: the vertices translated to each sample.
+    /// Sample `s` of a row of pixels is a contiguous run of `smp.x` / `smp.y`.
     #[allow(clippy::too_many_arguments)]
     fn path_pinhole(
         &self,
@@ -211,20 +589,33 @@ impl Hider {
         scratch: &mut Scratch,
     ) {
         let p_count = (bw * bh) as usize;
+        let place = PlacePinhole {
+            vx: vertex.map(|p| p[0]),
+            vy: vertex.map(|p| p[1]),
+            vz: vertex.map(|p| p[2]),
+        };
+        let mut b = Batch::new();
         for s in 0..ns {
             let r = smp.reach_space[s];
             let (x0, x1) = self.scan(lo[0], hi[0], r[0], r[1], bw);
             let (y0, y1) = self.scan(lo[1], hi[1], r[2], r[3], bh);
-            for y in y0..=y1 {
-                for x in x0..=x1 {
-                    let pixel = y as usize * bw as usize + x as usize;
-                    let k = s * p_count + pixel;
-                    let (rx, ry) = (smp.x[k], smp.y[k]);
-                    let v = vertex.map(|p| [p[0] - rx, p[1] - ry, p[2]]);
-                    self.sample(pixel * ns + s, surf, &v, scratch);
+            if x0 > x1 || y0 > y1 {
+                continue;
+            }
+            let row_x = &smp.x[s * p_count..(s + 1) * p_count];
+            let row_y = &smp.y[s * p_count..(s + 1) * p_count];
+            for y in y0 as usize..=y1 as usize {
+                let row = y * bw as usize;
+                for pixel in row + x0 as usize..=row + x1 as usize {
+                    b.push(row_x[pixel], row_y[pixel], pixel * ns + s);
+                    if b.full() {
+                        self.drain(&mut b, &place, surf, scratch, false);
+                    }
                 }
             }
         }
+        self.drain(&mut b, &place, surf, scratch, true);
+        Self::count(&b, scratch);
     }
 
     /// Path D: static micropolygon, finite aperture. Each vertex moves by
@@ -240,6 +631,7 @@ impl Hider {
     fn path_lens(
         &self,
         smp: &BucketSamples,
+        slices: &SliceSamples,
         vertex: &[[f32; 3]; 4],
         surf: &Surface,
         lo: [f32; 3],
@@ -262,6 +654,13 @@ impl Hider {
         let (cx1, cy1) = lens.coc(z1);
         let (cx_lo, cx_hi) = (cx0.min(cx1), cx0.max(cx1));
         let (cy_lo, cy_hi) = (cy0.min(cy1), cy0.max(cy1));
+        let place = PlaceLens {
+            vx: vertex.map(|p| p[0]),
+            vy: vertex.map(|p| p[1]),
+            vz: vertex.map(|p| p[2]),
+            inv_z,
+        };
+        let mut b = Batch::new();
         for lambda in 0..ns {
             let lr = smp.lens_range[lambda];
             let px = [lr[0] * cx_lo, lr[0] * cx_hi, lr[1] * cx_lo, lr[1] * cx_hi];
@@ -277,27 +676,22 @@ impl Hider {
             let r = smp.reach_lens[lambda];
             let (x0, x1) = self.scan(lo[0] + dx0, hi[0] + dx1, r[0], r[1], bw);
             let (y0, y1) = self.scan(lo[1] + dy0, hi[1] + dy1, r[2], r[3], bh);
-            for y in y0..=y1 {
-                for x in x0..=x1 {
-                    let pixel = y as usize * bw as usize + x as usize;
-                    let s = smp.by_lens[lambda * p_count + pixel] as usize;
-                    let k = s * p_count + pixel;
-                    let (lx, ly) = (smp.lx[k], smp.ly[k]);
-                    let (ax, ay) = (lx * lens.x_a, ly * lens.y_a);
-                    let rx = smp.x[k] - lx * lens.x_b;
-                    let ry = smp.y[k] - ly * lens.y_b;
-                    let mut v = [[0.0f32; 3]; 4];
-                    for j in 0..4 {
-                        v[j] = [
-                            vertex[j][0] - rx + ax * inv_z[j],
-                            vertex[j][1] - ry + ay * inv_z[j],
-                            vertex[j][2],
-                        ];
+            if x0 > x1 || y0 > y1 {
+                continue;
+            }
+            let recs = &slices.by_lens[lambda * p_count..(lambda + 1) * p_count];
+            for y in y0 as usize..=y1 as usize {
+                let row = y * bw as usize;
+                for r in &recs[row + x0 as usize..=row + x1 as usize] {
+                    b.push_sample(r);
+                    if b.full() {
+                        self.drain(&mut b, &place, surf, scratch, false);
                     }
-                    self.sample(pixel * ns + s, surf, &v, scratch);
                 }
             }
         }
+        self.drain(&mut b, &place, surf, scratch, true);
+        Self::count(&b, scratch);
     }
 
     /// Path M: moving micropolygon (with the lens if there is one). Time slice `tau` holds one
@@ -310,6 +704,7 @@ impl Hider {
     fn path_moving(
         &self,
         smp: &BucketSamples,
+        slices: &SliceSamples,
         vertex: &[[f32; 3]; 4],
         mp: &Micropolygon,
         mut lo: [f32; 3],
@@ -319,7 +714,6 @@ impl Hider {
         bh: u32,
         scratch: &mut Scratch,
     ) {
-        let p_count = (bw * bh) as usize;
         let (slo, shi) = bound(&mp.speed);
         // z range over the whole segment: the visible points' depth range.
         lo[2] += slo[2].min(0.0);
@@ -335,7 +729,38 @@ impl Hider {
         if t1.partial_cmp(&t0) != Some(std::cmp::Ordering::Greater) {
             return;
         }
+        let (v, speed) = (transpose(vertex), transpose(&mp.speed));
+        if lens.is_some() {
+            let place = PlaceMoving::<true> { v, speed };
+            self.moving_slices(smp, slices, &place, &surf, lo, hi, slo, shi, ns, bw, bh, scratch);
+        } else {
+            let place = PlaceMoving::<false> { v, speed };
+            self.moving_slices(smp, slices, &place, &surf, lo, hi, slo, shi, ns, bw, bh, scratch);
+        }
+    }
+
+    /// The slice loop of path M.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn moving_slices(
+        &self,
+        smp: &BucketSamples,
+        slices: &SliceSamples,
+        place: &impl Place,
+        surf: &Surface,
+        lo: [f32; 3],
+        hi: [f32; 3],
+        slo: [f32; 3],
+        shi: [f32; 3],
+        ns: usize,
+        bw: u32,
+        bh: u32,
+        scratch: &mut Scratch,
+    ) {
+        let p_count = (bw * bh) as usize;
+        let [t0, t1] = surf.mp.time;
         let inv_len = 1.0 / (t1 - t0);
+        let mut b = Batch::new();
         for tau in 0..ns {
             let [ta, tb] = self.slice_times[tau];
             if tb < t0 || ta >= t1 {
@@ -350,45 +775,36 @@ impl Hider {
             let r = smp.reach_time[tau];
             let (x0, x1) = self.scan(bx0, bx1, r[0], r[1], bw);
             let (y0, y1) = self.scan(by0, by1, r[2], r[3], bh);
-            for y in y0..=y1 {
-                for x in x0..=x1 {
-                    let pixel = y as usize * bw as usize + x as usize;
-                    let s = smp.by_time[tau * p_count + pixel] as usize;
-                    let k = s * p_count + pixel;
-                    let t = smp.t[k];
-                    if t < t0 || t >= t1 {
+            if x0 > x1 || y0 > y1 {
+                continue;
+            }
+            let recs = &slices.by_time[tau * p_count..(tau + 1) * p_count];
+            for y in y0 as usize..=y1 as usize {
+                let row = y * bw as usize;
+                for r in &recs[row + x0 as usize..=row + x1 as usize] {
+                    if r.t < t0 || r.t >= t1 {
                         continue; // outside this micropolygon's segment: not tested
                     }
-                    let alpha = (t - t0) * inv_len;
-                    let mut v = [[0.0f32; 3]; 4];
-                    for j in 0..4 {
-                        v[j] = [
-                            vertex[j][0] + alpha * mp.speed[j][0],
-                            vertex[j][1] + alpha * mp.speed[j][1],
-                            vertex[j][2] + alpha * mp.speed[j][2],
-                        ];
+                    let l = b.push_sample(r);
+                    b.alpha[l] = (r.t - t0) * inv_len;
+                    if b.full() {
+                        self.drain(&mut b, place, surf, scratch, false);
                     }
-                    let (rx, ry) = match &lens {
-                        Some(l) => {
-                            let (lx, ly) = (smp.lx[k], smp.ly[k]);
-                            let (ax, ay) = (lx * l.x_a, ly * l.y_a);
-                            for p in v.iter_mut() {
-                                p[0] += ax / p[2];
-                                p[1] += ay / p[2];
-                            }
-                            (smp.x[k] - lx * l.x_b, smp.y[k] - ly * l.y_b)
-                        }
-                        None => (smp.x[k], smp.y[k]),
-                    };
-                    for p in v.iter_mut() {
-                        p[0] -= rx;
-                        p[1] -= ry;
-                    }
-                    self.sample(pixel * ns + s, &surf, &v, scratch);
                 }
             }
         }
+        self.drain(&mut b, place, surf, scratch, true);
+        Self::count(&b, scratch);
     }
+}
+
+/// Rows of a 4-vertex array as columns: `out[a][j] = v[j][a]`.
+fn transpose(v: &[[f32; 3]; 4]) -> [[f32; 4]; 3] {
+    let mut out = [[0.0; 4]; 3];
+    for (a, row) in out.iter_mut().enumerate() {
+        *row = [v[0][a], v[1][a], v[2][a], v[3][a]];
+    }
+    out
 }
 
 /// Port of `gouraud`: the vertex colours and transmittances weighted by the Shepard weights of

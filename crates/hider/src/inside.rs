@@ -67,6 +67,34 @@ pub fn inside(v: &[[f32; 3]; 4]) -> bool {
     inside
 }
 
+/// The same test as [`inside`], without data-dependent branches, on the vertices' x and y
+/// (relative to the sample point). Returns exactly what [`inside`] returns for every input,
+/// zeros, infinities and NaNs included (checked exhaustively in the tests); the hider's loops
+/// use it because the sign branches of the unrolled form mispredict on jittered samples.
+///
+/// Derivation: in every branch of [`inside`] a vertex counts as "up" when `y > 0` if
+/// `y0 <= 0` (or NaN), and when `!(y < 0)` if `y0 > 0`; the edges tested are exactly those
+/// whose two ends differ, and each is tested as `x_lo * y_up > y_lo * x_up` (up and lo: its
+/// two ends). For edge `i -> j` with `A = x_i * y_j`, `B = y_i * x_j` that is `A > B` when
+/// `j` is up and `B > A` when `i` is up (products commute exactly). The result is the parity
+/// of the edges that cross.
+// `!(t < 0.0)` on purpose: a NaN counts as "up" there, as in the unrolled test's `else`.
+#[allow(clippy::neg_cmp_op_on_partial_ord)]
+#[inline(always)]
+pub fn inside_xy(x: [f32; 4], y: [f32; 4]) -> bool {
+    let y0_up = y[0] > 0.0;
+    let up = y.map(|t| if y0_up { !(t < 0.0) } else { t > 0.0 });
+    let mut parity = false;
+    for i in 0..4 {
+        let j = (i + 1) & 3;
+        let a = x[i] * y[j];
+        let b = y[i] * x[j];
+        let crosses = if up[j] { a > b } else { b > a };
+        parity ^= (up[i] != up[j]) & crosses;
+    }
+    parity
+}
+
 /// Reference even-odd test by explicit edge crossings, in f64, for checking [`inside`].
 pub fn inside_reference(v: &[[f32; 3]; 4]) -> bool {
     let mut inside = false;
@@ -118,6 +146,32 @@ mod tests {
             .fold(f64::INFINITY, f64::min)
     }
 
+    /// [`inside_xy`] equals [`inside`] on every quad whose coordinates come from a set with
+    /// both zeros, ties, infinities and NaN (exhaustive: 8^8 quads, about 16.8 million).
+    #[test]
+    fn branchless_equals_unrolled_exhaustively() {
+        const VALS: [f32; 8] = [-1.0, -0.0, 0.0, 0.5, 1.0, 2.0, f32::INFINITY, f32::NAN];
+        let mut c = [0usize; 8];
+        loop {
+            let x = [VALS[c[0]], VALS[c[1]], VALS[c[2]], VALS[c[3]]];
+            let y = [VALS[c[4]], VALS[c[5]], VALS[c[6]], VALS[c[7]]];
+            let v = [0, 1, 2, 3].map(|k| [x[k], y[k], 1.0]);
+            assert_eq!(inside_xy(x, y), inside(&v), "{x:?} {y:?}");
+            let mut d = 0;
+            while d < 8 {
+                c[d] += 1;
+                if c[d] < VALS.len() {
+                    break;
+                }
+                c[d] = 0;
+                d += 1;
+            }
+            if d == 8 {
+                break;
+            }
+        }
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(20_000))]
         /// Random convex, concave and self-intersecting quads around the origin.
@@ -126,6 +180,17 @@ mod tests {
             let v = quad([(c[0], c[1]), (c[2], c[3]), (c[4], c[5]), (c[6], c[7])]);
             prop_assume!(edge_distance(&v) > 1e-4);
             prop_assert_eq!(inside(&v), inside_reference(&v));
+        }
+
+        /// [`inside_xy`] equals [`inside`] on random quads, including coordinates that tie.
+        #[test]
+        fn branchless_equals_unrolled(c in prop::array::uniform8(-4i32..4), f in prop::array::uniform8(-2.0f32..2.0), tie in 0u32..256) {
+            // Each coordinate is either a small integer (ties, zeros) or a random float.
+            let k = |i: usize| if tie >> i & 1 == 1 { c[i] as f32 * 0.5 } else { f[i] };
+            let x = [k(0), k(1), k(2), k(3)];
+            let y = [k(4), k(5), k(6), k(7)];
+            let v = [0, 1, 2, 3].map(|j| [x[j], y[j], 1.0]);
+            prop_assert_eq!(inside_xy(x, y), inside(&v));
         }
 
         /// Two quads sharing an edge (a split convex quad) cover each point exactly once.

@@ -151,6 +151,7 @@ pub struct Scratch {
     points: Vec<reyes_csg::VisPoint>,
     rgba: Vec<[f32; 4]>,
     z: Vec<f32>,
+    slices: bucket::SliceSamples,
     /// Statistics accumulated by every bucket this scratch has rendered.
     pub stats: Stats,
 }
