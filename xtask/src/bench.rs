@@ -154,3 +154,105 @@ pub fn run(root: &Path, args: &[String]) -> Result<(), String> {
     println!("wrote {}", path.display());
     Ok(())
 }
+
+/// The `heavy-motion` benchmark scene with `n x n` spheres: the same header, spheres spaced
+/// 2.5 moving one unit to the right over the shutter, the camera distance scaled by
+/// `n / 20` so the grid keeps its angular size (the spheres shrink on screen as they multiply).
+fn heavy_motion_scene(header: &str, n: usize) -> String {
+    let z = 60.235 * n as f64 / 20.0;
+    let half = (n as f64 - 1.0) / 2.0;
+    let shade = |k: usize| 0.3 + 0.7 * k as f64 / (n as f64 - 1.0).max(1.0);
+    let mut s =
+        format!("// `cargo xtask scaling`: heavy-motion with {n} x {n} spheres at depth {z:.3}.\n");
+    s.push_str(header);
+    for i in 0..n {
+        for j in 0..n {
+            let (x, y) = ((i as f64 - half) * 2.5, (j as f64 - half) * 2.5);
+            s.push_str(&format!(
+                "    (name: \"ball-{i}-{j}\", shape: Sphere(radius: 1.0), motion: [(time: 0.0, transform: [Translate(({:.6}, {y:.6}, {z:.6}))]), (time: 1.0, transform: [Translate(({:.6}, {y:.6}, {z:.6}))])],\n     material: Plastic(color: ({:.6}, 0.400000, {:.6}), ka: 1.0, kd: 0.7, ks: 0.5, roughness: 0.1)),\n",
+                x - 0.5,
+                x + 0.5,
+                shade(i),
+                shade(j)
+            ));
+        }
+    }
+    s.push_str("  ],\n)\n");
+    s
+}
+
+/// `cargo xtask scaling [--threads T] [N...]`: render `heavy-motion` with N x N spheres
+/// (default N = 20, 40, 80; scenes written to `target/scaling/`) and report primitives,
+/// micropolygons, the most held at once, peak resident memory and time: with lazy dicing,
+/// memory follows the buckets in flight, not the primitive count.
+pub fn scaling(root: &Path, args: &[String]) -> Result<(), String> {
+    let mut threads: Option<String> = None;
+    let mut sizes = Vec::new();
+    let mut it = args.iter();
+    while let Some(a) = it.next() {
+        match a.as_str() {
+            "--threads" => threads = Some(it.next().ok_or("--threads takes a number")?.clone()),
+            s => sizes.push(s.parse::<usize>().map_err(|_| format!("not a size: {s}"))?),
+        }
+    }
+    if sizes.is_empty() {
+        sizes = vec![20, 40, 80];
+    }
+    let status = Command::new(env!("CARGO"))
+        .args(["build", "--release", "--quiet", "-p", "reyes-render"])
+        .current_dir(root)
+        .status()
+        .map_err(|e| format!("cargo build: {e}"))?;
+    if !status.success() {
+        return Err("cargo build --release -p reyes-render failed".into());
+    }
+    let bin = root.join("target/release/reyes-render");
+    let source = root.join("scenes/bench/heavy-motion.ron");
+    let text =
+        std::fs::read_to_string(&source).map_err(|e| format!("{}: {e}", source.display()))?;
+    let start = text.find("  objects: [\n").ok_or("heavy-motion.ron: no objects list")?;
+    // From `Scene(` (without the comment lines) up to the first object: image, camera,
+    // hider, lights.
+    let from = text.find("Scene(").ok_or("heavy-motion.ron: no Scene(")?;
+    let header = format!("{}  objects: [\n", &text[from..start]);
+    let dir = root.join("target/scaling");
+    std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    println!(
+        "{:>4} {:>10} {:>14} {:>12} {:>9} {:>8} {:>8}",
+        "N", "primitives", "micropolygons", "most held", "peak MB", "dice s", "total s"
+    );
+    for n in sizes {
+        let scene = dir.join(format!("heavy-motion-{n}.ron"));
+        std::fs::write(&scene, heavy_motion_scene(&header, n))
+            .map_err(|e| format!("{}: {e}", scene.display()))?;
+        let mut cmd = Command::new(&bin);
+        cmd.arg(&scene)
+            .arg("-o")
+            .arg(dir.join(format!("heavy-motion-{n}.exr")))
+            .args(["--stats", "-q"]);
+        if let Some(t) = &threads {
+            cmd.args(["--threads", t]);
+        }
+        let t0 = Instant::now();
+        let out = cmd.output().map_err(|e| format!("{}: {e}", bin.display()))?;
+        let wall = t0.elapsed().as_secs_f64();
+        if !out.status.success() {
+            return Err(format!("N = {n}: {}", String::from_utf8_lossy(&out.stderr).trim()));
+        }
+        let stats = String::from_utf8_lossy(&out.stdout);
+        let dicer = field(&stats, "Dicer:").unwrap_or("");
+        let memory = field(&stats, "Memory:").unwrap_or("");
+        let time = field(&stats, "Time:").unwrap_or("");
+        println!(
+            "{:>4} {:>10} {:>14} {:>12} {:>9.1} {:>8.2} {:>8.2}",
+            n,
+            number_before(dicer, "primitives").unwrap_or(0.0) as u64,
+            number_before(dicer, "micropolygons").unwrap_or(0.0) as u64,
+            number_after(memory, "at most").unwrap_or(0.0) as u64,
+            number_after(memory, "resident").unwrap_or(0.0),
+            number_after(time, "dice").unwrap_or(0.0),
+            wall
+        );
+    }
+    Ok(())
+}

@@ -1,6 +1,7 @@
 //! Project tasks: `cargo xtask golden` (compare every golden scene with its reference),
 //! `cargo xtask bless` (rewrite the references; look at the PNGs it writes first!),
-//! `cargo xtask bench` (time the benchmark scenes) and `cargo xtask study` (regenerate the
+//! `cargo xtask bench` (time the benchmark scenes), `cargo xtask scaling` (peak memory of
+//! `heavy-motion` as its sphere count grows) and `cargo xtask study` (regenerate the
 //! sampling study's figures in docs/study/).
 
 mod bench;
@@ -12,7 +13,7 @@ use reyes_render::golden::{self, Outcome};
 
 fn usage() -> ExitCode {
     eprintln!(
-        "usage: cargo xtask <golden | bless [SCENE...] | bench [--runs N] [--threads T] [SCENE...] | study [--quick]>"
+        "usage: cargo xtask <golden | bless [SCENE...] | bench [--runs N] [--threads T] [SCENE...] | scaling [--threads T] [N...] | study [--quick]>"
     );
     ExitCode::from(2)
 }
@@ -25,6 +26,15 @@ fn main() -> ExitCode {
             Ok(()) => ExitCode::SUCCESS,
             Err(e) => {
                 eprintln!("xtask bench: {e}");
+                ExitCode::FAILURE
+            }
+        };
+    }
+    if args.first().map(String::as_str) == Some("scaling") {
+        return match bench::scaling(&root, &args[1..]) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(e) => {
+                eprintln!("xtask scaling: {e}");
                 ExitCode::FAILURE
             }
         };
@@ -52,7 +62,7 @@ fn main() -> ExitCode {
                 match golden::check(&root, case) {
                     Ok(Outcome::Pass(c)) => println!(
                         "pass {:<16} mean {:.2e} max {:.2e} (tolerance {:.2e} / {:.2e})",
-                        case.scene,
+                        case.name(),
                         c.mean.iter().cloned().fold(0.0, f32::max),
                         c.max.iter().cloned().fold(0.0, f32::max),
                         c.mean_tolerance,
@@ -62,7 +72,7 @@ fn main() -> ExitCode {
                         failed += 1;
                         println!(
                             "FAIL {:<16} mean {:?} max {:?} (tolerance {:.2e} / {:.2e}); wrote {}",
-                            case.scene,
+                            case.name(),
                             c.mean,
                             c.max,
                             c.mean_tolerance,
@@ -72,11 +82,11 @@ fn main() -> ExitCode {
                     }
                     Ok(Outcome::Missing(path)) => {
                         failed += 1;
-                        println!("MISSING {:<13} no reference {}", case.scene, path.display());
+                        println!("MISSING {:<13} no reference {}", case.name(), path.display());
                     }
                     Err(e) => {
                         failed += 1;
-                        println!("ERROR {:<15} {e}", case.scene);
+                        println!("ERROR {:<15} {e}", case.name());
                     }
                 }
             }
@@ -84,11 +94,14 @@ fn main() -> ExitCode {
         }
         Some("bless") => {
             let only = &args[1..];
-            for case in cases.iter().filter(|c| only.is_empty() || only.contains(&c.scene)) {
+            for case in cases
+                .iter()
+                .filter(|c| only.is_empty() || only.contains(&c.scene) || only.contains(&c.name()))
+            {
                 match golden::bless(&root, case) {
-                    Ok(png) => println!("blessed {} (look at {})", case.scene, png.display()),
+                    Ok(png) => println!("blessed {} (look at {})", case.name(), png.display()),
                     Err(e) => {
-                        eprintln!("xtask: {}: {e}", case.scene);
+                        eprintln!("xtask: {}: {e}", case.name());
                         return ExitCode::FAILURE;
                     }
                 }

@@ -8,13 +8,15 @@
 
 pub mod golden;
 pub mod measure;
+mod rayhide;
 mod stats;
 pub mod study;
+mod vertex;
 
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use rayon::prelude::*;
-use reyes_dice::{CameraSetup, DiceStats, dice_scene};
+use reyes_dice::{CameraSetup, DiceError, DiceOptions, DiceStats, Dicer};
 use reyes_film::{Film, FilterTable, Window, splat};
 use reyes_hider::{
     Frame, Hider, HiderConfig, LensShape, MatteRule, Pairing, Pattern, Scratch, ShutterShape,
@@ -22,7 +24,7 @@ use reyes_hider::{
 };
 use reyes_scene::{Scene, SpatialPattern};
 
-pub use stats::{RenderStats, peak_memory};
+pub use stats::{RaySummary, RenderStats, peak_memory};
 
 /// Errors while rendering a valid scene.
 #[derive(Debug)]
@@ -92,10 +94,7 @@ pub fn hider_config(scene: &Scene, camera: &CameraSetup) -> HiderConfig {
             reyes_scene::TimePattern::Fig14 => reyes_hider::TimePattern::Fig14,
             reyes_scene::TimePattern::Fig15 => reyes_hider::TimePattern::Fig15,
         },
-        shutter: match scene.camera.shutter.shape {
-            reyes_scene::ShutterShape::Uniform => ShutterShape::Uniform,
-            reyes_scene::ShutterShape::Gradual { ramp } => ShutterShape::Gradual { ramp },
-        },
+        shutter: shutter_shape(scene.camera.shutter.shape),
         lens_shape: if h.original.lens { LensShape::OriginalSquare } else { LensShape::Disk },
         lens: camera.lens(),
         hither: scene.camera.hither,
@@ -114,6 +113,14 @@ pub fn hider_config(scene: &Scene, camera: &CameraSetup) -> HiderConfig {
     }
 }
 
+/// The hider's time density for a scene's shutter shape.
+pub(crate) fn shutter_shape(shape: reyes_scene::ShutterShape) -> ShutterShape {
+    match shape {
+        reyes_scene::ShutterShape::Uniform => ShutterShape::Uniform,
+        reyes_scene::ShutterShape::Gradual { ramp } => ShutterShape::Gradual { ramp },
+    }
+}
+
 /// The bucket layout a scene asks for.
 pub fn frame_for(scene: &Scene) -> Frame {
     Frame::new(
@@ -127,14 +134,67 @@ pub fn frame_for(scene: &Scene) -> Frame {
 
 /// Render a validated scene.
 pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<Rendered, RenderError> {
+    if scene.hider.method == reyes_scene::HiderMethod::RayTrace {
+        return rayhide::render_raytraced(scene, opts);
+    }
+    if reyes_shade::Shading::needed(scene) {
+        // Shadows, area lights, reflection, refraction or patterns: ray-traced vertex shading.
+        return vertex::render_shaded(scene, opts);
+    }
+    // The dicer shades vertices with its own local illumination.
+    let dice_options = DiceOptions::default();
+    render_diced(scene, opts, &dice_options)
+}
+
+/// Render a validated scene with the stochastic hider, dicing it lazily row of buckets by row
+/// of buckets ([`Dicer`]) with `dice_options`. Should a patch bound miss (a micropolygon
+/// touching a row already rendered), the frame is rendered again with the whole scene
+/// diced up front, which gives the same image.
+pub fn render_diced(
+    scene: &Scene,
+    opts: &RenderOptions,
+    dice_options: &DiceOptions<'_>,
+) -> Result<Rendered, RenderError> {
+    let pool = match opts.threads {
+        Some(n) => Some(
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .map_err(|e| RenderError::Threads(e.to_string()))?,
+        ),
+        None => None,
+    };
+    let run = |eager: bool| match &pool {
+        Some(pool) => pool.install(|| render_rows(scene, opts, dice_options, eager)),
+        None => render_rows(scene, opts, dice_options, eager),
+    };
+    match run(false) {
+        Err(RenderError::Dice(DiceError::BoundMissed { .. })) => run(true),
+        result => result,
+    }
+}
+
+/// The bucket loop: per row of buckets, dice what it needs, render its buckets in parallel,
+/// add their windows to the film in raster order, release what no later row needs.
+fn render_rows(
+    scene: &Scene,
+    opts: &RenderOptions,
+    dice_options: &DiceOptions<'_>,
+    eager: bool,
+) -> Result<Rendered, RenderError> {
     let t0 = Instant::now();
     let frame = frame_for(scene);
     let camera = CameraSetup::new(scene);
     let config = hider_config(scene, &camera);
-    let diced = dice_scene(scene, &frame).map_err(RenderError::Dice)?;
-    let t_dice = t0.elapsed();
+    let mut dicer = if eager {
+        Dicer::new_eager(scene, &frame, dice_options)
+    } else {
+        Dicer::new(scene, &frame, dice_options)
+    }
+    .map_err(RenderError::Dice)?;
+    let mut t_dice = t0.elapsed();
 
-    let hider = Hider::new(config, frame).with_csg(diced.csg_trees.clone());
+    let hider = Hider::new(config, frame).with_csg(dicer.csg_trees().to_vec());
     let f = &scene.hider.filter;
     let table = FilterTable::new(
         f.kind,
@@ -146,20 +206,36 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<Rendered, RenderErr
     )
     .map_err(RenderError::Film)?;
 
-    let t1 = Instant::now();
-    let run = || {
-        (0..frame.bucket_count())
+    let (mut t_hide, mut t_film) = (Duration::ZERO, Duration::ZERO);
+    let mut film = Film::new(scene.image.width, scene.image.height);
+    let mut hider_stats = reyes_hider::Stats::default();
+    let mut buckets_rendered = 0;
+    let across = frame.buckets_x as usize;
+    for row in 0..dicer.rows() {
+        let t = Instant::now();
+        dicer.dice_row(row).map_err(RenderError::Dice)?;
+        t_dice += t.elapsed();
+
+        let t = Instant::now();
+        let first = row as usize * across;
+        let diced = &dicer;
+        let results = (first..first + across)
             .into_par_iter()
             .map_init(
-                || (Scratch::new(), Window::default()),
-                |(scratch, window), b| {
-                    let list = &diced.buckets[b];
-                    let result = if list.is_empty() {
+                || (Scratch::new(), Window::default(), Vec::new(), Vec::new()),
+                |(scratch, window, mpolys, list), b| {
+                    let result = if diced.bucket_len(b) == 0 {
                         // Appendix A's `emptybucket`: nothing to display.
                         None
                     } else {
+                        // The bucket's own contiguous copy, indexed 0..n.
+                        diced.copy_bucket(b, mpolys);
+                        let n = mpolys.len() as u32;
+                        if (list.len() as u32) < n {
+                            list.extend(list.len() as u32..n);
+                        }
                         scratch.stats = Default::default();
-                        let out = hider.render_bucket(b, &diced.mpolys, list, scratch);
+                        let out = hider.render_bucket(b, mpolys, &list[..n as usize], scratch);
                         let (left, top) = frame.bucket_origin(b);
                         splat(
                             &table,
@@ -179,29 +255,20 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<Rendered, RenderErr
                     result
                 },
             )
-            .collect::<Vec<_>>()
-    };
-    let results = match opts.threads {
-        Some(n) => rayon::ThreadPoolBuilder::new()
-            .num_threads(n)
-            .build()
-            .map_err(|e| RenderError::Threads(e.to_string()))?
-            .install(run),
-        None => run(),
-    };
-    let t_hide = t1.elapsed();
+            .collect::<Vec<_>>();
+        t_hide += t.elapsed();
 
-    // Fixed order: bucket raster order, whatever order the buckets finished in.
-    let t2 = Instant::now();
-    let mut film = Film::new(scene.image.width, scene.image.height);
-    let mut hider_stats = reyes_hider::Stats::default();
-    let mut buckets_rendered = 0;
-    for (window, s) in results.iter().flatten() {
-        film.add(window);
-        hider_stats.merge(s);
-        buckets_rendered += 1;
+        // Fixed order: bucket raster order, whatever order the buckets finished in.
+        let t = Instant::now();
+        for (window, s) in results.iter().flatten() {
+            film.add(window);
+            hider_stats.merge(s);
+            buckets_rendered += 1;
+        }
+        t_film += t.elapsed();
+        dicer.release_row(row);
     }
-    let t_film = t2.elapsed();
+    let dice_stats = dicer.stats();
 
     let stats = RenderStats {
         width: scene.image.width,
@@ -210,14 +277,19 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<Rendered, RenderErr
         filter: *f,
         frame,
         buckets_rendered,
-        dice: dice_summary(&diced.stats),
-        micropolygons: diced.mpolys.len() as u64,
+        dice: stats::DiceSummary {
+            peak_micropolygons: dicer.peak_micropolygons(),
+            eager,
+            ..dice_summary(&dice_stats)
+        },
+        micropolygons: dice_stats.micropolygons,
         hider: hider_stats,
         t_dice,
         t_hide,
         t_film,
         t_write: Default::default(),
         peak_memory: None,
+        rays: None,
     };
     Ok(Rendered { film, stats })
 }
@@ -228,5 +300,7 @@ fn dice_summary(d: &DiceStats) -> stats::DiceSummary {
         splits: d.splits,
         grids: d.grids,
         culled: d.culled,
+        peak_micropolygons: 0,
+        eager: false,
     }
 }

@@ -18,6 +18,50 @@ pub struct DiceSummary {
     pub grids: u64,
     /// Micropolygons or patches culled.
     pub culled: u64,
+    /// The most micropolygons held at once (lazy dicing keeps only the rows in flight).
+    pub peak_micropolygons: u64,
+    /// The whole scene was diced up front, because lazy dicing met a patch bound that
+    /// missed (the image is the same).
+    pub eager: bool,
+}
+
+/// The distributed ray tracing's counts: of the ray-tracing hider (Appendix B), in place of
+/// the dicer's and the stochastic hider's, or of the stochastic hider's ray-traced vertex
+/// shading, besides them.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct RaySummary {
+    /// The ray-tracing hider rendered the frame (else the stochastic hider, with ray-traced
+    /// vertex shading).
+    pub ray_hider: bool,
+    /// Primitives the ray engine built from the scene.
+    pub primitives: u64,
+    /// Nodes of its bounding volume hierarchy.
+    pub nodes: u64,
+    /// Primary rays traced (one per sample of every bucket; 0 for vertex shading).
+    pub primary: u64,
+    /// Primary rays that met a surface.
+    pub hits: u64,
+    /// Grid vertices shaded with distributed rays (0 for the ray-tracing hider).
+    pub vertices: u64,
+    /// Rays per effect per vertex (`raytrace.vertex_rays`; 0 for the ray-tracing hider).
+    pub vertex_rays: u32,
+    /// Secondary rays, by kind.
+    pub secondary: reyes_shade::RayCounts,
+}
+
+impl RaySummary {
+    /// One line of secondary-ray counts.
+    fn secondary_line(&self) -> String {
+        let c = &self.secondary;
+        format!(
+            " Secondary rays: {} ({} shadow, {} reflection, {} refraction, {} continuation)",
+            c.total(),
+            c.shadow,
+            c.reflection,
+            c.refraction,
+            c.continuation
+        )
+    }
 }
 
 /// Everything `--stats` prints.
@@ -41,7 +85,7 @@ pub struct RenderStats {
     pub micropolygons: u64,
     /// Hider counts.
     pub hider: reyes_hider::Stats,
-    /// Time to dice and shade.
+    /// Time to dice and shade (the ray-tracing hider: to build the ray engine).
     pub t_dice: Duration,
     /// Time in the bucket loop (sampling, resolving, filtering).
     pub t_hide: Duration,
@@ -51,6 +95,9 @@ pub struct RenderStats {
     pub t_write: Duration,
     /// Peak resident memory of the process in bytes, where the platform reports it.
     pub peak_memory: Option<u64>,
+    /// The ray-tracing hider's counts, when it rendered the frame (then the dicer and hider
+    /// counts are zero and not printed).
+    pub rays: Option<RaySummary>,
 }
 
 /// Peak resident set size of this process (Linux: `VmHWM` in /proc/self/status).
@@ -82,6 +129,28 @@ impl RenderStats {
             self.filter.kind,
             self.filter.width
         );
+        if let Some(r) = self.rays.as_ref().filter(|r| r.ray_hider) {
+            let _ = writeln!(
+                s,
+                " Buckets: {} x {} pixels, {} x {} ({} where rays met surfaces), border {}",
+                f.bucket_w, f.bucket_h, f.buckets_x, f.buckets_y, self.buckets_rendered, f.border
+            );
+            let _ = writeln!(
+                s,
+                " Ray tracer: {} primitives, {} hierarchy nodes",
+                r.primitives, r.nodes
+            );
+            let _ = writeln!(
+                s,
+                " Primary rays: {} ({:5.2}% hit a surface: {} hits and {} misses)",
+                r.primary,
+                pct(r.hits, r.primary),
+                r.hits,
+                r.primary - r.hits
+            );
+            let _ = writeln!(s, "{}", r.secondary_line());
+            return s;
+        }
         let _ = writeln!(
             s,
             " Buckets: {} x {} pixels, {} x {} ({} with micropolygons), border {}",
@@ -124,6 +193,14 @@ impl RenderStats {
             h.peak_points,
             h.peak_points * std::mem::size_of::<reyes_hider::VisPoint>() as u64 / 1024
         );
+        if let Some(r) = &self.rays {
+            let _ = writeln!(
+                s,
+                " Ray-traced vertex shading: {} vertices, {} rays per effect per vertex; ray engine {} primitives, {} hierarchy nodes",
+                r.vertices, r.vertex_rays, r.primitives, r.nodes
+            );
+            let _ = writeln!(s, "{}", r.secondary_line());
+        }
         s
     }
 }
@@ -135,13 +212,25 @@ impl fmt::Display for RenderStats {
         let tests = self.hider.hits + self.hider.misses;
         writeln!(
             f,
-            " Time: dice {:.3} s, hide {:.3} s, film {:.3} s, write {:.3} s, total {:.3} s",
+            " Time: {} {:.3} s, hide {:.3} s, film {:.3} s, write {:.3} s, total {:.3} s",
+            if self.rays.is_some_and(|r| r.ray_hider) { "ray engine" } else { "dice" },
             self.t_dice.as_secs_f64(),
             self.t_hide.as_secs_f64(),
             self.t_film.as_secs_f64(),
             self.t_write.as_secs_f64(),
             total.as_secs_f64()
         )?;
+        if let Some(r) = self.rays.as_ref().filter(|r| r.ray_hider) {
+            writeln!(
+                f,
+                " Primary rays per second (bucket loop, all threads): {:.3} million",
+                r.primary as f64 / self.t_hide.as_secs_f64().max(1e-9) / 1e6
+            )?;
+            if let Some(m) = self.peak_memory {
+                writeln!(f, " Memory: peak resident {:.1} MB", m as f64 / 1e6)?;
+            }
+            return Ok(());
+        }
         writeln!(
             f,
             " Hider time (summed over threads): sampling {:.3} s, resolving visible points (CSG, compositing) {:.3} s",
@@ -154,7 +243,14 @@ impl fmt::Display for RenderStats {
             tests as f64 / self.t_hide.as_secs_f64().max(1e-9) / 1e6
         )?;
         if let Some(m) = self.peak_memory {
-            writeln!(f, " Memory: peak resident {:.1} MB", m as f64 / 1e6)?;
+            write!(f, " Memory: peak resident {:.1} MB", m as f64 / 1e6)?;
+            if self.dice.peak_micropolygons > 0 {
+                write!(f, ", at most {} micropolygons held at once", self.dice.peak_micropolygons)?;
+            }
+            if self.dice.eager {
+                write!(f, " (diced up front: a patch bound missed)")?;
+            }
+            writeln!(f)?;
         }
         Ok(())
     }

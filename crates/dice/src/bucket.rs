@@ -1,10 +1,9 @@
-//! Bucket stage: sort micropolygons into the buckets their screen bounds touch.
+//! Bucket stage: the buckets a micropolygon's screen bound touches.
 //!
 //! Invariants: a micropolygon's screen bound is its vertex bound over its shutter segment
 //! ([`Micropolygon::bound`]: the vertices at both ends, which bound the linear motion in
 //! between) grown by the lens (`bounddof`) when there is one; it is listed
-//! in exactly the buckets [`Frame::buckets_touched`] returns for that bound, and bucket
-//! lists hold indices in increasing order because indices are inserted in increasing order.
+//! in exactly the buckets [`Frame::buckets_touched`] returns for that bound.
 
 use reyes_hider::{Frame, LensSetup, Micropolygon};
 
@@ -22,48 +21,35 @@ pub fn screen_bound(
     (lo, hi)
 }
 
-/// Bucket lists under construction.
+/// Which buckets a micropolygon touches.
 #[derive(Debug, Clone)]
 pub(crate) struct Bucketer {
     frame: Frame,
     lens: Option<LensSetup>,
     hither: f32,
     yon: f32,
-    /// One list of micropolygon indices per bucket, raster order.
-    pub buckets: Vec<Vec<u32>>,
-    /// Total list entries.
-    pub entries: u64,
 }
 
+/// Inclusive bucket column and row ranges, `[(x0, x1), (y0, y1)]`.
+pub(crate) type BucketRange = [(u32, u32); 2];
+
 impl Bucketer {
-    /// Empty lists for every bucket of `frame`.
+    /// The buckets of `frame`, seen through `lens` with depth limits `hither` and `yon`.
     pub fn new(frame: &Frame, lens: Option<LensSetup>, hither: f32, yon: f32) -> Bucketer {
-        Bucketer {
-            frame: *frame,
-            lens,
-            hither,
-            yon,
-            buckets: vec![Vec::new(); frame.bucket_count()],
-            entries: 0,
-        }
+        Bucketer { frame: *frame, lens, hither, yon }
     }
 
     /// The inclusive bucket column and row ranges `mp` touches, if any.
-    pub fn range(&self, mp: &Micropolygon) -> Option<[(u32, u32); 2]> {
+    pub fn range(&self, mp: &Micropolygon) -> Option<BucketRange> {
         let (lo, hi) = screen_bound(mp, self.lens.as_ref(), self.hither, self.yon);
         self.frame.buckets_touched([lo[0], lo[1]], [hi[0], hi[1]])
     }
 
-    /// List `index` in every bucket of `range` (from [`Bucketer::range`]).
-    pub fn insert(&mut self, index: u32, range: [(u32, u32); 2]) {
+    /// The buckets of `range` (from [`Bucketer::range`]), in raster order.
+    pub fn buckets(&self, range: BucketRange) -> impl Iterator<Item = usize> + use<> {
         let [(x0, x1), (y0, y1)] = range;
         let across = self.frame.buckets_x as usize;
-        for by in y0..=y1 {
-            for bx in x0..=x1 {
-                self.buckets[by as usize * across + bx as usize].push(index);
-                self.entries += 1;
-            }
-        }
+        (y0..=y1).flat_map(move |by| (x0..=x1).map(move |bx| by as usize * across + bx as usize))
     }
 }
 
@@ -101,10 +87,8 @@ mod tests {
             let lens = with_lens.then(|| LensSetup::new(0.05, 5.0, 300.0, -300.0));
             let v = [0, 1, 2, 3].map(|k| [xs[k], ys[k], zs[k]]);
             let mp = quad(v);
-            let mut b = Bucketer::new(&frame, lens, 0.1, 100.0);
-            if let Some(r) = b.range(&mp) {
-                b.insert(7, r);
-            }
+            let b = Bucketer::new(&frame, lens, 0.1, 100.0);
+            let listed: Vec<usize> = b.range(&mp).map(|r| b.buckets(r).collect()).unwrap_or_default();
             let (lo, hi) = screen_bound(&mp, lens.as_ref(), 0.1, 100.0);
             // The bound contains every vertex.
             for p in &v {
@@ -112,8 +96,8 @@ mod tests {
                     prop_assert!(lo[a] <= p[a] && p[a] <= hi[a]);
                 }
             }
-            for (i, list) in b.buckets.iter().enumerate() {
-                prop_assert_eq!(list.contains(&7), touches(&frame, i, lo, hi), "bucket {}", i);
+            for i in 0..frame.bucket_count() {
+                prop_assert_eq!(listed.contains(&i), touches(&frame, i, lo, hi), "bucket {}", i);
             }
         }
     }

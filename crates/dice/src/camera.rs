@@ -141,6 +141,47 @@ impl CameraSetup {
         CameraSetup { eye_world: view.eye, basis, ..self.clone() }
     }
 
+    /// The same camera (projection, clipping, lens) where `scene`'s camera is at normalised
+    /// shutter time `t` (0 at open, 1 at close): its motion keys' eye, look-at point and up
+    /// vector interpolated linearly as the dicer does (held before the first key and after
+    /// the last), then the basis built from them. A still camera, or any camera when the
+    /// shutter is closed, gives its view at shutter open. A degenerate interpolated view
+    /// falls back as [`CameraSetup::new`] does.
+    pub fn at_time(&self, scene: &Scene, t: f32) -> CameraSetup {
+        self.with_view(&view_at(&scene.camera, t))
+    }
+
+    /// The primary ray of raster position `raster` (pixels, y down) and lens position
+    /// `lens` (in lens-radius units, as the hider's samples), in world space: `(origin,
+    /// dir)` with the origin on the lens (eye depth 0) and `dir` scaled so that its eye-depth
+    /// component is 1, so the ray parameter of a point is its eye depth.
+    ///
+    /// The ray holds exactly the points the stochastic hider draws at `raster` for that lens
+    /// position: it displaces a point at eye depth `z` projected at `P` to
+    /// `P + (lx (x_a/z + x_b), ly (y_a/z + y_b))` (see [`LensSetup`]). Solving
+    /// `X = cx + k x/z + lx (x_a/z + x_b)` for the eye-space `x` gives the line
+    /// `x(z) = z (X - cx - lx x_b)/k - lx x_a/k` (and `y(z) = z (cy - Y + ly y_b)/k + ly y_a/k`,
+    /// raster y pointing down): the lens point is `(-lx x_a/k, ly y_a/k, 0)` = `-R (lx, ly)`
+    /// in eye space, and at the focal distance the line passes through the pinhole point of
+    /// `raster` (the plane of focus is the plane `z = focal_distance`). A pinhole camera (or
+    /// `lens == (0, 0)`) gives the ray from the eye through the pinhole point.
+    pub fn primary_ray(&self, raster: Vec2, lens: (f32, f32)) -> (Vec3, Vec3) {
+        let k = self.pixels_per_unit;
+        let (cx, cy) = (0.5 * self.width, 0.5 * self.height);
+        let (lx, ly) = lens;
+        let (o, d) = match self.lens() {
+            Some(l) => (
+                Vec2::new(-lx * l.x_a / k, ly * l.y_a / k),
+                Vec2::new((raster.x - cx - lx * l.x_b) / k, (cy - raster.y + ly * l.y_b) / k),
+            ),
+            None => (Vec2::ZERO, Vec2::new((raster.x - cx) / k, (cy - raster.y) / k)),
+        };
+        let Basis { right, up, forward } = self.basis;
+        let origin = self.eye_world + right * o.x + up * o.y;
+        let dir = right * d.x + up * d.y + forward;
+        (origin, dir)
+    }
+
     /// The world-to-camera matrix (rigid: rows are right, up, forward; the eye maps to 0).
     pub fn world_to_camera(&self) -> Mat4 {
         let Basis { right, up, forward } = self.basis;
@@ -201,6 +242,33 @@ impl CameraSetup {
     pub fn image_size(&self) -> Vec2 {
         Vec2::new(self.width, self.height)
     }
+}
+
+/// The view of `camera` at normalised shutter time `t`: as `CameraMotion::world_to_camera`
+/// (key times normalised over the shutter, held outside the keys, eye, look-at point and up
+/// lerped between them), without allocating.
+fn view_at(camera: &Camera, t: f32) -> View {
+    use crate::motion::ShutterTime;
+    let keys = &camera.motion;
+    let (Some(first), Some(last)) = (keys.first(), keys.last()) else {
+        return View::still(camera);
+    };
+    let shutter = ShutterTime::new(&camera.shutter);
+    if !shutter.is_open() {
+        return View::key(first);
+    }
+    let time = |k: &reyes_scene::CameraKey| shutter.normalise(k.time);
+    if t.is_nan() || t <= time(first) {
+        return View::key(first);
+    }
+    if t >= time(last) {
+        return View::key(last);
+    }
+    // time(first) < t < time(last): some later key's time exceeds t, and it is not key 0.
+    let next = keys.iter().position(|k| time(k) > t).unwrap_or(keys.len() - 1).max(1);
+    let (a, b) = (&keys[next - 1], &keys[next]);
+    let (ta, tb) = (time(a), time(b));
+    if t <= ta { View::key(a) } else { View::key(a).lerp(&View::key(b), (t - ta) / (tb - ta)) }
 }
 
 /// A usable basis for a degenerate view (see [`CameraSetup::new`]).
@@ -332,6 +400,122 @@ mod tests {
         let b = View { up: [0.0, -1.0, 0.0].into(), ..a };
         let mid = cam.with_view(&a.lerp(&b, 0.5));
         assert!(mid.world_to_camera().is_finite());
+    }
+
+    /// Uniform numbers in [0, 1) from a counter.
+    fn rand(n: &mut u64) -> f32 {
+        *n += 1;
+        reyes_hider::rng::unit(reyes_hider::rng::hash(0x7e57, &[*n]))
+    }
+
+    #[test]
+    fn primary_rays_hold_what_the_stochastic_hider_draws() {
+        // Random cameras, lenses and eye-space points: the raster position where the hider
+        // draws the point for a lens position (pinhole projection plus the lens displacement)
+        // must give a ray through the point, reaching it at parameter = its eye depth.
+        let mut n = 0;
+        for case in 0..200 {
+            let mut r = |lo: f32, hi: f32| lo + (hi - lo) * rand(&mut n);
+            let eye = [r(-5.0, 5.0), r(-5.0, 5.0), r(-5.0, 5.0)];
+            let look_at = [r(-5.0, 5.0), r(-5.0, 5.0), r(-5.0, 5.0)];
+            let up = [r(-1.0, 1.0), r(-1.0, 1.0), r(-1.0, 1.0)];
+            let (w, h) = ((r(16.0, 800.0)) as u32, (r(16.0, 800.0)) as u32);
+            let mut s = scene(eye, look_at, up, r(10.0, 120.0), w, h);
+            if check_camera(&s.camera).is_err() {
+                continue;
+            }
+            if case % 4 != 0 {
+                s.camera.lens = Some(Lens {
+                    focal_length: r(0.01, 2.0),
+                    f_stop: r(1.0, 16.0),
+                    focal_distance: r(0.5, 20.0),
+                });
+            }
+            let cam = CameraSetup::new(&s);
+            let to_world = cam.world_to_camera().inverse();
+            for _ in 0..20 {
+                let z = r(0.2, 60.0);
+                let p = Vec3::new(r(-1.0, 1.0) * z, r(-1.0, 1.0) * z, z);
+                let (lx, ly) = (r(-1.0, 1.0), r(-1.0, 1.0));
+                let mut raster = cam.eye_to_raster(p);
+                if let Some(l) = cam.lens() {
+                    let (dx, dy) = l.coc(z);
+                    raster += Vec2::new(lx * dx, ly * dy);
+                }
+                let (o, d) = cam.primary_ray(raster, (lx, ly));
+                let p_world = to_world.transform_point3(p);
+                let on_ray = o + d * z;
+                let tol = 2e-5 * (1.0 + p_world.abs().max_element() + o.abs().max_element());
+                assert!(
+                    (on_ray - p_world).abs().max_element() <= tol * (1.0 + z),
+                    "case {case}: {on_ray} vs {p_world} (z {z}, lens {lx} {ly})"
+                );
+                // The ray parameter is eye depth: the origin is at depth 0, dir has depth 1.
+                let m = cam.world_to_camera();
+                assert!(m.transform_point3(o).z.abs() <= 1e-4 * (1.0 + o.length()));
+                assert!((m.transform_vector3(d).z - 1.0).abs() <= 1e-5);
+            }
+        }
+    }
+
+    #[test]
+    fn lens_points_lie_on_the_lens_and_rays_meet_in_the_plane_of_focus() {
+        let mut s = scene([0.0; 3], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0], 60.0, 200, 100);
+        s.camera.lens = Some(Lens { focal_length: 1.0, f_stop: 2.0, focal_distance: 5.0 });
+        let cam = CameraSetup::new(&s);
+        let raster = Vec2::new(130.0, 40.0);
+        let (o0, d0) = cam.primary_ray(raster, (0.0, 0.0));
+        assert_eq!(o0, Vec3::ZERO, "lens centre is the eye");
+        let focus = o0 + d0 * 5.0;
+        for lens in [(1.0, 0.0), (0.0, 1.0), (-0.6, 0.8)] {
+            let (o, d) = cam.primary_ray(raster, lens);
+            // Radius 0.25 = 0.5 * 1 / 2; the lens point is -R (lx, ly) in eye space.
+            let want = Vec3::new(-0.25 * lens.0, -0.25 * lens.1, 0.0);
+            assert!((o - want).length() < 1e-6, "{o} vs {want}");
+            assert!((o + d * 5.0 - focus).length() < 1e-5, "every lens ray meets the focus");
+        }
+    }
+
+    #[test]
+    fn at_time_interpolates_the_camera_keys_as_the_dicer() {
+        use crate::motion::CameraMotion;
+        use reyes_scene::CameraKey;
+        let mut s = scene([0.0; 3], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0], 45.0, 10, 10);
+        let cam = CameraSetup::new(&s);
+        assert_eq!(cam.at_time(&s, 0.7), cam, "a still camera does not move");
+        s.camera.shutter = Shutter { open: 1.0, close: 3.0, ..Shutter::default() };
+        s.camera.motion = vec![
+            CameraKey {
+                time: 1.5,
+                eye: [0.0, 0.0, 0.0],
+                look_at: [0.0, 0.0, 5.0],
+                up: [0.0, 1.0, 0.0],
+            },
+            CameraKey {
+                time: 2.0,
+                eye: [2.0, 0.0, 0.0],
+                look_at: [1.0, 0.0, 5.0],
+                up: [0.3, 1.0, 0.0],
+            },
+            CameraKey {
+                time: 3.0,
+                eye: [2.0, 4.0, 1.0],
+                look_at: [1.0, 0.0, 5.0],
+                up: [0.0, 1.0, 0.0],
+            },
+        ];
+        let cam = CameraSetup::new(&s);
+        let motion = CameraMotion::new(&s);
+        for t in [0.0, 0.1, 0.25, 0.3, 0.5, 0.51, 0.9, 1.0] {
+            let a = cam.at_time(&s, t).world_to_camera();
+            assert_eq!(a, motion.world_to_camera(t), "t {t}");
+        }
+        assert_eq!(cam.at_time(&s, 0.0).eye_world(), Vec3::ZERO);
+        assert_eq!(cam.at_time(&s, 0.5).eye_world(), Vec3::new(2.0, 0.0, 0.0));
+        assert_eq!(cam.at_time(&s, 0.75).eye_world(), Vec3::new(2.0, 2.0, 0.5));
+        // A closed shutter: the first key throughout.
+        s.camera.shutter.close = 1.0;
+        assert_eq!(cam.at_time(&s, 0.9).eye_world(), Vec3::ZERO);
     }
 
     #[test]

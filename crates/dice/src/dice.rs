@@ -18,16 +18,12 @@
 use glam::{Mat3, Vec3};
 use reyes_hider::{Micropolygon, flags};
 
-use crate::DiceError;
-use crate::bucket::Bucketer;
+use crate::bucket::{BucketRange, Bucketer};
 use crate::camera::CameraSetup;
-use crate::motion::{Placement, Pose};
 use crate::hook::{VertexContext, VertexShader};
+use crate::motion::{Placement, Pose};
 use crate::shade::Shader;
 use crate::split::Patch;
-
-/// Largest number of micropolygons: bucket lists index them with `u32`.
-pub(crate) const MAX_MICROPOLYGONS: usize = u32::MAX as usize;
 
 /// A vertex shader from [`crate::DiceOptions`], with where the dicer is.
 #[derive(Clone, Copy)]
@@ -36,7 +32,7 @@ pub(crate) struct Hook<'a> {
     pub shader: &'a dyn VertexShader,
     /// Index of the object in the scene.
     pub object: usize,
-    /// Index of the surface being diced.
+    /// Index of the surface being diced (set per grid by [`Emitter::dice`]).
     pub surface: usize,
 }
 
@@ -52,6 +48,11 @@ pub(crate) struct ObjectContext<'a> {
     pub labels: Labels,
     /// Shades the vertices instead of `shader` when present.
     pub hook: Option<Hook<'a>>,
+    /// Back-facing micropolygons may be dropped: the object is a closed, opaque surface
+    /// drawn on its own (not matte, glass or a CSG operand) and the camera is a pinhole, so
+    /// a back-facing micropolygon always lies behind a front-facing one of the same object
+    /// at every sample that could see it ([`cull_back_faces`]).
+    pub cull_back: bool,
 }
 
 /// What every micropolygon of one object carries besides its geometry and colour.
@@ -67,35 +68,119 @@ pub(crate) struct Labels {
     pub glass_opacity: f32,
 }
 
-/// One grid vertex at shutter open: position, and the shading used at every time.
-#[derive(Debug, Clone, Copy)]
-struct GridVertex {
-    /// Raster x, raster y, eye z (x and y are NaN when z is not positive).
-    v: [f32; 3],
-    color: [f32; 3],
-    trans: [f32; 3],
-}
-
-/// A micropolygon's colours, flags and labels, the same in every segment.
-#[derive(Debug, Clone, Copy)]
-struct Shade {
-    color: [[f32; 3]; 4],
-    trans: [[f32; 3]; 4],
-    /// The object's flag bits and labels.
-    labels: Labels,
-}
-
 /// A micropolygon's vertices at one time: raster x, raster y, eye z (x and y NaN where z is
 /// not positive).
 type Quad = [[f32; 3]; 4];
 
-/// Where micropolygons go, with the running counts.
+/// One kept micropolygon of a [`Grid`]: which cell, and over which segment.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Kept {
+    /// Cell index, `j * nu + i`.
+    cell: u32,
+    /// Breakpoint of the positions `v`.
+    from: u32,
+    /// Breakpoint of the positions at the segment's end (`speed = to - from`), or
+    /// [`STILL`] (zero speed).
+    to: u32,
+    /// Flag bits.
+    flags: u32,
+    /// Normalised shutter times of the segment.
+    time: [f32; 2],
+}
+
+/// [`Kept::to`] of a micropolygon that does not move.
+const STILL: u32 = u32::MAX;
+
+/// A diced grid, stored compactly: its vertices once (each is shared by up to four
+/// micropolygons) and a short record per kept micropolygon, from which
+/// [`Grid::micropolygon`] builds the record the hider reads, bit for bit the one the dicer
+/// classified and bucketed.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Grid {
+    /// Cells across.
+    nu: u32,
+    /// Vertices per breakpoint, `(nu + 1) (nv + 1)`.
+    count: u32,
+    /// Colour and transmittance of each vertex (from shutter open).
+    color: Vec<[f32; 3]>,
+    trans: Vec<[f32; 3]>,
+    /// Position of vertex `c` at breakpoint `b`: `pos[b * count + c]`.
+    pos: Vec<[f32; 3]>,
+    /// The object's flag bits and labels.
+    labels: Labels,
+    /// Kept micropolygons, in emission order (cell order, then time order).
+    kept: Vec<Kept>,
+}
+
+impl Grid {
+    /// Kept micropolygons.
+    pub fn len(&self) -> usize {
+        self.kept.len()
+    }
+
+    /// Free the unused capacity (the grid is complete).
+    pub fn shrink_to_fit(&mut self) {
+        self.color.shrink_to_fit();
+        self.trans.shrink_to_fit();
+        self.pos.shrink_to_fit();
+        self.kept.shrink_to_fit();
+    }
+
+    /// Corner vertices of cell `cell`: `(i,j), (i+1,j), (i+1,j+1), (i,j+1)`.
+    #[inline]
+    fn corners(&self, cell: u32) -> [usize; 4] {
+        let (i, j) = ((cell % self.nu) as usize, (cell / self.nu) as usize);
+        let row = self.nu as usize + 1;
+        [j * row + i, j * row + i + 1, (j + 1) * row + i + 1, (j + 1) * row + i]
+    }
+
+    /// The positions of cell `cell` at breakpoint `b`.
+    #[inline]
+    fn quad(&self, cell: u32, b: u32) -> Quad {
+        let base = b as usize * self.count as usize;
+        self.corners(cell).map(|c| self.pos[base + c])
+    }
+
+    /// Kept micropolygon `k`.
+    #[inline]
+    pub fn micropolygon(&self, k: usize) -> Micropolygon {
+        self.build(&self.kept[k])
+    }
+
+    #[inline]
+    fn build(&self, m: &Kept) -> Micropolygon {
+        let corners = self.corners(m.cell);
+        let from = self.quad(m.cell, m.from);
+        let mut speed = [[0.0_f32; 3]; 4];
+        if m.to != STILL {
+            let to = self.quad(m.cell, m.to);
+            for (s, (p, q)) in speed.iter_mut().zip(from.iter().zip(&to)) {
+                *s = [q[0] - p[0], q[1] - p[1], q[2] - p[2]];
+            }
+        }
+        Micropolygon {
+            v: from,
+            speed,
+            color: corners.map(|c| self.color[c]),
+            trans: corners.map(|c| self.trans[c]),
+            flags: m.flags,
+            csg_tree: self.labels.csg_tree,
+            csg_node: self.labels.csg_node,
+            glass_opacity: self.labels.glass_opacity,
+            time: m.time,
+        }
+    }
+}
+
+/// Dices grids, with the running counts.
 #[derive(Debug, Clone)]
-pub(crate) struct Emitter {
-    /// Emitted micropolygons.
-    pub mpolys: Vec<Micropolygon>,
-    /// Their bucket lists.
-    pub bucketer: Bucketer,
+pub(crate) struct Emitter<'b> {
+    /// The grid being emitted (take it after [`Emitter::dice`]).
+    pub grid: Grid,
+    /// The buckets each kept micropolygon touches (`ranges[k]` for kept micropolygon `k`).
+    pub ranges: Vec<BucketRange>,
+    /// Decides the buckets.
+    bucketer: &'b Bucketer,
     /// Diced micropolygons dropped (near the eye, outside `[hither, yon]`, off every bucket).
     pub culled: u64,
     /// Emitted micropolygons flagged `HITHER_YON_CROSSING`.
@@ -104,53 +189,74 @@ pub(crate) struct Emitter {
     hither: f32,
     yon: f32,
     near: f32,
-    /// Grid vertices at shutter open.
-    grid: Vec<GridVertex>,
-    /// Grid vertex positions at the later breakpoints (`[(b - 1) * vertices + vertex]`).
-    later: Vec<[f32; 3]>,
     /// One cell's positions at each breakpoint, with the breakpoint's time.
     quads: Vec<(f32, Quad)>,
     /// Emitted micropolygons flagged `MOVING`.
     pub moving: u64,
+    /// Of `culled`, those dropped as back faces.
+    pub backfacing: u64,
+    /// The grid's winding sign when its back faces may be culled: a cell is front-facing
+    /// where `sign * (raster signed area) > 0` ([`Emitter::calibrate`]).
+    cull: Option<f32>,
 }
 
-impl Emitter {
+impl<'b> Emitter<'b> {
     /// An empty emitter dropping vertices nearer than `near` (`hither / 2`).
-    pub fn new(bucketer: Bucketer, hither: f32, yon: f32, near: f32) -> Emitter {
+    pub fn new(bucketer: &'b Bucketer, hither: f32, yon: f32, near: f32) -> Emitter<'b> {
         Emitter {
-            mpolys: Vec::new(),
+            grid: Grid {
+                nu: 1,
+                count: 0,
+                color: Vec::new(),
+                trans: Vec::new(),
+                pos: Vec::new(),
+                labels: Labels { flags: 0, csg_tree: 0, csg_node: 0, glass_opacity: 0.0 },
+                kept: Vec::new(),
+            },
+            ranges: Vec::new(),
             bucketer,
             culled: 0,
             crossing: 0,
             hither,
             yon,
             near,
-            grid: Vec::new(),
-            later: Vec::new(),
             quads: Vec::new(),
             moving: 0,
+            backfacing: 0,
+            cull: None,
         }
     }
 
-    /// Dice `patch` of a surface into `nu x nv` micropolygons at every breakpoint of its
-    /// motion (`poses`, in time order, the first at time 0), shade at time 0, and emit and
-    /// bucket one micropolygon per cell and segment (merging still segments).
+    /// Dice `patch` of surface `surface` into `nu x nv` micropolygons at every breakpoint of
+    /// its motion (`poses`, in time order, the first at time 0), shade at time 0, and emit
+    /// into [`Emitter::grid`] (with their buckets in `ranges`) one micropolygon per cell and
+    /// segment (merging still segments), in cell order, then time order.
     pub fn dice(
         &mut self,
         camera: &CameraSetup,
         object: &ObjectContext<'_>,
+        surface: usize,
         poses: &[Pose<'_>],
         patch: &Patch,
         (nu, nv): (u32, u32),
-    ) -> Result<(), DiceError> {
+    ) {
+        let hook = object.hook.map(|h| Hook { surface, ..h });
         let (nu, nv) = (nu as usize, nv as usize);
         let count = (nu + 1) * (nv + 1);
-        let mut grid = std::mem::take(&mut self.grid);
-        let mut later = std::mem::take(&mut self.later);
-        grid.clear();
-        grid.reserve(count);
-        later.clear();
-        later.reserve(count * poses.len().saturating_sub(1));
+        let g = &mut self.grid;
+        g.nu = nu as u32;
+        g.count = count as u32;
+        g.labels = object.labels;
+        g.color.clear();
+        g.color.reserve_exact(count);
+        g.trans.clear();
+        g.trans.reserve_exact(count);
+        g.pos.clear();
+        g.pos.reserve_exact(count * poses.len());
+        g.kept.clear();
+        g.kept.reserve_exact(nu * nv);
+        self.ranges.clear();
+        self.ranges.reserve_exact(nu * nv);
         let project = |p_camera: Vec3| {
             if p_camera.is_finite() && p_camera.z > 0.0 {
                 let r = camera.eye_to_raster(p_camera);
@@ -159,6 +265,9 @@ impl Emitter {
                 [f32::NAN, f32::NAN, p_camera.z]
             }
         };
+        // Cosine between each vertex's normal and the direction to the eye at shutter open,
+        // to calibrate the grid's winding (see `calibrate`); only when culling.
+        let mut cosines = Vec::new();
         for (b, pose) in poses.iter().enumerate() {
             for j in 0..=nv {
                 let v = Patch::at(patch.v, j, nv);
@@ -175,7 +284,7 @@ impl Emitter {
                         let sp = pose.surface.eval(u, v);
                         let (p_world, p_camera) = pose.moment.world_and_camera(sp.p);
                         let n_world = object.normal_to_world * sp.n;
-                        let (color, trans) = match &object.hook {
+                        let (color, trans) = match &hook {
                             None => object.shader.shade(p_world, n_world, sp.tint),
                             Some(hook) => hook.shader.shade(&VertexContext {
                                 object: hook.object,
@@ -192,61 +301,56 @@ impl Emitter {
                                 tint: sp.tint,
                             }),
                         };
-                        grid.push(GridVertex { v: project(p_camera), color, trans });
+                        if object.cull_back {
+                            let to_eye = camera.eye_world() - p_world;
+                            cosines.push(
+                                n_world.dot(to_eye)
+                                    / (n_world.length() * to_eye.length()).max(f32::MIN_POSITIVE),
+                            );
+                        }
+                        g.pos.push(project(p_camera));
+                        g.color.push(color);
+                        g.trans.push(trans);
                     } else {
                         let p_object = pose.surface.position(u, v);
-                        later.push(project(pose.moment.world_and_camera(p_object).1));
+                        g.pos.push(project(pose.moment.world_and_camera(p_object).1));
                     }
                 }
             }
         }
-        let row = nu + 1;
-        let mut result = Ok(());
+        self.cull = if object.cull_back { self.calibrate(&cosines) } else { None };
         let mut quads = std::mem::take(&mut self.quads);
-        'cells: for j in 0..nv {
-            for i in 0..nu {
-                let corners =
-                    [j * row + i, j * row + i + 1, (j + 1) * row + i + 1, (j + 1) * row + i];
-                let v = corners.map(|c| grid[c].v);
-                let shade = Shade {
-                    color: corners.map(|c| grid[c].color),
-                    trans: corners.map(|c| grid[c].trans),
-                    labels: object.labels,
-                };
-                let emitted =
-                    if poses.len() == 1 {
-                        // No motion: the whole shutter, still.
-                        self.emit(&v, None, [0.0, 1.0], &shade)
-                    } else {
-                        quads.clear();
-                        quads.push((0.0, v));
-                        quads.extend(poses.iter().skip(1).enumerate().map(|(b, pose)| {
-                            (pose.moment.t, corners.map(|c| later[b * count + c]))
-                        }));
-                        self.emit_segments(&quads, &shade)
-                    };
-                if let Err(e) = emitted {
-                    result = Err(e);
-                    break 'cells;
-                }
+        for cell in 0..(nu * nv) as u32 {
+            let v = self.grid.quad(cell, 0);
+            if poses.len() == 1 {
+                // No motion: the whole shutter, still.
+                self.emit(cell, (0, &v), None, [0.0, 1.0]);
+            } else {
+                quads.clear();
+                quads.push((0.0, v));
+                quads.extend(
+                    poses
+                        .iter()
+                        .enumerate()
+                        .skip(1)
+                        .map(|(b, pose)| (pose.moment.t, self.grid.quad(cell, b as u32))),
+                );
+                self.emit_segments(cell, &quads);
             }
         }
-        self.grid = grid;
-        self.later = later;
         self.quads = quads;
-        result
     }
 
-    /// Emit one cell from its positions at each breakpoint (`(time, quad)`, in time order):
-    /// one micropolygon per segment, runs of segments over which it is still merged.
-    fn emit_segments(&mut self, quads: &[(f32, Quad)], shade: &Shade) -> Result<(), DiceError> {
+    /// Emit cell `cell` from its positions at each breakpoint (`(time, quad)`, in time
+    /// order): one micropolygon per segment, runs of segments over which it is still merged.
+    fn emit_segments(&mut self, cell: u32, quads: &[(f32, Quad)]) {
         let n = quads.len();
         if quads.windows(2).all(|w| w[0].1 == w[1].1) {
             // Still over the whole shutter (or a single breakpoint).
-            return match quads.first() {
-                Some((_, q)) => self.emit(q, None, [0.0, 1.0], shade),
-                None => Ok(()),
-            };
+            if let Some((_, q)) = quads.first() {
+                self.emit(cell, (0, q), None, [0.0, 1.0]);
+            }
+            return;
         }
         let mut a = 0;
         while a + 1 < n {
@@ -257,27 +361,90 @@ impl Emitter {
                     b += 1;
                 }
             }
-            let (from, to) = (&quads[a].1, (!still).then_some(&quads[b].1));
-            self.emit(from, to, [quads[a].0, quads[b].0], shade)?;
+            let to = (!still).then_some((b as u32, &quads[b].1));
+            self.emit(cell, (a as u32, &quads[a].1), to, [quads[a].0, quads[b].0]);
             a = b;
         }
-        Ok(())
     }
 
-    /// Classify one micropolygon over its segment `time` (at `from` at the start, at `to` at
-    /// the end, or at `from` throughout when `to` is `None`) against the depth limits and
-    /// buckets, and keep it or drop it.
+    /// The winding sign of the grid, from the first cell (in cell order) that is clearly
+    /// turned one way in raster space (corner 0's sine above 0.1, so not a sliver at a
+    /// pole) at a corner where the surface clearly faces toward or away from the eye
+    /// (`|cos| > 0.2`, from `cosines`, per vertex at shutter open): its raster signed area
+    /// times that side's sign. The sign holds for the whole grid: a smooth surface's
+    /// parametrisation turns the same way about its outward normal everywhere, and the
+    /// perspective projection of points in front of the eye keeps orientation. `None`
+    /// (no culling) when no cell qualifies.
+    fn calibrate(&self, cosines: &[f32]) -> Option<f32> {
+        let nu = self.grid.nu as usize;
+        let cells = self.grid.count as usize / (nu + 1) * nu - nu;
+        (0..cells as u32).find_map(|cell| {
+            let (i, j) = ((cell as usize) % nu, (cell as usize) / nu);
+            let cos = *cosines.get(j * (nu + 1) + i)?;
+            let q = self.grid.quad(cell, 0);
+            let (area, scale) = corner_area(&q, 0);
+            let edge = |a: usize, b: usize| (q[b][0] - q[a][0]).hypot(q[b][1] - q[a][1]);
+            let (e1, e2) = (edge(0, 1), edge(0, 3));
+            // Both edges a real fraction of a pixel and of each other: a cell collapsed
+            // at a pole has an edge of rounding noise whose cross product has no sign.
+            let proper = e1.min(e2) > 1e-2 * e1.max(e2) && e1.min(e2) > 1e-3;
+            (proper && cos.abs() > 0.2 && area.abs() > 0.1 * scale)
+                .then(|| area.signum() * cos.signum())
+        })
+    }
+
+    /// True if cell quad `from` (moving to `to` over its segment, raster positions moving
+    /// linearly as the hider moves them) faces away from the eye at every time, with a
+    /// margin: every corner's signed area, `sign` times a quadratic in time, stays below
+    /// `-WINDING_MARGIN` times the corner's edge lengths. A non-convex or nearly edge-on
+    /// micropolygon is kept.
+    fn backfacing(sign: f32, from: &Quad, to: Option<&Quad>) -> bool {
+        let mid = to.map(|to| {
+            let mut m = *from;
+            for (p, q) in m.iter_mut().zip(to) {
+                for a in 0..2 {
+                    p[a] = 0.5 * (p[a] + q[a]);
+                }
+            }
+            m
+        });
+        (0..4).all(|k| {
+            let (a0, s0) = corner_area(from, k);
+            if sign * a0 >= -WINDING_MARGIN * s0 {
+                return false;
+            }
+            let (Some(to), Some(mid)) = (to, mid.as_ref()) else {
+                return true;
+            };
+            let (a1, s1) = corner_area(to, k);
+            let (am, sm) = corner_area(mid, k);
+            let margin = -WINDING_MARGIN * s0.min(s1).min(sm);
+            if sign * a1 >= margin || sign * am >= margin {
+                return false;
+            }
+            // A(t) = a t^2 + b t + c through the three values; a concave parabola may peak
+            // between them.
+            let (c, a) = (a0, 2.0 * a1 + 2.0 * a0 - 4.0 * am);
+            let b = a1 - a0 - a;
+            let qa = sign * a;
+            if qa < 0.0 {
+                let t = -b / (2.0 * a);
+                if t > 0.0 && t < 1.0 && sign * ((a * t + b) * t + c) >= margin {
+                    return false;
+                }
+            }
+            true
+        })
+    }
+
+    /// Classify one micropolygon of cell `cell` over its segment `time` (at breakpoint
+    /// `from` at the start, at `to` at the end, or at `from` throughout when `to` is `None`)
+    /// against the depth limits and buckets, and keep it or drop it.
     #[inline(always)]
-    fn emit(
-        &mut self,
-        from: &Quad,
-        to: Option<&Quad>,
-        time: [f32; 2],
-        shade: &Shade,
-    ) -> Result<(), DiceError> {
+    fn emit(&mut self, cell: u32, from: (u32, &Quad), to: Option<(u32, &Quad)>, time: [f32; 2]) {
         let mut usable = true;
         let (mut zmin, mut zmax) = (f32::INFINITY, f32::NEG_INFINITY);
-        for q in [Some(from), to].into_iter().flatten() {
+        for q in [Some(from.1), to.map(|t| t.1)].into_iter().flatten() {
             for p in q {
                 usable &= p[0].is_finite() && p[1].is_finite() && p[2] >= self.near;
                 zmin = zmin.min(p[2]);
@@ -288,51 +455,87 @@ impl Emitter {
         // All in front of hither, or all beyond yon, at both ends.
         if !usable || zmax < self.hither || zmin > self.yon {
             self.culled += 1;
-            return Ok(());
+            return;
+        }
+        if let Some(sign) = self.cull
+            && Self::backfacing(sign, from.1, to.map(|t| t.1))
+        {
+            self.culled += 1;
+            self.backfacing += 1;
+            return;
         }
         let crossing = zmin < self.hither || zmax > self.yon;
-        let mut flags = shade.labels.flags;
+        let mut flags = self.grid.labels.flags;
         if crossing {
             flags |= flags::HITHER_YON_CROSSING;
         }
-        let mut speed = [[0.0_f32; 3]; 4];
-        if let Some(to) = to {
-            for (s, (p, q)) in speed.iter_mut().zip(from.iter().zip(to)) {
-                *s = [q[0] - p[0], q[1] - p[1], q[2] - p[2]];
-            }
-        }
-        let moves = speed.iter().flatten().any(|&c| c != 0.0);
+        let moves = to.is_some_and(|(_, q)| {
+            from.1.iter().zip(q).any(|(p, q)| (0..3).any(|a| q[a] - p[a] != 0.0))
+        });
         if moves || time != [0.0, 1.0] {
             flags |= flags::MOVING;
         }
-        let mp = Micropolygon {
-            v: *from,
-            speed,
-            color: shade.color,
-            trans: shade.trans,
-            flags,
-            csg_tree: shade.labels.csg_tree,
-            csg_node: shade.labels.csg_node,
-            glass_opacity: shade.labels.glass_opacity,
-            time,
-        };
-        let Some(range) = self.bucketer.range(&mp) else {
+        let kept = Kept { cell, from: from.0, to: to.map_or(STILL, |t| t.0), flags, time };
+        let Some(range) = self.bucketer.range(&self.grid.build(&kept)) else {
             self.culled += 1;
-            return Ok(());
+            return;
         };
-        if self.mpolys.len() >= MAX_MICROPOLYGONS {
-            return Err(DiceError::TooManyMicropolygons { limit: MAX_MICROPOLYGONS as u64 });
-        }
-        self.bucketer.insert(self.mpolys.len() as u32, range);
-        self.mpolys.push(mp);
+        self.ranges.push(range);
+        self.grid.kept.push(kept);
         if crossing {
             self.crossing += 1;
         }
         if flags & flags::MOVING != 0 {
             self.moving += 1;
         }
-        Ok(())
     }
+}
+
+/// Relative margin of the winding tests: a corner counts as turned one way when its signed
+/// area exceeds this fraction of the product of its edge lengths (a sine of 0.001).
+const WINDING_MARGIN: f32 = 1e-3;
+
+/// Raster signed area (cross product) at corner `k` of a quad, from its two edges, and the
+/// product of the edge lengths.
+#[inline]
+fn corner_area(q: &Quad, k: usize) -> (f32, f32) {
+    let (p, next, prev) = (q[k], q[(k + 1) % 4], q[(k + 3) % 4]);
+    let e1 = [next[0] - p[0], next[1] - p[1]];
+    let e2 = [prev[0] - p[0], prev[1] - p[1]];
+    let area = e1[0] * e2[1] - e1[1] * e2[0];
+    let scale = (e1[0].hypot(e1[1])) * (e2[0].hypot(e2[1]));
+    (area, scale)
+}
+
+/// Whether back faces of `object` may be culled (see [`ObjectContext::cull_back`]):
+/// a pinhole camera (under a lens a micropolygon turned away from the eye may face part
+/// of the lens), a closed surface (a full sphere or torus, a closed mesh), opaque, and not
+/// matte, glass or a CSG operand (CSG needs both sides: a difference shows the inside of
+/// its subtracted operand). Affine placements only: a projective matrix can turn a surface
+/// inside out between its parts.
+pub(crate) fn cull_back_faces(
+    object: &reyes_scene::Object,
+    labels: &Labels,
+    csg_operand: bool,
+    pinhole: bool,
+) -> bool {
+    use reyes_scene::{Closure, closure};
+    let f = labels.flags;
+    let affine = |list: &[reyes_scene::Transform]| {
+        let m = crate::object_to_world(list);
+        m.row(3) == glam::Vec4::W && m.is_finite()
+    };
+    let placements_affine = if object.motion.is_empty() {
+        affine(&object.transform)
+    } else {
+        object.motion.iter().all(|k| affine(&k.transform))
+    };
+    pinhole
+        && !csg_operand
+        && f & flags::OPAQUE != 0
+        && f & (flags::MATTE | flags::GLASS) == 0
+        && closure(&object.shape) == Closure::Closed
+        && placements_affine
 }
 
 /// Per-object setup: shading (seen from `eye_world`, with the object placed by `open`, its
@@ -363,5 +566,11 @@ pub(crate) fn object_context(
     }
     let (csg_tree, csg_node) = csg.unwrap_or((0, 0));
     let labels = Labels { flags, csg_tree, csg_node, glass_opacity };
-    ObjectContext { normal_to_world: open.normal_to_world(), shader, labels, hook: None }
+    ObjectContext {
+        normal_to_world: open.normal_to_world(),
+        shader,
+        labels,
+        hook: None,
+        cull_back: false,
+    }
 }

@@ -1,8 +1,16 @@
 //! reyes-dice: bound, split, dice, shade and bucket a scene's primitives into micropolygons.
 //!
-//! Stage: second in the pipeline, between the scene model and the hider. Single-threaded
-//! and deterministic: the same scene and frame give bit-identical output (no hash-map
-//! iteration, no threads; objects, faces, patches and grid cells are visited in order).
+//! Stage: second in the pipeline, between the scene model and the hider. Deterministic:
+//! the same scene and frame give bit-identical output whatever the thread count (no
+//! hash-map iteration; patches are diced in parallel, but every grid has a key giving its
+//! place in the order objects, surfaces, patches (depth first) and grid cells are visited,
+//! and results are put in that order).
+//!
+//! Two drivers share the stages: [`dice_scene`] dices the whole scene up front (every
+//! micropolygon in memory at once), [`Dicer`] (`lazy.rs`) dices a row of buckets at a time,
+//! each patch when the first row its bound touches comes up, and releases micropolygons
+//! after the last row they touch, so memory follows the buckets in flight. Both give the
+//! same bucket lists (the same micropolygons in the same order) and the same counts.
 //!
 //! Pipeline per object (in scene order): work out the object's motion over the shutter
 //! (`motion.rs`: its breakpoints, and at each the object-to-world placement and the camera),
@@ -60,6 +68,9 @@
 //! object (same placement, motion, material and labels), each facing out of the solid; an
 //! object in no solid is diced exactly as without CSG.
 //!
+//! Grids are stored compactly (`dice::Grid`: each vertex once, a short record per kept
+//! micropolygon) and a micropolygon's full record is built when a bucket's list is read.
+//!
 //! Bucketing: `buckets[b]` lists, in increasing order, every micropolygon whose screen bound
 //! over its segment ([`screen_bound`]: the vertices at both ends, grown by the lens) touches
 //! bucket `b` ([`reyes_hider::Frame::buckets_touched`]).
@@ -71,6 +82,7 @@ mod camera;
 mod csg;
 mod dice;
 mod hook;
+mod lazy;
 mod motion;
 mod shade;
 mod shapes;
@@ -81,15 +93,12 @@ pub use bucket::screen_bound;
 pub use camera::CameraSetup;
 pub use csg::CsgSetup;
 pub use hook::{DiceOptions, VertexContext, VertexShader};
+pub use lazy::Dicer;
+pub use shade::{Shader, facing};
 pub use xform::{object_to_world, transform_matrix};
 
 use reyes_hider::{CsgTree, Frame, Micropolygon};
 use reyes_scene::Scene;
-
-use crate::bucket::Bucketer;
-use crate::dice::Emitter;
-use crate::motion::{CameraMotion, ObjectMotion, ShutterTime};
-use crate::split::{Decision, Patch, Splitter};
 
 /// The diced scene: micropolygons and, per bucket, the indices of those that touch it.
 #[derive(Debug, Clone, PartialEq)]
@@ -127,12 +136,46 @@ pub struct DiceStats {
     /// Diced micropolygons dropped: a vertex nearer than hither/2 or not finite, entirely
     /// in front of hither or beyond yon, or touching no bucket.
     pub culled: u64,
+    /// Of `culled`, back faces of closed opaque objects (see the module doc).
+    pub backfacing: u64,
     /// Emitted micropolygons flagged `HITHER_YON_CROSSING`.
     pub crossing: u64,
     /// Emitted micropolygons flagged `MOVING` (moving, or existing for part of the shutter).
     pub moving: u64,
     /// Total entries over all bucket lists.
     pub bucket_entries: u64,
+}
+
+impl DiceStats {
+    /// Add `other`'s counts to these.
+    pub fn add(&mut self, other: &DiceStats) {
+        let DiceStats {
+            primitives,
+            splits,
+            hither_splits,
+            patches_culled,
+            depth_limited,
+            grids,
+            micropolygons,
+            culled,
+            backfacing,
+            crossing,
+            moving,
+            bucket_entries,
+        } = *other;
+        self.primitives += primitives;
+        self.splits += splits;
+        self.hither_splits += hither_splits;
+        self.patches_culled += patches_culled;
+        self.depth_limited += depth_limited;
+        self.grids += grids;
+        self.micropolygons += micropolygons;
+        self.backfacing += backfacing;
+        self.culled += culled;
+        self.crossing += crossing;
+        self.moving += moving;
+        self.bucket_entries += bucket_entries;
+    }
 }
 
 /// Why a scene could not be diced.
@@ -167,6 +210,17 @@ pub enum DiceError {
     TooManyMicropolygons {
         /// The limit.
         limit: u64,
+    },
+    /// Lazy dicing ([`Dicer`]): a micropolygon diced for row `row` touches the earlier
+    /// bucket row `bucket_row`, already rendered (a patch bound was not conservative).
+    #[error(
+        "a micropolygon diced for bucket row {row} touches row {bucket_row}, already rendered (a patch bound was not conservative)"
+    )]
+    BoundMissed {
+        /// The row being diced.
+        row: u32,
+        /// The earlier row the micropolygon touches.
+        bucket_row: u32,
     },
 }
 
@@ -208,63 +262,30 @@ pub fn dice_scene_with(
     frame: &Frame,
     options: &DiceOptions,
 ) -> Result<Diced, DiceError> {
-    check_frame(scene, frame)?;
-    camera::check_camera(&scene.camera)?;
-    let camera_motion = CameraMotion::new(scene);
-    let camera = camera_motion.setup();
-    let shutter = ShutterTime::new(&scene.camera.shutter);
-    let hider = &scene.hider;
-    let splitter = Splitter::new(camera, frame, hider.shading_rate, hider.max_grid_size);
-    let bucketer = Bucketer::new(frame, camera.lens(), camera.hither(), camera.yon());
-    let mut out = Emitter::new(bucketer, camera.hither(), camera.yon(), splitter.near());
-    let mut stats = DiceStats::default();
-    let mut stack = Vec::new();
-    let csg = CsgSetup::new(scene);
-    for (i, object) in scene.objects.iter().enumerate() {
-        let leaf = csg.leaf.get(i).copied().flatten();
-        // A CSG operand must be a closed solid: it gets its end caps.
-        let motion = ObjectMotion::new(object, &camera_motion, &shutter, leaf.is_some());
-        let Some(open) = motion.moments().first() else {
-            continue;
-        };
-        let mut ctx =
-            dice::object_context(object, &scene.lights, camera.eye_world(), &open.place, leaf);
-        ctx.hook = options.vertex_shader.map(|shader| dice::Hook { shader, object: i, surface: 0 });
-        for index in 0..motion.surface_count() {
-            let poses = motion.poses(index);
-            if let Some(hook) = &mut ctx.hook {
-                hook.surface = index;
+    let (wave, bucketer, csg_trees) = Dicer::new_eager(scene, frame, options)?.dice_all();
+    let mut stats = wave.stats;
+    let total: usize = wave.grids.iter().map(|g| g.grid.len()).sum();
+    if total > MAX_MICROPOLYGONS {
+        return Err(DiceError::TooManyMicropolygons { limit: MAX_MICROPOLYGONS as u64 });
+    }
+    let mut mpolys = Vec::with_capacity(total);
+    let mut buckets = vec![Vec::new(); frame.bucket_count()];
+    for grid in wave.grids {
+        for (k, range) in grid.ranges.into_iter().enumerate() {
+            let index = mpolys.len() as u32;
+            for b in bucketer.buckets(range) {
+                buckets[b].push(index);
+                stats.bucket_entries += 1;
             }
-            stats.primitives += 1;
-            stack.clear();
-            stack.push(Patch::root());
-            while let Some(patch) = stack.pop() {
-                match splitter.decide(&poses, &patch) {
-                    Decision::Cull => stats.patches_culled += 1,
-                    Decision::Split { along_u, hither } => {
-                        stats.splits += 1;
-                        stats.hither_splits += u64::from(hither);
-                        let [first, second] = patch.split(along_u, hither);
-                        // Depth first, lower half first.
-                        stack.push(second);
-                        stack.push(first);
-                    }
-                    Decision::Dice { nu, nv, limited } => {
-                        stats.grids += 1;
-                        stats.depth_limited += u64::from(limited);
-                        out.dice(camera, &ctx, &poses, &patch, (nu, nv))?;
-                    }
-                }
-            }
+            mpolys.push(grid.grid.micropolygon(k));
         }
     }
-    stats.micropolygons = out.mpolys.len() as u64;
-    stats.culled = out.culled;
-    stats.crossing = out.crossing;
-    stats.moving = out.moving;
-    stats.bucket_entries = out.bucketer.entries;
-    Ok(Diced { mpolys: out.mpolys, buckets: out.bucketer.buckets, csg_trees: csg.trees, stats })
+    stats.micropolygons = mpolys.len() as u64;
+    Ok(Diced { mpolys, buckets, csg_trees, stats })
 }
+
+/// Largest number of micropolygons [`dice_scene`] gives: bucket lists index them with `u32`.
+const MAX_MICROPOLYGONS: usize = u32::MAX as usize;
 
 #[cfg(test)]
 mod tests {
@@ -284,6 +305,7 @@ mod tests {
                 height: 6,
             },
             DiceError::TooManyMicropolygons { limit: 7 },
+            DiceError::BoundMissed { row: 8, bucket_row: 9 },
         ];
         for e in errors {
             let s = e.to_string();

@@ -215,18 +215,31 @@ impl Splitter {
         Some((Vec2::new(lo3[0], lo3[1]), Vec2::new(hi3[0], hi3[1])))
     }
 
-    /// Decide what to do with `patch` of a surface seen at every breakpoint of its motion
-    /// (`poses`, in time order; one pose for a still object).
+    /// [`Splitter::decide_bound`] without the bound.
+    #[cfg(test)]
     pub fn decide(&self, poses: &[Pose<'_>], patch: &Patch) -> Decision {
-        if let [pose] = poses {
-            return self.decide_grids(std::slice::from_ref(&self.test_grid(pose, patch)), patch);
-        }
-        let grids: Vec<TestGrid> = poses.iter().map(|pose| self.test_grid(pose, patch)).collect();
-        self.decide_grids(&grids, patch)
+        self.decide_bound(poses, patch).0
     }
 
-    /// Decide from the test grids of every breakpoint.
-    pub fn decide_grids(&self, grids: &[TestGrid], patch: &Patch) -> Decision {
+    /// Decide what to do with `patch` of a surface seen at every breakpoint of its motion
+    /// (`poses`, in time order; one pose for a still object), with the top of the patch's
+    /// raster bound (see [`Splitter::decide_grids_bound`]).
+    pub fn decide_bound(&self, poses: &[Pose<'_>], patch: &Patch) -> (Decision, Option<f32>) {
+        if let [pose] = poses {
+            let grid = self.test_grid(pose, patch);
+            return self.decide_grids_bound(std::slice::from_ref(&grid), patch);
+        }
+        let grids: Vec<TestGrid> = poses.iter().map(|pose| self.test_grid(pose, patch)).collect();
+        self.decide_grids_bound(&grids, patch)
+    }
+
+    /// Decide from the test grids of every breakpoint, with the smallest raster y of the union of the
+    /// margin-grown bounds ([`Splitter::margin_bound`]) over the breakpoints that count (those
+    /// ending a segment some micropolygon may be seen in): every micropolygon the patch (or
+    /// any part of it) emits lies below it, up to the margin's heuristic. `None` when some of
+    /// those breakpoints has a point that is not finite or not in front of the eye (no raster
+    /// bound), or the patch is culled.
+    pub fn decide_grids_bound(&self, grids: &[TestGrid], patch: &Patch) -> (Decision, Option<f32>) {
         // `None`: no finite test point at that time, so no usable vertex.
         let per_time: Vec<Option<GridFacts<'_>>> =
             grids.iter().map(|g| self.grid_facts(g)).collect();
@@ -245,8 +258,12 @@ impl Splitter {
         let facts: Vec<GridFacts<'_>> =
             per_time.into_iter().zip(&live).filter_map(|(f, &l)| f.filter(|_| l)).collect();
         if facts.is_empty() {
-            return Decision::Cull;
+            return (Decision::Cull, None);
         }
+        let top = facts
+            .iter()
+            .map(|f| f.raster.map(|(lo, _)| lo.y))
+            .try_fold(f32::INFINITY, |top, y| Some(top.min(y?)));
         let mz = |f: &GridFacts<'_>| MARGIN_FRACTION * (f.hi.z - f.lo.z);
         // Straddling hither at some breakpoint: part of the grid is nearer than hither there
         // (or not finite). All of it nearer is not straddling: splitting would not help.
@@ -256,11 +273,11 @@ impl Splitter {
         if straddles {
             if patch.hither_splits < MAX_HITHER_SPLITS && patch.depth < MAX_SPLIT_DEPTH {
                 let (len_u, len_v) = max_lengths(&facts, |p| p.is_finite().then_some(*p));
-                return Decision::Split { along_u: len_u >= len_v, hither: true };
+                return (Decision::Split { along_u: len_u >= len_v, hither: true }, top);
             }
-            return self.dice_decision(&facts, patch, true);
+            return (self.dice_decision(&facts, patch, true), top);
         }
-        self.dice_decision(&facts, patch, false)
+        (self.dice_decision(&facts, patch, false), top)
     }
 
     /// The facts of `grid`, or `None` if no point of it is finite.

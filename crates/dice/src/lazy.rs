@@ -1,0 +1,475 @@
+//! Lazy dicing: micropolygons made row of buckets by row of buckets and released as soon as
+//! the last bucket that needs them is rendered, so memory follows the buckets in flight, not
+//! the size of the scene.
+//!
+//! Every surface starts as a root patch that is bounded (the split stage's test grid and
+//! margin-grown raster bound, see [`Splitter::decide_bound`]) when the [`Dicer`] is made: a
+//! culled root is dropped, any other waits in the queue of its *first row*, the bucket row
+//! of the top of its bound (row 0 when it has no raster bound, e.g. it reaches behind the
+//! eye). [`Dicer::dice_row`]`(r)` takes the patches queued for row `r` and runs bound/split/
+//! dice on them (in parallel over patches): a split child whose first row is still `r` (or
+//! earlier, which a child's bound lying in its parent's makes impossible up to the margin
+//! heuristic) is processed at once, any other child waits in its own row's queue. A diced
+//! grid's micropolygons are listed in every bucket they touch and kept until the last row
+//! they touch has been rendered ([`Dicer::release_row`]).
+//!
+//! Invariants:
+//! * Order. A grid's key is (object, surface, split path), the path's bits left-aligned
+//!   (bit `63 - d` set when the grid lies in the upper half of split `d + 1`). Keys are
+//!   unique and their order is the eager dicer's depth-first, lower-half-first emission
+//!   order. A bucket's list is sorted by (key, index within the grid) before it is read, so
+//!   it holds exactly the eager dicer's list, in the same order, whatever the thread count,
+//!   scheduling or the row a grid was diced in.
+//! * Counts. Every patch is decided once and counted once (as in the eager dicer), so
+//!   [`DiceStats`] over a whole frame are the eager dicer's.
+//! * Bounds. No micropolygon may touch a bucket row already handed out: the bounds are
+//!   conservative only up to the split stage's safety margin (25% of the extent plus 2
+//!   pixels), so this is checked for every micropolygon, and a violation is an error
+//!   ([`DiceError::BoundMissed`]) after which the caller starts again with
+//!   [`Dicer::new_eager`], which dices everything in row 0 (the whole scene in memory, as
+//!   before lazy dicing) and so cannot miss.
+
+use rayon::prelude::*;
+use reyes_hider::{CsgTree, Frame, Micropolygon};
+use reyes_scene::Scene;
+
+use crate::bucket::{BucketRange, Bucketer};
+use crate::camera::{self, CameraSetup};
+use crate::csg::CsgSetup;
+use crate::dice::{self, Emitter, Grid, ObjectContext};
+use crate::hook::DiceOptions;
+use crate::motion::{CameraMotion, ObjectMotion, Pose, ShutterTime};
+use crate::split::{Decision, MAX_SPLIT_DEPTH, Patch, Splitter};
+use crate::{DiceError, DiceStats, check_frame};
+
+// Split paths must fit a `u64`, one bit per split.
+const _: () = assert!(MAX_SPLIT_DEPTH < 64);
+
+/// Where a grid comes in the eager dicer's emission order.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub(crate) struct GridKey {
+    /// Index of the object in the scene.
+    object: u32,
+    /// Index of the surface within the object.
+    surface: u32,
+    /// Split path, left-aligned: bit `63 - d` is set when the patch is the upper half of
+    /// its split at depth `d` (0-based). Grids are leaves of the split tree, so no grid's
+    /// path is a prefix of another's, and depth-first pre-order is the order of the paths.
+    path: u64,
+}
+
+impl GridKey {
+    /// The key of the lower (`upper == false`) or upper half of a patch at `depth`.
+    fn child(self, depth: u32, upper: bool) -> GridKey {
+        GridKey { path: self.path | (u64::from(upper) << (63 - depth)), ..self }
+    }
+}
+
+/// A patch waiting to be processed, with its decision (made when it was bounded).
+#[derive(Debug, Clone, Copy)]
+struct Task {
+    key: GridKey,
+    patch: Patch,
+    decision: Decision,
+}
+
+/// A freshly diced grid.
+pub(crate) struct NewGrid {
+    pub key: GridKey,
+    pub grid: Grid,
+    /// The buckets each of its micropolygons touches.
+    pub ranges: Vec<BucketRange>,
+}
+
+/// What processing some patches made.
+#[derive(Default)]
+pub(crate) struct Wave {
+    /// Diced grids with at least one micropolygon, in key order when the tasks were.
+    pub grids: Vec<NewGrid>,
+    /// Patches for later rows: `(row, task)`.
+    deferred: Vec<(u32, Task)>,
+    /// Counts.
+    pub stats: DiceStats,
+}
+
+impl Wave {
+    fn append(&mut self, mut other: Wave) {
+        self.grids.append(&mut other.grids);
+        self.deferred.append(&mut other.deferred);
+        self.stats.add(&other.stats);
+    }
+}
+
+/// One object's motion and shading.
+struct ObjectSetup<'a> {
+    motion: ObjectMotion,
+    ctx: ObjectContext<'a>,
+}
+
+/// A grid kept for the buckets that still need it.
+struct Slot {
+    key: GridKey,
+    /// `None` once released.
+    grid: Option<Grid>,
+}
+
+/// Dices a scene row of buckets by row of buckets (see the module documentation).
+///
+/// Use: for `r` in `0..rows()` in order, [`Dicer::dice_row`]`(r)`, then read the buckets of
+/// row `r` ([`Dicer::copy_bucket`], from any number of threads), then
+/// [`Dicer::release_row`]`(r)`. [`Dicer::stats`] are complete after the last row.
+pub struct Dicer<'a> {
+    frame: Frame,
+    camera: CameraSetup,
+    splitter: Splitter,
+    bucketer: Bucketer,
+    /// Per object of the scene (`None`: nothing to dice).
+    objects: Vec<Option<ObjectSetup<'a>>>,
+    csg_trees: Vec<CsgTree>,
+    /// Everything goes in row 0.
+    eager: bool,
+    /// Patches waiting for each bucket row.
+    pending: Vec<Vec<Task>>,
+    /// Grids alive (or released, with no micropolygons), and the free slots.
+    slots: Vec<Slot>,
+    free: Vec<u32>,
+    /// Per bucket row, the slots whose last row it is.
+    release: Vec<Vec<u32>>,
+    /// Per bucket: (slot, index in the grid) of every micropolygon touching it.
+    lists: Vec<Vec<(u32, u32)>>,
+    /// The next row `dice_row` accepts.
+    next_row: u32,
+    /// Micropolygons held now, and at most.
+    alive: u64,
+    peak_alive: u64,
+    stats: DiceStats,
+}
+
+impl<'a> Dicer<'a> {
+    /// A lazy dicer for `scene` in the buckets of `frame` (which must be the layout of the
+    /// scene's image): bounds every surface and queues it in its first row.
+    pub fn new(scene: &Scene, frame: &Frame, options: &DiceOptions<'a>) -> Result<Self, DiceError> {
+        Dicer::setup(scene, frame, options, false)
+    }
+
+    /// A dicer that dices the whole scene in row 0 (and so never misses a bound).
+    pub fn new_eager(
+        scene: &Scene,
+        frame: &Frame,
+        options: &DiceOptions<'a>,
+    ) -> Result<Self, DiceError> {
+        Dicer::setup(scene, frame, options, true)
+    }
+
+    fn setup(
+        scene: &Scene,
+        frame: &Frame,
+        options: &DiceOptions<'a>,
+        eager: bool,
+    ) -> Result<Self, DiceError> {
+        check_frame(scene, frame)?;
+        camera::check_camera(&scene.camera)?;
+        let camera_motion = CameraMotion::new(scene);
+        let camera = camera_motion.setup().clone();
+        let shutter = ShutterTime::new(&scene.camera.shutter);
+        let hider = &scene.hider;
+        let splitter = Splitter::new(&camera, frame, hider.shading_rate, hider.max_grid_size);
+        let bucketer = Bucketer::new(frame, camera.lens(), camera.hither(), camera.yon());
+        let csg = CsgSetup::new(scene);
+        let rows = frame.buckets_y as usize;
+        let mut dicer = Dicer {
+            frame: *frame,
+            camera,
+            splitter,
+            bucketer,
+            objects: Vec::with_capacity(scene.objects.len()),
+            csg_trees: Vec::new(),
+            eager,
+            pending: vec![Vec::new(); rows],
+            slots: Vec::new(),
+            free: Vec::new(),
+            release: vec![Vec::new(); rows],
+            lists: vec![Vec::new(); frame.bucket_count()],
+            next_row: 0,
+            alive: 0,
+            peak_alive: 0,
+            stats: DiceStats::default(),
+        };
+        for (i, object) in scene.objects.iter().enumerate() {
+            let leaf = csg.leaf.get(i).copied().flatten();
+            // A CSG operand must be a closed solid: it gets its end caps.
+            let motion = ObjectMotion::new(object, &camera_motion, &shutter, leaf.is_some());
+            let Some(open) = motion.moments().first() else {
+                dicer.objects.push(None);
+                continue;
+            };
+            let mut ctx = dice::object_context(
+                object,
+                &scene.lights,
+                dicer.camera.eye_world(),
+                &open.place,
+                leaf,
+            );
+            ctx.hook =
+                options.vertex_shader.map(|shader| dice::Hook { shader, object: i, surface: 0 });
+            ctx.cull_back = scene.hider.cull_back_faces
+                && dice::cull_back_faces(
+                    object,
+                    &ctx.labels,
+                    leaf.is_some(),
+                    dicer.camera.lens().is_none(),
+                );
+            for surface in 0..motion.surface_count() {
+                dicer.stats.primitives += 1;
+                let poses = motion.poses(surface);
+                let patch = Patch::root();
+                let (decision, top) = dicer.splitter.decide_bound(&poses, &patch);
+                if decision == Decision::Cull {
+                    dicer.stats.patches_culled += 1;
+                    continue;
+                }
+                let key = GridKey { object: i as u32, surface: surface as u32, path: 0 };
+                let row = dicer.row_of(top, 0);
+                dicer.pending[row as usize].push(Task { key, patch, decision });
+            }
+            dicer.objects.push(Some(ObjectSetup { motion, ctx }));
+        }
+        dicer.csg_trees = csg.trees;
+        Ok(dicer)
+    }
+
+    /// The CSG tree of every solid ([`CsgSetup::trees`]).
+    pub fn csg_trees(&self) -> &[CsgTree] {
+        &self.csg_trees
+    }
+
+    /// Rows of buckets.
+    pub fn rows(&self) -> u32 {
+        self.frame.buckets_y
+    }
+
+    /// The counts so far (the whole frame's once every row is diced).
+    pub fn stats(&self) -> DiceStats {
+        self.stats
+    }
+
+    /// The most micropolygons held at once (after dicing a row, before releasing one).
+    pub fn peak_micropolygons(&self) -> u64 {
+        self.peak_alive
+    }
+
+    /// The bucket row the top `top` of a patch's raster bound lies in (row 0 without a
+    /// bound), but not before `current`; always `current` for an eager dicer.
+    fn row_of(&self, top: Option<f32>, current: u32) -> u32 {
+        if self.eager {
+            return current;
+        }
+        let f = &self.frame;
+        let Some(y) = top else { return current };
+        // As `Frame::buckets_touched` rounds: extended-screen pixels start at -border.
+        let y = (y + f.border as f32).floor();
+        let last_px = (f.buckets_y * f.bucket_h) as f32 - 1.0;
+        let row = if y > 0.0 { y.min(last_px) as u32 / f.bucket_h } else { 0 };
+        row.max(current)
+    }
+
+    /// Process the patches queued for row `row` (see the module documentation) and prepare
+    /// the lists of its buckets. Rows must be diced in order, each once.
+    ///
+    /// Errors with [`DiceError::BoundMissed`] if a micropolygon touches an earlier row (the
+    /// dicer is then unusable: start again with [`Dicer::new_eager`]).
+    pub fn dice_row(&mut self, row: u32) -> Result<(), DiceError> {
+        assert_eq!(row, self.next_row, "rows are diced in order");
+        self.next_row += 1;
+        let mut tasks = std::mem::take(&mut self.pending[row as usize]);
+        tasks.sort_by_key(|t| t.key);
+        let wave = self.wave(row, tasks);
+        self.stats.add(&wave.stats);
+        for (r, task) in wave.deferred {
+            self.pending[r as usize].push(task);
+        }
+        for grid in wave.grids {
+            self.keep(grid, row)?;
+        }
+        self.peak_alive = self.peak_alive.max(self.alive);
+        // Lists gather grids of several rows: put each in emission order.
+        let (slots, buckets) = (&self.slots, self.row_buckets(row));
+        self.lists[buckets].par_iter_mut().for_each(|list| {
+            list.sort_by_key(|&(s, i)| (slots[s as usize].key, i));
+        });
+        Ok(())
+    }
+
+    /// Bucket indices of row `row`.
+    fn row_buckets(&self, row: u32) -> std::ops::Range<usize> {
+        let across = self.frame.buckets_x as usize;
+        row as usize * across..(row as usize + 1) * across
+    }
+
+    /// List a grid diced in row `row` in the buckets it touches, and keep it until its
+    /// last row.
+    fn keep(&mut self, grid: NewGrid, row: u32) -> Result<(), DiceError> {
+        let slot = match self.free.pop() {
+            Some(s) => s,
+            None => {
+                self.slots.push(Slot { key: grid.key, grid: None });
+                (self.slots.len() - 1) as u32
+            }
+        };
+        let mut last = row;
+        for (i, range) in grid.ranges.iter().enumerate() {
+            let [_, (y0, y1)] = *range;
+            if y0 < row {
+                return Err(DiceError::BoundMissed { row, bucket_row: y0 });
+            }
+            last = last.max(y1);
+            for b in self.bucketer.buckets(*range) {
+                self.lists[b].push((slot, i as u32));
+                self.stats.bucket_entries += 1;
+            }
+        }
+        let n = grid.grid.len() as u64;
+        self.stats.micropolygons += n;
+        self.alive += n;
+        self.release[last as usize].push(slot);
+        self.slots[slot as usize] = Slot { key: grid.key, grid: Some(grid.grid) };
+        Ok(())
+    }
+
+    /// Micropolygons touching bucket `b`.
+    pub fn bucket_len(&self, b: usize) -> usize {
+        self.lists.get(b).map_or(0, Vec::len)
+    }
+
+    /// Copy the micropolygons touching bucket `b` (of a row diced and not yet released) into
+    /// `out`, in the eager dicer's order.
+    pub fn copy_bucket(&self, b: usize, out: &mut Vec<Micropolygon>) {
+        out.clear();
+        if let Some(list) = self.lists.get(b) {
+            out.reserve(list.len());
+            out.extend(list.iter().map(|&(s, i)| {
+                let grid = self.slots[s as usize].grid.as_ref();
+                grid.expect("a listed grid is kept until its last row").micropolygon(i as usize)
+            }));
+        }
+    }
+
+    /// Drop the lists of row `row`'s buckets and every grid whose last row it is.
+    pub fn release_row(&mut self, row: u32) {
+        for b in self.row_buckets(row) {
+            self.lists[b] = Vec::new();
+        }
+        for slot in std::mem::take(&mut self.release[row as usize]) {
+            if let Some(grid) = self.slots[slot as usize].grid.take() {
+                self.alive -= grid.len() as u64;
+            }
+            self.free.push(slot);
+        }
+    }
+
+    /// Process `tasks` for row `row`, in parallel; the result is in task order.
+    fn wave(&self, row: u32, tasks: Vec<Task>) -> Wave {
+        let parts: Vec<Wave> = tasks
+            .into_par_iter()
+            .map(|task| {
+                let mut wave = Wave::default();
+                if let Some(object) = &self.objects[task.key.object as usize] {
+                    let poses = object.motion.poses(task.key.surface as usize);
+                    self.run(object, &poses, task, row, &mut wave);
+                }
+                wave
+            })
+            .collect();
+        let mut all = Wave::default();
+        for part in parts {
+            all.append(part);
+        }
+        all
+    }
+
+    /// Process one patch: split it (children for this row processed now, depth first,
+    /// lower half first; the others queued) or dice it.
+    fn run(
+        &self,
+        object: &ObjectSetup<'_>,
+        poses: &[Pose<'_>],
+        task: Task,
+        row: u32,
+        out: &mut Wave,
+    ) {
+        match task.decision {
+            Decision::Cull => out.stats.patches_culled += 1,
+            Decision::Split { along_u, hither } => {
+                out.stats.splits += 1;
+                out.stats.hither_splits += u64::from(hither);
+                let mut now = Vec::with_capacity(2);
+                for (k, patch) in task.patch.split(along_u, hither).into_iter().enumerate() {
+                    let key = task.key.child(task.patch.depth, k == 1);
+                    let (decision, top) = self.splitter.decide_bound(poses, &patch);
+                    if decision == Decision::Cull {
+                        out.stats.patches_culled += 1;
+                        continue;
+                    }
+                    let child = Task { key, patch, decision };
+                    match self.row_of(top, row) {
+                        r if r == row => now.push(child),
+                        r => out.deferred.push((r, child)),
+                    }
+                }
+                match now.as_slice() {
+                    [a, b] => {
+                        let (wa, wb) = rayon::join(
+                            || {
+                                let mut w = Wave::default();
+                                self.run(object, poses, *a, row, &mut w);
+                                w
+                            },
+                            || {
+                                let mut w = Wave::default();
+                                self.run(object, poses, *b, row, &mut w);
+                                w
+                            },
+                        );
+                        out.append(wa);
+                        out.append(wb);
+                    }
+                    [a] => self.run(object, poses, *a, row, out),
+                    _ => {}
+                }
+            }
+            Decision::Dice { nu, nv, limited } => {
+                out.stats.grids += 1;
+                out.stats.depth_limited += u64::from(limited);
+                let (hither, yon) = (self.camera.hither(), self.camera.yon());
+                let mut em = Emitter::new(&self.bucketer, hither, yon, self.splitter.near());
+                em.dice(
+                    &self.camera,
+                    &object.ctx,
+                    task.key.surface as usize,
+                    poses,
+                    &task.patch,
+                    (nu, nv),
+                );
+                out.stats.culled += em.culled;
+                out.stats.backfacing += em.backfacing;
+                out.stats.crossing += em.crossing;
+                out.stats.moving += em.moving;
+                if em.grid.len() > 0 {
+                    em.grid.shrink_to_fit();
+                    out.grids.push(NewGrid { key: task.key, grid: em.grid, ranges: em.ranges });
+                }
+            }
+        }
+    }
+
+    /// Dice the whole scene at once (an eager dicer's row 0), grids in emission order.
+    pub(crate) fn dice_all(mut self) -> (Wave, Bucketer, Vec<CsgTree>) {
+        debug_assert!(self.eager);
+        let mut tasks = std::mem::take(&mut self.pending[0]);
+        tasks.sort_by_key(|t| t.key);
+        let mut wave = self.wave(0, tasks);
+        wave.grids.sort_by_key(|g| g.key);
+        wave.stats.add(&self.stats);
+        (wave, self.bucketer, self.csg_trees)
+    }
+}
