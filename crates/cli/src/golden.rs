@@ -27,6 +27,22 @@ pub struct Case {
     pub width: u32,
     /// Render height.
     pub height: u32,
+    /// Render with this hider instead of the scene's own (so one scene can have a golden
+    /// image from each hider); the reference is then `golden/NAME-raytraced.exr` or
+    /// `golden/NAME-stochastic.exr`.
+    #[serde(default)]
+    pub method: Option<reyes_scene::HiderMethod>,
+}
+
+impl Case {
+    /// The case's name: the scene's, with the hider appended when it is overridden.
+    pub fn name(&self) -> String {
+        match self.method {
+            None => self.scene.clone(),
+            Some(reyes_scene::HiderMethod::Stochastic) => format!("{}-stochastic", self.scene),
+            Some(reyes_scene::HiderMethod::RayTrace) => format!("{}-raytraced", self.scene),
+        }
+    }
 }
 
 /// Per-channel comparison of two images.
@@ -86,6 +102,9 @@ pub fn render_case(root: &Path, case: &Case) -> Result<(Film, f32), GoldenError>
     let mut scene = reyes_scene::load(&path).map_err(err)?;
     scene.image.width = case.width;
     scene.image.height = case.height;
+    if let Some(method) = case.method {
+        scene.hider.method = method;
+    }
     let film = render(&scene, &RenderOptions::default()).map_err(err)?.film;
     // Largest filter weight, for the tolerance.
     let frame = frame_for(&scene);
@@ -156,7 +175,7 @@ pub fn out_dir(root: &Path) -> PathBuf {
 
 /// Check one case against its reference.
 pub fn check(root: &Path, case: &Case) -> Result<Outcome, GoldenError> {
-    let reference_path = root.join("golden").join(format!("{}.exr", case.scene));
+    let reference_path = root.join("golden").join(format!("{}.exr", case.name()));
     let (actual, w_max) = render_case(root, case)?;
     if !reference_path.exists() {
         return Ok(Outcome::Missing(reference_path));
@@ -168,10 +187,10 @@ pub fn check(root: &Path, case: &Case) -> Result<Outcome, GoldenError> {
     }
     let dir = out_dir(root);
     std::fs::create_dir_all(&dir).map_err(|e| err(format!("{}: {e}", dir.display())))?;
-    let actual_path = dir.join(format!("{}.actual.exr", case.scene));
+    let actual_path = dir.join(format!("{}.actual.exr", case.name()));
     reyes_film::write(&actual_path, &actual).map_err(err)?;
     let diff = difference(&actual, &reference);
-    reyes_film::write(&dir.join(format!("{}.diff.png", case.scene)), &diff).map_err(err)?;
+    reyes_film::write(&dir.join(format!("{}.diff.png", case.name())), &diff).map_err(err)?;
     Ok(Outcome::Fail(cmp, actual_path))
 }
 
@@ -199,11 +218,11 @@ pub fn difference(a: &Film, b: &Film) -> Film {
 /// to look at. Returns the PNG path.
 pub fn bless(root: &Path, case: &Case) -> Result<PathBuf, GoldenError> {
     let (film, _) = render_case(root, case)?;
-    let reference = root.join("golden").join(format!("{}.exr", case.scene));
+    let reference = root.join("golden").join(format!("{}.exr", case.name()));
     reyes_film::write(&reference, &film).map_err(err)?;
     let dir = out_dir(root);
     std::fs::create_dir_all(&dir).map_err(|e| err(format!("{}: {e}", dir.display())))?;
-    let png = dir.join(format!("{}.png", case.scene));
+    let png = dir.join(format!("{}.png", case.name()));
     reyes_film::write(&png, &film).map_err(err)?;
     Ok(png)
 }

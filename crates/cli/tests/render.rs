@@ -134,7 +134,7 @@ fn golden_images() {
             Outcome::Pass(_) => {}
             Outcome::Fail(c, path) => failures.push(format!(
                 "{}: mean {:?} max {:?} over tolerance {} / {}; see {}",
-                case.scene,
+                case.name(),
                 c.mean,
                 c.max,
                 c.mean_tolerance,
@@ -143,7 +143,7 @@ fn golden_images() {
             )),
             Outcome::Missing(path) => failures.push(format!(
                 "{}: no reference {} (render it, look at it, then `cargo xtask bless`)",
-                case.scene,
+                case.name(),
                 path.display()
             )),
         }
