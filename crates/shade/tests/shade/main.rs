@@ -9,3 +9,4 @@ mod mirror;
 mod motion;
 mod penumbra;
 mod recursion;
+mod shapes;
