@@ -75,6 +75,13 @@
 //! over its segment ([`screen_bound`]: the vertices at both ends, grown by the lens) touches
 //! bucket `b` ([`reyes_hider::Frame::buckets_touched`]).
 //! Neighbouring grids may be diced at different rates, so T-junction cracks are possible.
+//!
+//! Back faces (`hider.cull_back_faces`, off by default): for a closed, opaque object drawn
+//! on its own under a pinhole camera, a micropolygon whose raster winding shows its back
+//! over its whole segment (every corner's signed area, a quadratic in time, below a margin)
+//! is dropped and counted in `culled` and `backfacing`. Which winding is the back is
+//! calibrated per grid against the outward normal at a clearly facing vertex. Off by
+//! default because back faces also fill the cracks above.
 #![deny(missing_docs)]
 
 mod bucket;
