@@ -95,14 +95,20 @@ fn write_atomic(
 fn encode_exr(path: &Path, film: &Film, w: &mut (impl Write + Seek)) -> Result<(), FilmError> {
     use exr::prelude::*;
     let size = (film.width() as usize, film.height() as usize);
-    let plane = |k: usize| film.rgba().iter().map(|p| p[k]).collect::<Vec<f32>>();
-    let channels = AnyChannels::sort(SmallVec::from_vec(vec![
-        AnyChannel::new("R", FlatSamples::F32(plane(0))),
-        AnyChannel::new("G", FlatSamples::F32(plane(1))),
-        AnyChannel::new("B", FlatSamples::F32(plane(2))),
-        AnyChannel::new("A", FlatSamples::F32(plane(3))),
-        AnyChannel::new("Z", FlatSamples::F32(film.z().to_vec())),
-    ]));
+    let (rgba, z) = (film.rgba(), film.z());
+    // Pixels are read from the film as the encoder asks for them, block by block, instead
+    // of copying the image into five planes first (6 MB at 640x480).
+    let channels = SpecificChannels::build()
+        .with_channel("R")
+        .with_channel("G")
+        .with_channel("B")
+        .with_channel("A")
+        .with_channel("Z")
+        .with_pixel_fn(|pos: Vec2<usize>| {
+            let i = pos.y() * size.0 + pos.x();
+            let p = rgba[i];
+            (p[0], p[1], p[2], p[3], z[i])
+        });
     // ZIP is lossless for f32, so the file round-trips bit-exactly.
     let layer = Layer::new(size, LayerAttributes::default(), Encoding::SMALL_LOSSLESS, channels);
     Image::from_layer(layer).write().to_buffered(w).map_err(|e| exr_error(path, e))
