@@ -83,21 +83,9 @@ pub fn run(root: &Path, args: &[String]) -> Result<(), String> {
             hide_s: f64::INFINITY,
         };
         for _ in 0..runs {
-            let mut cmd = Command::new(&bin);
-            cmd.arg(scene)
-                .arg("-o")
-                .arg(out_dir.join(format!("{name}.exr")))
-                .args(["--stats", "-q"]);
-            if let Some(t) = &threads {
-                cmd.args(["--threads", t]);
-            }
-            let t0 = Instant::now();
-            let out = cmd.output().map_err(|e| format!("{}: {e}", bin.display()))?;
-            let wall = t0.elapsed().as_secs_f64();
-            if !out.status.success() {
-                return Err(format!("{name}: {}", String::from_utf8_lossy(&out.stderr).trim()));
-            }
-            let stats = String::from_utf8_lossy(&out.stdout);
+            let (wall, stats) =
+                render_timed(&bin, scene, &out_dir.join(format!("{name}.exr")), &threads)
+                    .map_err(|e| format!("{name}: {e}"))?;
             row.times.push(wall);
             row.peak_mb = row.peak_mb.max(
                 field(&stats, "Memory:").and_then(|m| number_after(m, "resident")).unwrap_or(0.0),
@@ -225,21 +213,9 @@ pub fn scaling(root: &Path, args: &[String]) -> Result<(), String> {
         let scene = dir.join(format!("heavy-motion-{n}.ron"));
         std::fs::write(&scene, heavy_motion_scene(&header, n))
             .map_err(|e| format!("{}: {e}", scene.display()))?;
-        let mut cmd = Command::new(&bin);
-        cmd.arg(&scene)
-            .arg("-o")
-            .arg(dir.join(format!("heavy-motion-{n}.exr")))
-            .args(["--stats", "-q"]);
-        if let Some(t) = &threads {
-            cmd.args(["--threads", t]);
-        }
-        let t0 = Instant::now();
-        let out = cmd.output().map_err(|e| format!("{}: {e}", bin.display()))?;
-        let wall = t0.elapsed().as_secs_f64();
-        if !out.status.success() {
-            return Err(format!("N = {n}: {}", String::from_utf8_lossy(&out.stderr).trim()));
-        }
-        let stats = String::from_utf8_lossy(&out.stdout);
+        let (wall, stats) =
+            render_timed(&bin, &scene, &dir.join(format!("heavy-motion-{n}.exr")), &threads)
+                .map_err(|e| format!("N = {n}: {e}"))?;
         let dicer = field(&stats, "Dicer:").unwrap_or("");
         let memory = field(&stats, "Memory:").unwrap_or("");
         let time = field(&stats, "Time:").unwrap_or("");
@@ -255,4 +231,26 @@ pub fn scaling(root: &Path, args: &[String]) -> Result<(), String> {
         );
     }
     Ok(())
+}
+
+/// Render `scene` to `out` with the release binary `bin` (and `--threads` when given) as a
+/// child process: its wall time in seconds and its `--stats` text.
+fn render_timed(
+    bin: &Path,
+    scene: &Path,
+    out: &Path,
+    threads: &Option<String>,
+) -> Result<(f64, String), String> {
+    let mut cmd = Command::new(bin);
+    cmd.arg(scene).arg("-o").arg(out).args(["--stats", "-q"]);
+    if let Some(t) = threads {
+        cmd.args(["--threads", t]);
+    }
+    let t0 = Instant::now();
+    let result = cmd.output().map_err(|e| format!("{}: {e}", bin.display()))?;
+    let wall = t0.elapsed().as_secs_f64();
+    if !result.status.success() {
+        return Err(String::from_utf8_lossy(&result.stderr).trim().to_string());
+    }
+    Ok((wall, String::from_utf8_lossy(&result.stdout).into_owned()))
 }

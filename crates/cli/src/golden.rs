@@ -12,10 +12,10 @@
 
 use std::path::{Path, PathBuf};
 
-use reyes_film::{Film, FilterTable};
+use reyes_film::Film;
 use serde::Deserialize;
 
-use crate::{RenderOptions, frame_for, hider_config, render};
+use crate::{RenderOptions, filter_table, frame_for, hider_config, render};
 
 /// One golden case.
 #[derive(Debug, Clone, Deserialize)]
@@ -111,16 +111,7 @@ pub fn render_case(root: &Path, case: &Case) -> Result<(Film, f32), GoldenError>
     let camera = reyes_dice::CameraSetup::new(&scene);
     let cfg = hider_config(&scene, &camera);
     let hider = reyes_hider::Hider::new(cfg, frame);
-    let f = scene.hider.filter;
-    let table = FilterTable::new(
-        f.kind,
-        f.width,
-        cfg.nx,
-        cfg.ny,
-        &hider.tables().location,
-        &scene.hider.original,
-    )
-    .map_err(err)?;
+    let table = filter_table(&scene, &hider).map_err(err)?;
     let w_max = table.weights().iter().fold(0.0f32, |m, &w| m.max(w.abs()));
     Ok((film, w_max))
 }

@@ -113,6 +113,21 @@ pub fn hider_config(scene: &Scene, camera: &CameraSetup) -> HiderConfig {
     }
 }
 
+/// The filter table of a scene's `hider.filter` over `hider`'s sample locations (shared by
+/// both hiders and the golden tolerance).
+pub fn filter_table(scene: &Scene, hider: &Hider) -> Result<FilterTable, reyes_film::FilmError> {
+    let f = &scene.hider.filter;
+    let config = hider.config();
+    FilterTable::new(
+        f.kind,
+        f.width,
+        config.nx,
+        config.ny,
+        &hider.tables().location,
+        &scene.hider.original,
+    )
+}
+
 /// The hider's time density for a scene's shutter shape.
 pub(crate) fn shutter_shape(shape: reyes_scene::ShutterShape) -> ShutterShape {
     match shape {
@@ -195,16 +210,7 @@ fn render_rows(
     let mut t_dice = t0.elapsed();
 
     let hider = Hider::new(config, frame).with_csg(dicer.csg_trees().to_vec());
-    let f = &scene.hider.filter;
-    let table = FilterTable::new(
-        f.kind,
-        f.width,
-        config.nx,
-        config.ny,
-        &hider.tables().location,
-        &scene.hider.original,
-    )
-    .map_err(RenderError::Film)?;
+    let table = filter_table(scene, &hider).map_err(RenderError::Film)?;
 
     let (mut t_hide, mut t_film) = (Duration::ZERO, Duration::ZERO);
     let mut film = Film::new(scene.image.width, scene.image.height);
@@ -274,7 +280,7 @@ fn render_rows(
         width: scene.image.width,
         height: scene.image.height,
         samples: (config.nx, config.ny),
-        filter: *f,
+        filter: scene.hider.filter,
         frame,
         buckets_rendered,
         dice: stats::DiceSummary {

@@ -27,7 +27,7 @@ use std::time::{Duration, Instant};
 use glam::Vec2;
 use rayon::prelude::*;
 use reyes_dice::CameraSetup;
-use reyes_film::{Film, FilterTable, Window, splat};
+use reyes_film::{Film, Window, splat};
 use reyes_hider::Hider;
 use reyes_hider::rng::hash;
 use reyes_scene::Scene;
@@ -35,7 +35,8 @@ use reyes_shade::{RayCounts, Shading, Strata, Traced};
 use reyes_trace::{Ray, Tracer};
 
 use crate::{
-    RaySummary, RenderError, RenderOptions, RenderStats, Rendered, frame_for, hider_config,
+    RaySummary, RenderError, RenderOptions, RenderStats, Rendered, filter_table, frame_for,
+    hider_config,
 };
 
 /// Key of the per-pixel stratified sets ("pixel").
@@ -84,16 +85,7 @@ where
     let camera = CameraSetup::new(scene);
     let config = hider_config(scene, &camera);
     let hider = Hider::new(config, frame);
-    let f = &scene.hider.filter;
-    let table = FilterTable::new(
-        f.kind,
-        f.width,
-        config.nx,
-        config.ny,
-        &hider.tables().location,
-        &scene.hider.original,
-    )
-    .map_err(RenderError::Film)?;
+    let table = filter_table(scene, &hider).map_err(RenderError::Film)?;
     let ns = hider.ns();
     let seed = scene.hider.seed;
     let moving = !scene.camera.motion.is_empty();
@@ -196,7 +188,7 @@ where
         width: scene.image.width,
         height: scene.image.height,
         samples: (config.nx, config.ny),
-        filter: *f,
+        filter: scene.hider.filter,
         frame,
         buckets_rendered,
         dice: Default::default(),
