@@ -39,7 +39,7 @@ use std::path::{Path, PathBuf};
 
 use glam::{DMat4, DVec3, Vec3};
 use rayon::prelude::*;
-use reyes_dice::object_to_world;
+use reyes_scene::object_to_world;
 use reyes_scene::{Csg, Object, Scene, Shape};
 use reyes_trace::{Ray, Tracer};
 

@@ -522,7 +522,7 @@ pub(crate) fn cull_back_faces(
     use reyes_scene::{Closure, closure};
     let f = labels.flags;
     let affine = |list: &[reyes_scene::Transform]| {
-        let m = crate::object_to_world(list);
+        let m = reyes_scene::object_to_world(list);
         m.row(3) == glam::Vec4::W && m.is_finite()
     };
     let placements_affine = if object.motion.is_empty() {

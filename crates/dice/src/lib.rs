@@ -94,7 +94,6 @@ mod motion;
 mod shade;
 mod shapes;
 mod split;
-mod xform;
 
 pub use bucket::screen_bound;
 pub use camera::CameraSetup;
@@ -102,7 +101,6 @@ pub use csg::CsgSetup;
 pub use hook::{DiceOptions, VertexContext, VertexShader};
 pub use lazy::Dicer;
 pub use shade::{Shader, facing};
-pub use xform::{object_to_world, transform_matrix};
 
 use reyes_hider::{CsgTree, Frame, Micropolygon};
 use reyes_scene::Scene;

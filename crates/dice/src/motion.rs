@@ -16,7 +16,7 @@ use reyes_scene::{Object, Scene, Shutter};
 
 use crate::camera::{CameraSetup, View};
 use crate::shapes::{self, Surface};
-use crate::xform::{normal_matrix, object_to_world};
+use reyes_scene::{normal_matrix, object_to_world};
 
 /// `a + (b - a) * f`: linear interpolation that is exactly `a` wherever `a == b` (so a
 /// quantity held still between keys does not move by a rounding error) and at `f == 0`.

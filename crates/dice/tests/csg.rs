@@ -16,8 +16,9 @@ mod common;
 
 use common::{camera, dice, object, scene, signed_area, sphere};
 use glam::{Mat4, Vec3};
-use reyes_dice::{CameraSetup, CsgSetup, Diced, object_to_world};
+use reyes_dice::{CameraSetup, CsgSetup, Diced};
 use reyes_hider::{Micropolygon, flags};
+use reyes_scene::object_to_world;
 use reyes_scene::{Csg, Interpolation, Object, Scene, Shape, Solid, Transform};
 
 /// A named object at `transform`.

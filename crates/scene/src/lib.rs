@@ -12,12 +12,14 @@ pub mod model;
 mod roll;
 mod syntax;
 mod validate;
+pub mod xform;
 
 use std::path::Path;
 
 pub use closure::{Closure, closure};
 pub use error::{LoadError, SceneError};
 pub use model::*;
+pub use xform::{normal_matrix, object_to_world, transform_matrix};
 
 /// Parses and validates the RON scene `text`. `file` is used only in error messages.
 ///

@@ -13,7 +13,7 @@
 //!   (`f64`), with the partial sweeps, z cuts and tube-angle ranges of `reyes_dice`; hits
 //!   report the dicer's `(u, v)` and its outward geometric normal, carried to world space
 //!   by the inverse transpose. Object-to-world matrices come from
-//!   [`reyes_dice::object_to_world`] (transforms in list order).
+//!   [`reyes_scene::object_to_world`] (transforms in list order).
 //! * **Time.** `Ray::time` is normalised over the shutter: 0 at `open`, 1 at `close`. Key
 //!   times are normalised the same way; before the first key and after the last the first
 //!   or last key holds. With a closed shutter only the first key of each list is used.
@@ -40,7 +40,7 @@ mod poly;
 mod quadric;
 
 use glam::{DMat4, DVec3, Vec3};
-use reyes_dice::object_to_world;
+use reyes_scene::object_to_world;
 use reyes_scene::{Object, Scene, Shape, V3};
 
 use crate::bvh::{Aabb, Bvh, NodeKind, STACK};

@@ -6,7 +6,7 @@ mod common;
 
 use common::{close_v, deforming, moving, object, scene};
 use glam::Vec3;
-use reyes_dice::object_to_world;
+use reyes_scene::object_to_world;
 use reyes_scene::{Shape, Transform};
 use reyes_trace::{Ray, Tracer};
 

@@ -7,7 +7,7 @@ use std::f32::consts::PI;
 
 use common::{close, close_v, object, scene};
 use glam::{Mat3, Mat4, Vec3};
-use reyes_dice::object_to_world;
+use reyes_scene::object_to_world;
 use reyes_scene::{Shape, Transform};
 use reyes_trace::{Hit, Ray, Tracer};
 

@@ -6,8 +6,8 @@
 //! inverse transpose of the upper 3x3, computed from cofactors so that a singular matrix
 //! still gives finite (if meaningless) normals instead of NaN.
 
+use crate::Transform;
 use glam::{Mat3, Mat4, Vec3};
-use reyes_scene::Transform;
 
 /// The matrix of one transform step.
 pub fn transform_matrix(t: &Transform) -> Mat4 {
@@ -30,7 +30,7 @@ pub fn object_to_world(transforms: &[Transform]) -> Mat4 {
 
 /// The matrix that carries object-space normals to world space for `object_to_world`:
 /// the inverse transpose of its upper 3x3, up to a positive factor.
-pub(crate) fn normal_matrix(object_to_world: &Mat4) -> Mat3 {
+pub fn normal_matrix(object_to_world: &Mat4) -> Mat3 {
     let a = Mat3::from_mat4(*object_to_world);
     // Columns of det(A) * A^-T are the cross products of A's column pairs.
     let cofactor = Mat3::from_cols(
