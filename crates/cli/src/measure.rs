@@ -39,6 +39,7 @@ use std::path::{Path, PathBuf};
 
 use glam::{DMat4, DVec3, Vec3};
 use rayon::prelude::*;
+use reyes_sampling::{SplitMix64, unit_f64};
 use reyes_scene::object_to_world;
 use reyes_scene::{Csg, Object, Scene, Shape};
 use reyes_trace::{Ray, Tracer};
@@ -575,20 +576,10 @@ fn solid_node(
 // ---------------------------------------------------------------------------------------------
 // Sampling
 
-/// SplitMix64's finaliser: a bijective 64-bit mix.
-#[inline]
-fn mix(mut z: u64) -> u64 {
-    z = z.wrapping_add(0x9E37_79B9_7F4A_7C15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    z ^ (z >> 31)
-}
-
 /// The `n`th uniform number in `[0, 1)` of the stream `key`.
 #[inline]
 fn draw(key: u64, n: u64) -> f64 {
-    let bits = mix(key ^ mix(n.wrapping_mul(0xD1B5_4A32_D192_ED03)));
-    (bits >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+    unit_f64(SplitMix64::at(key ^ SplitMix64::at(n.wrapping_mul(0xD1B5_4A32_D192_ED03))))
 }
 
 /// Cells per axis for about `samples` cells over a box of extents `ext`: as near cubic as
@@ -656,7 +647,7 @@ fn sample(b: &Aabb, n: [u64; 3], seed: u64, inside: &(dyn Fn(DVec3, u64) -> bool
     let ext = b.max - b.min;
     let cell = ext / DVec3::new(n[0] as f64, n[1] as f64, n[2] as f64);
     let centre = (b.min + b.max) * 0.5;
-    let seed_key = mix(seed);
+    let seed_key = SplitMix64::at(seed);
     let [bx, by, bz] = n.map(|c| c / 2);
     let rows = by * bz;
     let tasks = rows.div_ceil(ROWS_PER_TASK);
@@ -674,7 +665,7 @@ fn sample(b: &Aabb, n: [u64; 3], seed: u64, inside: &(dyn Fn(DVec3, u64) -> bool
                         let (i, j, k) =
                             (i0 + (c as u64 & 1), j0 + (c as u64 >> 1 & 1), k0 + (c as u64 >> 2));
                         let index = i + n[0] * (j + n[1] * k);
-                        let key = mix(seed_key ^ index);
+                        let key = SplitMix64::at(seed_key ^ index);
                         let jitter = DVec3::new(draw(key, 0), draw(key, 1), draw(key, 2));
                         let q = b.min + (DVec3::new(i as f64, j as f64, k as f64) + jitter) * cell;
                         *is = inside(q, key);
@@ -907,7 +898,7 @@ mod tests {
 
     #[test]
     fn draws_are_uniform_looking_and_in_range() {
-        let mean = (0..10_000).map(|i| draw(mix(i), 0)).sum::<f64>() / 10_000.0;
+        let mean = (0..10_000).map(|i| draw(SplitMix64::at(i), 0)).sum::<f64>() / 10_000.0;
         assert!((mean - 0.5).abs() < 0.01, "{mean}");
         assert!((0..1000).all(|i| (0.0..1.0).contains(&draw(i, i))));
     }

@@ -29,9 +29,10 @@ use rayon::prelude::*;
 use reyes_dice::CameraSetup;
 use reyes_film::{Film, Window, splat};
 use reyes_hider::Hider;
-use reyes_hider::rng::hash;
+use reyes_sampling::Strata;
+use reyes_sampling::hash;
 use reyes_scene::Scene;
-use reyes_shade::{RayCounts, Shading, Strata, Traced};
+use reyes_shade::{RayCounts, Shading, Traced};
 use reyes_trace::{Ray, Tracer};
 
 use crate::{

@@ -20,6 +20,7 @@
 
 use rayon::prelude::*;
 use reyes_hider::{Frame, Hider, HiderConfig, Pairing, Pattern};
+use reyes_sampling::SplitMix64;
 
 use crate::{RenderError, RenderOptions, render};
 
@@ -426,27 +427,19 @@ pub struct Edge {
 /// Depth of the edge's plane.
 const EDGE_Z: f64 = 4.0;
 
-/// A small deterministic generator for the edges (SplitMix64).
-struct Mix(u64);
-impl Mix {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        (reyes_hider::rng::mix64(self.0) >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
 impl EdgeStudy {
     /// The study's edges for `case`: random orientation, passing within a quarter of the
     /// image of its centre; random direction of motion. The same for every sampler.
     pub fn edges(&self, case: EdgeCase) -> Vec<Edge> {
-        let mut rng = Mix(reyes_hider::rng::hash(self.seed, &[0xed9e]));
+        let mut rng = SplitMix64::from_state(reyes_sampling::hash(self.seed, &[0xed9e]));
         let half = self.image as f64 / 2.0;
         (0..self.edges)
             .map(|_| {
-                let ang = rng.next() * std::f64::consts::TAU;
+                let ang = rng.next_f64() * std::f64::consts::TAU;
                 let n = [ang.cos(), ang.sin()];
-                let p = [half + (rng.next() - 0.5) * half, half + (rng.next() - 0.5) * half];
-                let mang = rng.next() * std::f64::consts::TAU;
+                let p =
+                    [half + (rng.next_f64() - 0.5) * half, half + (rng.next_f64() - 0.5) * half];
+                let mang = rng.next_f64() * std::f64::consts::TAU;
                 let v = if case.moves() {
                     [self.motion_px * mang.cos(), self.motion_px * mang.sin()]
                 } else {
@@ -536,7 +529,7 @@ impl EdgeStudy {
             .par_iter()
             .enumerate()
             .map(|(i, edge)| {
-                let seed = reyes_hider::rng::hash(self.seed, &[i as u64, 0x5eed]) % 1_000_000;
+                let seed = reyes_sampling::hash(self.seed, &[i as u64, 0x5eed]) % 1_000_000;
                 let text = self.scene_text(edge, sampler, n, seed);
                 let scene = reyes_scene::parse(&text, std::path::Path::new("study.ron"))
                     .unwrap_or_else(|e| panic!("study scene does not parse: {e}\n{text}"));
@@ -713,13 +706,13 @@ mod tests {
 
     #[test]
     fn pixel_area_matches_clipping() {
-        let mut rng = Mix(3);
+        let mut rng = SplitMix64::from_state(3);
         for _ in 0..2000 {
-            let ang = rng.next() * std::f64::consts::TAU;
+            let ang = rng.next_f64() * std::f64::consts::TAU;
             let n = [ang.cos(), ang.sin()];
-            let (x, y) = ((rng.next() * 8.0) as u32, (rng.next() * 8.0) as u32);
-            let c = n[0] * (x as f64 + 2.0 * rng.next() - 0.5)
-                + n[1] * (y as f64 + 2.0 * rng.next() - 0.5);
+            let (x, y) = ((rng.next_f64() * 8.0) as u32, (rng.next_f64() * 8.0) as u32);
+            let c = n[0] * (x as f64 + 2.0 * rng.next_f64() - 0.5)
+                + n[1] * (y as f64 + 2.0 * rng.next_f64() - 0.5);
             let a = pixel_area(n, c, x, y);
             let b = clipped(n, c, x as f64, y as f64);
             assert!((a - b).abs() < 1e-9, "{n:?} {c} ({x},{y}): {a} vs {b}");

@@ -28,9 +28,10 @@ use std::time::Instant;
 
 use glam::Vec3;
 use reyes_dice::{CameraSetup, DiceOptions, VertexContext, VertexShader};
-use reyes_hider::rng::hash;
+use reyes_sampling::Strata;
+use reyes_sampling::hash;
 use reyes_scene::Scene;
-use reyes_shade::{RayCounts, Shading, Strata, SurfacePoint};
+use reyes_shade::{RayCounts, Shading, SurfacePoint};
 use reyes_trace::Tracer;
 
 use crate::{RaySummary, RenderError, RenderOptions, Rendered, render_diced, shutter_shape};

@@ -405,7 +405,7 @@ mod tests {
     /// Uniform numbers in [0, 1) from a counter.
     fn rand(n: &mut u64) -> f32 {
         *n += 1;
-        reyes_hider::rng::unit(reyes_hider::rng::hash(0x7e57, &[*n]))
+        reyes_sampling::unit(reyes_sampling::hash(0x7e57, &[*n]))
     }
 
     #[test]

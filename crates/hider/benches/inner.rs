@@ -22,8 +22,8 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use reyes_hider::rng::{hash, unit};
 use reyes_hider::{Frame, Hider, HiderConfig, LensSetup, Micropolygon, Scratch, flags};
+use reyes_sampling::{hash, unit};
 
 /// The image is 3x3 buckets of 16x16 pixels with no border; the bench renders the middle one,
 /// whose top-left pixel is raster (16, 16).

@@ -13,8 +13,6 @@ pub mod frame;
 pub mod inside;
 pub mod lens;
 pub mod mpoly;
-pub mod permute;
-pub mod rng;
 pub mod samples;
 pub mod tables;
 

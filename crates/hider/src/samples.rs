@@ -21,9 +21,11 @@
 
 pub mod owen;
 
-use crate::rng::{hash, unit};
+use reyes_sampling::{hash, unit};
+
 use crate::tables::{Table, Tables};
 use owen::{Scramble, to_unit, to_unit_16};
+pub use reyes_sampling::ShutterShape;
 
 /// Spatial pattern (FIGS. 3, 5, 6, 7 of the patent).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -99,55 +101,6 @@ pub enum Pairing {
     /// Appendix A: sample s has time stratum s and lens stratum `Location[s]`, in every pixel
     /// (time is tied to sub-pixel rows, lens to sub-pixel position: appendix-a.md 3.3, 3.8).
     Original,
-}
-
-/// Time density of the shutter (patent FIGS. 13-16). Stratified uniform times `u` are
-/// mapped through the inverse of the shape's cumulative distribution, so every time stratum
-/// keeps equal probability and sample times follow the density.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub enum ShutterShape {
-    /// Uniform density on [0, 1): the shutter is fully open throughout (FIGS. 13-15).
-    #[default]
-    Uniform,
-    /// Trapezoidal density (FIG. 16: overlapping intervals weighting the middle): rises
-    /// linearly over `[0, r]`, is `1/(1-r)` on `[r, 1-r]`, falls linearly over `[1-r, 1]`.
-    Gradual {
-        /// Ramp fraction `r`, in (0, 0.5].
-        ramp: f32,
-    },
-}
-
-impl ShutterShape {
-    /// Inverse cumulative distribution: the time whose CDF value is `u` in [0, 1].
-    pub fn warp(&self, u: f32) -> f32 {
-        match *self {
-            ShutterShape::Uniform => u,
-            ShutterShape::Gradual { ramp: r } => {
-                let (u, r) = (u as f64, r as f64);
-                let k = 2.0 * r * (1.0 - r);
-                let u1 = r / (2.0 * (1.0 - r)); // CDF at t = r
-                let t = if u < u1 {
-                    (u * k).sqrt()
-                } else if u > 1.0 - u1 {
-                    1.0 - ((1.0 - u) * k).sqrt()
-                } else {
-                    r + (u - u1) * (1.0 - r)
-                };
-                (t as f32).clamp(0.0, 1.0)
-            }
-        }
-    }
-
-    /// Probability density at time `t` (for tests and documentation).
-    pub fn density(&self, t: f32) -> f32 {
-        match *self {
-            ShutterShape::Uniform => 1.0,
-            ShutterShape::Gradual { ramp: r } => {
-                let edge = t.min(1.0 - t);
-                if edge < r { edge / (r * (1.0 - r)) } else { 1.0 / (1.0 - r) }
-            }
-        }
-    }
 }
 
 /// Shape of the lens samples.

@@ -7,8 +7,8 @@
 //! in `[0, 1/nx)` (x, lens x), `[0, 1/ny)` (y, lens y), `[0, 1/NS)` (time); with jitter off
 //! they are the stratum centres.
 
-use crate::permute::{permute, permute_original};
-use crate::rng::Drand;
+use reyes_sampling::Drand;
+use reyes_sampling::permute::{bit_reversal, bit_reversal_original};
 
 /// Appendix A's `NJITTER`: entries in each jitter table.
 pub const NJITTER: usize = 512;
@@ -98,8 +98,11 @@ impl Tables {
         let mut q = 0;
         for x in 0..nx {
             for y in 0..ny {
-                let t =
-                    if original_permute { permute_original(q, ns) } else { permute(q, ns) as i64 };
+                let t = if original_permute {
+                    bit_reversal_original(q, ns)
+                } else {
+                    bit_reversal(q, ns) as i64
+                };
                 if (0..ns as i64).contains(&t) {
                     location[t as usize] = [x as f32 / fx, y as f32 / fy];
                 }

@@ -78,14 +78,13 @@
 mod lights;
 mod pattern;
 mod sample;
-mod strata;
 
 pub use pattern::{BLACK, IVORY, pattern_color, pool_ball};
 pub use sample::{concentric_disk, disperse};
-pub use strata::{Strata, permute};
 
 use glam::Vec3;
 use reyes_dice::{Shader, facing};
+use reyes_sampling::Strata;
 use reyes_scene::{Light, Object, Scene, Shape};
 use reyes_trace::{Hit, Ray, Tracer};
 

@@ -18,7 +18,7 @@
 //! The same scramble applied to the point *index* maps aligned blocks of `2^m` indices onto
 //! aligned blocks, so prefixes of the shuffled sequence stay nets (the progressive property).
 
-use crate::rng::hash;
+use reyes_sampling::hash;
 
 /// Base-2 Owen scrambling of a bit-reversed integer: bit `k` of the result depends only on
 /// bits `0..=k` of `x` and on `seed`, and the map is a bijection. The Laine-Karras hash

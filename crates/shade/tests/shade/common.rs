@@ -5,8 +5,9 @@
 use std::path::Path;
 
 use glam::Vec3;
+use reyes_sampling::Strata;
 use reyes_scene::Scene;
-use reyes_shade::{Shading, Strata, SurfacePoint, Traced};
+use reyes_shade::{Shading, SurfacePoint, Traced};
 use reyes_trace::{Ray, Tracer};
 
 /// A scene from the RON fields after `image` and `camera` (lights, objects, raytrace, ...).

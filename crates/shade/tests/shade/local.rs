@@ -3,7 +3,8 @@
 
 use glam::Vec3;
 use reyes_dice::Shader;
-use reyes_shade::{BLACK, IVORY, Shading, Strata, SurfacePoint};
+use reyes_sampling::Strata;
+use reyes_shade::{BLACK, IVORY, Shading, SurfacePoint};
 use reyes_trace::Ray;
 
 use crate::common::{patch, scene, trace_one, tracer};

@@ -8,7 +8,8 @@
 //! while x(t) < 0, i.e. for the first half of the shutter.
 
 use glam::Vec3;
-use reyes_shade::{Shading, Strata};
+use reyes_sampling::Strata;
+use reyes_shade::Shading;
 
 use crate::common::{floor_point, patch, scene_with_shutter, simpson, tracer};
 

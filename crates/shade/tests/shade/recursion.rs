@@ -1,7 +1,8 @@
 //! Recursion limits: `max_depth` stops the bounces, `min_weight` prunes faint paths.
 
 use glam::Vec3;
-use reyes_shade::{RayCounts, Shading, Strata};
+use reyes_sampling::Strata;
+use reyes_shade::{RayCounts, Shading};
 use reyes_trace::Ray;
 
 use crate::common::{patch, scene, tracer};

@@ -13,7 +13,8 @@
 //! Invariant: the numbers depend only on `(seed, set, index, count)` and the call order,
 //! never on threads or on other sets; different dimensions are decorrelated.
 
-use reyes_hider::rng::{hash, unit};
+use crate::permute::keyed as permute;
+use crate::rng::{hash, unit};
 
 /// The stream of stratified choices of one member of a set.
 #[derive(Debug, Clone)]
@@ -86,50 +87,9 @@ fn grid_width(n: u32) -> u32 {
     g.max(1)
 }
 
-/// Position of `i` in a pseudo-random permutation of `0..n` keyed by `key`: a bijection
-/// of the smallest power-of-two range holding `n`, walked until it lands below `n`
-/// (cycle walking, so the restriction stays a bijection).
-pub fn permute(i: u32, n: u32, key: u64) -> u32 {
-    debug_assert!(i < n);
-    if n <= 1 {
-        return 0;
-    }
-    let mask = u32::MAX >> (n - 1).leading_zeros();
-    let (k0, k1) = (key as u32, (key >> 32) as u32);
-    let shift = (32 - mask.leading_zeros()).div_ceil(2).max(1);
-    let mut x = i;
-    loop {
-        // Each step is a bijection of 0..=mask: xor with a key, xorshift right, multiply
-        // by an odd number, add; all taken modulo mask + 1.
-        x ^= k0 & mask;
-        x ^= x >> shift;
-        x = x.wrapping_mul(k1 | 1) & mask;
-        x = x.wrapping_add(k0 >> 7) & mask;
-        x ^= x >> shift;
-        x = x.wrapping_mul(0x2c1b_3c6d) & mask;
-        if x < n {
-            return x;
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn permute_is_a_permutation() {
-        for n in [1, 2, 3, 5, 16, 17, 64, 100, 1000] {
-            for key in [0, 1, 0xdead_beef_1234_5678] {
-                let mut seen = vec![false; n as usize];
-                for i in 0..n {
-                    let p = permute(i, n, key);
-                    assert!(!seen[p as usize], "n {n} key {key}: {p} twice");
-                    seen[p as usize] = true;
-                }
-            }
-        }
-    }
 
     #[test]
     fn every_dimension_puts_one_member_in_each_cell() {
