@@ -51,12 +51,12 @@ pub fn run(root: &Path, args: &[String]) -> Result<(), String> {
         }
     }
     let status = Command::new(env!("CARGO"))
-        .args(["build", "--release", "--quiet", "-p", "reyes-render"])
+        .args(["build", "--release", "--quiet", "-p", "reyes-cli"])
         .current_dir(root)
         .status()
         .map_err(|e| format!("cargo build: {e}"))?;
     if !status.success() {
-        return Err("cargo build --release -p reyes-render failed".into());
+        return Err("cargo build --release -p reyes-cli failed".into());
     }
     let bin = root.join("target/release/reyes-render");
     let mut scenes: Vec<PathBuf> = std::fs::read_dir(root.join("scenes/bench"))
@@ -187,12 +187,12 @@ pub fn scaling(root: &Path, args: &[String]) -> Result<(), String> {
         sizes = vec![20, 40, 80];
     }
     let status = Command::new(env!("CARGO"))
-        .args(["build", "--release", "--quiet", "-p", "reyes-render"])
+        .args(["build", "--release", "--quiet", "-p", "reyes-cli"])
         .current_dir(root)
         .status()
         .map_err(|e| format!("cargo build: {e}"))?;
     if !status.success() {
-        return Err("cargo build --release -p reyes-render failed".into());
+        return Err("cargo build --release -p reyes-cli failed".into());
     }
     let bin = root.join("target/release/reyes-render");
     let source = root.join("scenes/bench/heavy-motion.ron");

@@ -9,7 +9,7 @@ mod study;
 
 use std::process::ExitCode;
 
-use reyes_render::golden::{self, Outcome};
+use reyes_testkit::golden::{self, Outcome};
 
 fn usage() -> ExitCode {
     eprintln!(

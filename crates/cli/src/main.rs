@@ -7,7 +7,7 @@
 //! `reyes-render measure SCENE --object NAME [--samples N] [--seed N]` (the first argument
 //! `measure`; a scene file of that name is `./measure`) measures the volume and centre of mass
 //! of a closed object or CSG solid instead of rendering (patent FIG. 23; see
-//! `reyes_render::measure`), with the same exit codes.
+//! `reyes_measure`), with the same exit codes.
 
 use std::ffi::OsStr;
 use std::io::IsTerminal;
@@ -17,7 +17,7 @@ use std::time::Instant;
 
 use clap::Parser;
 use indicatif::{ProgressBar, ProgressStyle};
-use reyes_render::measure::{DEFAULT_SAMPLES, MeasureOptions, measure};
+use reyes_measure::{DEFAULT_SAMPLES, MeasureOptions, measure};
 use reyes_render::{RenderOptions, render};
 
 /// Render a RON scene with a REYES micropolygon renderer and the stochastic hider of

@@ -78,9 +78,11 @@
 mod lights;
 mod pattern;
 mod sample;
+mod vertex;
 
 pub use pattern::{BLACK, IVORY, pattern_color, pool_ball};
 pub use sample::{concentric_disk, disperse};
+pub use vertex::RayVertexShader;
 
 use glam::Vec3;
 use reyes_dice::{Shader, facing};

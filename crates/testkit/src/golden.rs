@@ -15,7 +15,8 @@ use std::path::{Path, PathBuf};
 use reyes_film::Film;
 use serde::Deserialize;
 
-use crate::{RenderOptions, filter_table, frame_for, hider_config, render};
+use reyes_render::settings::Stages;
+use reyes_render::{RenderOptions, render};
 
 /// One golden case.
 #[derive(Debug, Clone, Deserialize)]
@@ -107,11 +108,7 @@ pub fn render_case(root: &Path, case: &Case) -> Result<(Film, f32), GoldenError>
     }
     let film = render(&scene, &RenderOptions::default()).map_err(err)?.film;
     // Largest filter weight, for the tolerance.
-    let frame = frame_for(&scene);
-    let camera = reyes_dice::CameraSetup::new(&scene);
-    let cfg = hider_config(&scene, &camera);
-    let hider = reyes_hider::Hider::new(cfg, frame);
-    let table = filter_table(&scene, &hider).map_err(err)?;
+    let table = Stages::new(&scene, |hider| hider).map_err(err)?.table;
     let w_max = table.weights().iter().fold(0.0f32, |m, &w| m.max(w.abs()));
     Ok((film, w_max))
 }

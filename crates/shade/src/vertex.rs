@@ -24,17 +24,13 @@
 //! never on the order in which grids are diced or on threads.
 
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::time::Instant;
 
 use glam::Vec3;
-use reyes_dice::{CameraSetup, DiceOptions, VertexContext, VertexShader};
-use reyes_sampling::Strata;
-use reyes_sampling::hash;
+use reyes_dice::{CameraSetup, VertexContext, VertexShader};
+use reyes_sampling::{ShutterShape, Strata, hash};
 use reyes_scene::Scene;
-use reyes_shade::{RayCounts, Shading, SurfacePoint};
-use reyes_trace::Tracer;
 
-use crate::{RaySummary, RenderError, RenderOptions, Rendered, render_diced, shutter_shape};
+use crate::{RayCounts, Shading, SurfacePoint};
 
 /// Key of the per-tile stratified sets ("vtile").
 const TILE_SET: u64 = 0x0076_7469_6c65;
@@ -43,7 +39,7 @@ const TILE_SET: u64 = 0x0076_7469_6c65;
 const TILE: u32 = 4;
 
 /// Shades grid vertices with the distributed rays of [`Shading::shade_surface`].
-pub(crate) struct RayVertexShader<'a> {
+pub struct RayVertexShader<'a> {
     shading: &'a Shading<'a>,
     /// The camera eye at shutter open.
     eye: Vec3,
@@ -53,15 +49,20 @@ pub(crate) struct RayVertexShader<'a> {
     /// Per object: still over the shutter, so its rays may sample time.
     still: Vec<bool>,
     /// The shutter's time density (None: closed shutter, everything at time 0).
-    shutter: Option<reyes_hider::ShutterShape>,
+    shutter: Option<ShutterShape>,
     /// Vertices shaded, then shadow, reflection, refraction and continuation rays traced
     /// (sums, so the same whatever the order of dicing).
     counts: [AtomicU64; 5],
 }
 
 impl<'a> RayVertexShader<'a> {
-    /// The vertex shader of `scene` over `shading`.
-    pub(crate) fn new(scene: &Scene, shading: &'a Shading<'a>) -> RayVertexShader<'a> {
+    /// The vertex shader of `scene` over `shading`, whose shutter has the time density
+    /// `shutter`.
+    pub fn new(
+        scene: &Scene,
+        shading: &'a Shading<'a>,
+        shutter: ShutterShape,
+    ) -> RayVertexShader<'a> {
         RayVertexShader {
             shading,
             eye: CameraSetup::new(scene).eye_world(),
@@ -72,8 +73,7 @@ impl<'a> RayVertexShader<'a> {
                 .iter()
                 .map(|o| o.motion.is_empty() && o.deform.is_empty())
                 .collect(),
-            shutter: (scene.camera.shutter.close > scene.camera.shutter.open)
-                .then_some(shutter_shape(scene.camera.shutter.shape)),
+            shutter: (scene.camera.shutter.close > scene.camera.shutter.open).then_some(shutter),
             counts: Default::default(),
         }
     }
@@ -134,38 +134,25 @@ impl VertexShader for RayVertexShader<'_> {
     }
 }
 
-/// Render `scene` with the stochastic hider and ray-traced vertex shading (for scenes that
-/// [`Shading::needed`]: shadows, area lights, reflection, refraction, patterns). The
-/// statistics gain the vertex and secondary-ray counts.
-pub(crate) fn render_shaded(scene: &Scene, opts: &RenderOptions) -> Result<Rendered, RenderError> {
-    let t0 = Instant::now();
-    let tracer = Tracer::new(scene);
-    let shading = Shading::new(scene, &tracer);
-    let shader = RayVertexShader::new(scene, &shading);
-    let t_build = t0.elapsed();
-    let mut rendered = render_diced(scene, opts, &DiceOptions { vertex_shader: Some(&shader) })?;
-    rendered.stats.t_dice += t_build;
-    let counts = &shader.counts;
-    rendered.stats.rays = Some(RaySummary {
-        ray_hider: false,
-        primitives: tracer.primitive_count() as u64,
-        nodes: tracer.node_count() as u64,
-        vertices: counts[0].load(Ordering::Relaxed),
-        vertex_rays: shader.rays,
-        secondary: RayCounts {
-            shadow: counts[1].load(Ordering::Relaxed),
-            reflection: counts[2].load(Ordering::Relaxed),
-            refraction: counts[3].load(Ordering::Relaxed),
-            continuation: counts[4].load(Ordering::Relaxed),
-        },
-        ..Default::default()
-    });
-    Ok(rendered)
+impl RayVertexShader<'_> {
+    /// Rays per effect per vertex (`raytrace.vertex_rays`, at least 1).
+    pub fn rays(&self) -> u32 {
+        self.rays
+    }
+
+    /// The vertices shaded so far, and the secondary rays they traced.
+    pub fn counts(&self) -> (u64, RayCounts) {
+        let c = |k: usize| self.counts[k].load(Ordering::Relaxed);
+        let rays =
+            RayCounts { shadow: c(1), reflection: c(2), refraction: c(3), continuation: c(4) };
+        (c(0), rays)
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use reyes_trace::Tracer;
 
     fn context(i: u32, j: u32) -> VertexContext {
         VertexContext {
@@ -194,7 +181,7 @@ mod tests {
         .unwrap();
         let tracer = Tracer::new(&scene);
         let shading = Shading::new(&scene, &tracer);
-        let shader = RayVertexShader::new(&scene, &shading);
+        let shader = RayVertexShader::new(&scene, &shading, ShutterShape::Uniform);
         let (set, _) = shader.set_of(&context(4, 8));
         let mut members = Vec::new();
         for j in 8..12 {

@@ -4,8 +4,8 @@
 use std::fmt;
 use std::time::Duration;
 
-use reyes_hider::Frame;
-use reyes_scene::Filter;
+use reyes_hider::{Frame, HiderConfig};
+use reyes_scene::{Filter, Scene};
 
 /// The dicer's counts.
 #[derive(Debug, Clone, Copy, Default)]
@@ -113,6 +113,28 @@ fn pct(a: u64, b: u64) -> f64 {
 }
 
 impl RenderStats {
+    /// The statistics of a frame of `scene` rendered with `config` over `frame`, with every
+    /// count and time still zero.
+    pub fn new(scene: &Scene, config: &HiderConfig, frame: Frame) -> RenderStats {
+        RenderStats {
+            width: scene.image.width,
+            height: scene.image.height,
+            samples: (config.nx, config.ny),
+            filter: scene.hider.filter,
+            frame,
+            buckets_rendered: 0,
+            dice: DiceSummary::default(),
+            micropolygons: 0,
+            hider: Default::default(),
+            t_dice: Duration::ZERO,
+            t_hide: Duration::ZERO,
+            t_film: Duration::ZERO,
+            t_write: Duration::ZERO,
+            peak_memory: None,
+            rays: None,
+        }
+    }
+
     /// The counts only (no times): stable across runs and machines.
     pub fn counts(&self) -> String {
         let h = &self.hider;

@@ -1,271 +1,15 @@
-//! `cargo xtask study [--quick]`: regenerate every figure of docs/sampling.md into
-//! docs/study/ from scratch, and `docs/study/results.md` with the measured numbers.
-//!
-//! The computations live in `reyes_render::study` (tested there); this file only runs them
-//! at full size, times them and draws the PNGs with plotters. `--quick` uses small sizes
-//! (a smoke test of the whole pipeline, about a tenth of the time; its numbers are noisy).
-//!
-//! Text is drawn with a TrueType font read at run time: `$REYES_STUDY_FONT`, else DejaVu Sans
-//! from the usual system places (Debian: `apt-get install fonts-dejavu-core`).
+//! The figures of the study, drawn with plotters into docs/study/.
 
-use std::error::Error;
-use std::fmt::Write as _;
 use std::path::Path;
-use std::time::Instant;
 
-use plotters::coord::Shift;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
-use plotters::style::{FontStyle, register_font};
 use reyes_hider::{Frame, Hider, HiderConfig, Pairing, ShutterShape};
-use reyes_render::study::{self, EdgeCase, EdgeStudy, Measured, Sampler, fit_slope};
 use reyes_render::{RenderOptions, render};
 
-type Res<T = ()> = Result<T, Box<dyn Error>>;
-type Area<'a> = DrawingArea<BitMapBackend<'a>, Shift>;
-
-const FONT: &str = "sans-serif";
-
-/// Colour of each sampler in every figure (Okabe-Ito palette).
-fn colour(s: Sampler) -> RGBColor {
-    match s {
-        Sampler::Regular => RGBColor(0, 0, 0),
-        Sampler::Random => RGBColor(150, 150, 150),
-        Sampler::Fig5 => RGBColor(230, 159, 0),
-        Sampler::Fig6 => RGBColor(0, 114, 178),
-        Sampler::Fig7 => RGBColor(0, 158, 115),
-        Sampler::Sobol => RGBColor(213, 94, 0),
-    }
-}
-
-fn load_font() -> Res {
-    let mut candidates: Vec<String> = std::env::var("REYES_STUDY_FONT").into_iter().collect();
-    candidates.extend(
-        [
-            "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
-            "/usr/share/fonts/TTF/DejaVuSans.ttf",
-            "/usr/share/fonts/dejavu/DejaVuSans.ttf",
-            "/usr/local/share/fonts/DejaVuSans.ttf",
-            "/Library/Fonts/Arial.ttf",
-            "C:\\Windows\\Fonts\\arial.ttf",
-        ]
-        .map(String::from),
-    );
-    for path in &candidates {
-        if let Ok(bytes) = std::fs::read(path) {
-            // plotters keeps fonts for the life of the program.
-            let bytes: &'static [u8] = Box::leak(bytes.into_boxed_slice());
-            register_font(FONT, FontStyle::Normal, bytes)
-                .map_err(|_| format!("{path}: not a usable TrueType font"))?;
-            return Ok(());
-        }
-    }
-    Err("no TrueType font found: set REYES_STUDY_FONT=/path/to/font.ttf \
-         (Debian: apt-get install fonts-dejavu-core)"
-        .into())
-}
-
-/// Full-size or quick settings.
-struct Sizes {
-    /// Edges per (case, sampler, sample count).
-    edges: usize,
-    /// Periodogram windows per sampler.
-    windows: u32,
-    /// Zone plate side.
-    zone: u32,
-}
-
-/// One edge case's RMSE per sampler, in the order of [`SIDES`].
-type CaseResults = (EdgeCase, Vec<(Sampler, Vec<Measured>)>);
-
-/// Sample counts of the error curves: n x n per pixel.
-const SIDES: [u32; 5] = [1, 2, 4, 8, 16];
-
-pub fn run(root: &Path, args: &[String]) -> Res {
-    let quick = args.iter().any(|a| a == "--quick");
-    if let Some(a) = args.iter().find(|a| *a != "--quick") {
-        return Err(format!("unknown argument {a} (usage: cargo xtask study [--quick])").into());
-    }
-    let sizes = if quick {
-        Sizes { edges: 6, windows: 8, zone: 96 }
-    } else {
-        Sizes { edges: 64, windows: 64, zone: 192 }
-    };
-    load_font()?;
-    let out = root.join("docs/study");
-    std::fs::create_dir_all(&out)?;
-    let start = Instant::now();
-    let mut log = String::new();
-    let mut step = |name: &str, t: Instant| {
-        let line = format!("{name}: {:.1} s", t.elapsed().as_secs_f64());
-        println!("study: {line}");
-        log.push_str(&format!("| {name} | {:.1} |\n", t.elapsed().as_secs_f64()));
-    };
-
-    let t = Instant::now();
-    patterns(&out.join("patterns.png"))?;
-    step("sample patterns (patterns.png)", t);
-
-    let t = Instant::now();
-    time_figure(&out.join("time.png"))?;
-    step("time against position (time.png)", t);
-
-    let t = Instant::now();
-    let bands = periodograms(&out, sizes.windows)?;
-    step("periodograms (periodograms.png, periodogram-radial.png)", t);
-
-    let t = Instant::now();
-    picket_fence(root, &out.join("picket-fence.png"))?;
-    step("picket fence renders (picket-fence.png)", t);
-
-    let t = Instant::now();
-    zone_plates(&out.join("zone-plate.png"), sizes.zone)?;
-    step("zone plates (zone-plate.png)", t);
-
-    let t = Instant::now();
-    let study = EdgeStudy { edges: sizes.edges, ..EdgeStudy::default() };
-    let mut results = Vec::new();
-    for case in EdgeCase::ALL {
-        let tc = Instant::now();
-        let mut rows = Vec::new();
-        for sampler in Sampler::ALL {
-            let mut m = Vec::new();
-            for n in SIDES {
-                m.push(study.measure(case, sampler, n)?);
-            }
-            rows.push((sampler, m));
-        }
-        println!("study:   {} ({:.1} s)", case.label(), tc.elapsed().as_secs_f64());
-        results.push((case, rows));
-    }
-    error_figure(&out.join("edge-errors.png"), &study, &results)?;
-    step("edge error curves (edge-errors.png)", t);
-
-    let total = start.elapsed().as_secs_f64();
-    let md = results_markdown(&study, &results, &bands, &log, total, quick);
-    std::fs::write(out.join("results.md"), &md)?;
-    println!("{md}");
-    println!("study: wrote {} in {total:.1} s", out.display());
-    Ok(())
-}
-
-fn samples_per_pixel() -> Vec<f64> {
-    SIDES.iter().map(|&n| (n * n) as f64).collect()
-}
-
-fn rmse_of(m: &[Measured]) -> Vec<f64> {
-    m.iter().map(|m| m.rmse).collect()
-}
-
-fn results_markdown(
-    study: &EdgeStudy,
-    results: &[CaseResults],
-    bands: &[(Sampler, Vec<f64>)],
-    log: &str,
-    total: f64,
-    quick: bool,
-) -> String {
-    let spp = samples_per_pixel();
-    let mut md = String::from(
-        "# Sampling study: measured numbers\n\nGenerated by `cargo xtask study`; do not edit. \
-         See [../sampling.md](../sampling.md) for what they mean.\n\n",
-    );
-    if quick {
-        md.push_str("**Quick run (`--quick`): small sizes, noisy numbers.**\n\n");
-    }
-    let _ = writeln!(
-        md,
-        "Edge study: {} random edges per cell of each table, {} x {} images, motion {} px over \
-         the shutter, circle of confusion radius {} px; RMSE over every pixel the edge touches \
-         (analytic value strictly between 0 and 1), +- one standard error with edges as the \
-         independent units (`Measured::from_edges`).\n",
-        study.edges, study.image, study.image, study.motion_px, study.blur_px
-    );
-    md.push_str("## Fitted convergence slopes (log RMSE against log samples per pixel)\n\n");
-    md.push_str("| pattern |");
-    for (case, _) in results {
-        let _ = write!(md, " {} |", case.label());
-    }
-    md.push_str("\n|---|");
-    for _ in results {
-        md.push_str("---|");
-    }
-    md.push('\n');
-    for (i, sampler) in Sampler::ALL.iter().enumerate() {
-        let _ = write!(md, "| {} |", sampler.label());
-        for (_, rows) in results {
-            let _ = write!(md, " {:.2} |", fit_slope(&spp, &rmse_of(&rows[i].1)));
-        }
-        md.push('\n');
-    }
-    for (case, rows) in results {
-        let _ = writeln!(md, "\n## RMSE, {}\n", case.label());
-        md.push_str("| pattern |");
-        for s in &spp {
-            let _ = write!(md, " {s} spp |");
-        }
-        md.push_str("\n|---|");
-        for _ in &spp {
-            md.push_str("---|");
-        }
-        md.push('\n');
-        for (sampler, m) in rows {
-            let _ = write!(md, "| {} |", sampler.label());
-            for m in m {
-                let _ = write!(md, " {:.5} +- {:.5} |", m.rmse, m.se);
-            }
-            md.push('\n');
-        }
-    }
-    md.push_str(
-        "\n## Owen-Sobol against Appendix A's jitter (FIG. 6): RMSE ratio\n\n\
-         Standard error of a ratio from both standard errors (the two samplers see the same \
-         edges, so this overstates it a little).\n\n",
-    );
-    md.push_str("| case | 16 spp | 64 spp | 256 spp |\n|---|---|---|---|\n");
-    for (case, rows) in results {
-        let get = |s: Sampler| &rows.iter().find(|r| r.0 == s).expect("sampler").1;
-        let (sob, fig6) = (get(Sampler::Sobol), get(Sampler::Fig6));
-        let _ = write!(md, "| {} |", case.label());
-        for k in 2..5 {
-            let r = sob[k].rmse / fig6[k].rmse;
-            let se = r
-                * ((sob[k].se / sob[k].rmse).powi(2) + (fig6[k].se / fig6[k].rmse).powi(2)).sqrt();
-            let _ = write!(md, " {r:.3} +- {se:.3} |");
-        }
-        md.push('\n');
-    }
-    md.push_str(
-        "\n## Periodogram power by frequency band\n\nMean of the averaged periodogram \
-         (4 x 4 samples per pixel; 1 = white noise) over rings of frequency |k| in cycles per \
-         pixel, zero frequency left out.\n\n| pattern |",
-    );
-    for (lo, hi) in BANDS {
-        let _ = write!(md, " {lo}-{hi} |");
-    }
-    md.push_str("\n|---|");
-    for _ in BANDS {
-        md.push_str("---|");
-    }
-    md.push('\n');
-    for (sampler, p) in bands {
-        let _ = write!(md, "| {} |", sampler.label());
-        for v in p {
-            let _ = write!(md, " {v:.3} |");
-        }
-        md.push('\n');
-    }
-    md.push_str("\n## Wall time (2 cores)\n\n| step | seconds |\n|---|---|\n");
-    md.push_str(log);
-    let _ = writeln!(md, "| **total** | **{total:.1}** |");
-    md
-}
-
-/// `v` with two significant digits.
-fn significant(v: f64) -> String {
-    let digits = (1 - v.abs().log10().floor() as i32).max(0) as usize;
-    format!("{v:.digits$}")
-}
+use super::edges::{EdgeStudy, fit_slope};
+use super::patterns::{self, Sampler};
+use super::{Area, CaseResults, FONT, Res, colour, rmse_of, samples_per_pixel, significant};
 
 /// Grey level in [0, 1] (linear) as an sRGB colour.
 fn grey(v: f32) -> RGBColor {
@@ -318,7 +62,7 @@ fn grid(
 }
 
 /// FIGS. 3, 5, 6, 7, random and Owen-Sobol: 3 x 3 pixels of 4 x 4 samples each.
-fn patterns(path: &Path) -> Res {
+pub(super) fn patterns(path: &Path) -> Res {
     let root = BitMapBackend::new(path, (1200, 860)).into_drawing_area();
     root.fill(&WHITE)?;
     let root = root.titled(
@@ -326,7 +70,7 @@ fn patterns(path: &Path) -> Res {
         (FONT, 22),
     )?;
     for (panel, sampler) in root.split_evenly((2, 3)).iter().zip(Sampler::ALL) {
-        let pts = study::samples(sampler, 4, 4, 3, 3, 7, Pairing::Decorrelated);
+        let pts = patterns::samples(sampler, 4, 4, 3, 3, 7, Pairing::Decorrelated);
         let mut chart = ChartBuilder::on(panel)
             .caption(sampler.label(), (FONT, 20))
             .margin(12)
@@ -341,7 +85,7 @@ fn patterns(path: &Path) -> Res {
 }
 
 /// FIG. 12 and FIGS. 13-16: the time of each sample against its position.
-fn time_figure(path: &Path) -> Res {
+pub(super) fn time_figure(path: &Path) -> Res {
     let root = BitMapBackend::new(path, (1200, 1180)).into_drawing_area();
     root.fill(&WHITE)?;
     let root = root.titled(
@@ -356,7 +100,7 @@ fn time_figure(path: &Path) -> Res {
     ];
     // Row 1: 2 x 2 pixels of 4 x 4 samples, coloured by time (dark: opening, yellow: closing).
     for (panel, (sampler, pairing, label)) in rows[0].split_evenly((1, 3)).iter().zip(cases) {
-        let pts = study::samples(sampler, 4, 4, 2, 2, 3, pairing);
+        let pts = patterns::samples(sampler, 4, 4, 2, 2, 3, pairing);
         let mut chart = ChartBuilder::on(panel)
             .caption(format!("{label}: colour = time"), (FONT, 16))
             .margin(10)
@@ -369,7 +113,7 @@ fn time_figure(path: &Path) -> Res {
     }
     // Row 2: time against sub-pixel y over 32 x 32 pixels.
     for (panel, (sampler, pairing, label)) in rows[1].split_evenly((1, 3)).iter().zip(cases) {
-        let pts = study::samples(sampler, 4, 4, 32, 32, 3, pairing);
+        let pts = patterns::samples(sampler, 4, 4, 32, 32, 3, pairing);
         let mut chart = ChartBuilder::on(panel)
             .caption(format!("{label}: t against sub-pixel y"), (FONT, 16))
             .margin(10)
@@ -395,7 +139,7 @@ fn time_figure(path: &Path) -> Res {
     // the uniform (FIGS. 13-15) and gradual (FIG. 16) shutters.
     let panels = rows[2].split_evenly((1, 3));
     {
-        let pts = study::samples(Sampler::Fig6, 2, 2, 8, 1, 5, Pairing::Decorrelated);
+        let pts = patterns::samples(Sampler::Fig6, 2, 2, 8, 1, 5, Pairing::Decorrelated);
         let mut chart = ChartBuilder::on(&panels[0])
             .caption("FIGS. 13/14: 4 samples, one per quarter of the shutter", (FONT, 16))
             .margin(10)
@@ -471,15 +215,16 @@ fn time_figure(path: &Path) -> Res {
 }
 
 /// Frequency bands (cycles per pixel) of the periodogram table in results.md.
-const BANDS: [(f64, f64); 5] = [(0.0, 0.5), (0.5, 1.0), (1.0, 2.0), (2.0, 4.0), (4.0, 8.0)];
+pub(super) const BANDS: [(f64, f64); 5] =
+    [(0.0, 0.5), (0.5, 1.0), (1.0, 2.0), (2.0, 4.0), (4.0, 8.0)];
 
 /// Periodograms of every pattern (FIGS. 10, 11): 2-D maps and radial averages. Returns each
 /// pattern's mean power in [`BANDS`].
-fn periodograms(out: &Path, windows: u32) -> Res<Vec<(Sampler, Vec<f64>)>> {
+pub(super) fn periodograms(out: &Path, windows: u32) -> Res<Vec<(Sampler, Vec<f64>)>> {
     let (half, step) = (64usize, 0.125);
-    let spectra: Vec<(Sampler, study::Spectrum)> = Sampler::ALL
+    let spectra: Vec<(Sampler, patterns::Spectrum)> = Sampler::ALL
         .iter()
-        .map(|&s| (s, study::mean_periodogram(s, 4, 8, windows, half, step, 11)))
+        .map(|&s| (s, patterns::mean_periodogram(s, 4, 8, windows, half, step, 11)))
         .collect();
     let bands = spectra
         .iter()
@@ -581,7 +326,7 @@ fn draw_image(area: &Area, img: &[f32], w: u32, scale: u32, at: (i32, i32)) -> R
 
 /// The picket fence (patent FIGS. 8 and 9) rendered with the regular grid, FIG. 6 jitter and
 /// Owen-Sobol.
-fn picket_fence(root_dir: &Path, path: &Path) -> Res {
+pub(super) fn picket_fence(root_dir: &Path, path: &Path) -> Res {
     let regular = reyes_scene::load(&root_dir.join("scenes/picket-fence.ron"))?;
     let jittered = reyes_scene::load(&root_dir.join("scenes/picket-fence-jittered.ron"))?;
     let mut sobol = jittered.clone();
@@ -615,9 +360,9 @@ fn picket_fence(root_dir: &Path, path: &Path) -> Res {
 }
 
 /// The zone plate point-sampled through every pattern at 1 and 2 x 2 samples per pixel.
-fn zone_plates(path: &Path, size: u32) -> Res {
+pub(super) fn zone_plates(path: &Path, size: u32) -> Res {
     let f = 1.5;
-    let reference = study::zone_plate_reference(size, f);
+    let reference = patterns::zone_plate_reference(size, f);
     let cols = 1 + Sampler::ALL.len() as u32;
     let (cw, ch) = (size + 12, size + 28);
     let root = BitMapBackend::new(path, (cols * cw + 12, 2 * ch + 36)).into_drawing_area();
@@ -633,7 +378,7 @@ fn zone_plates(path: &Path, size: u32) -> Res {
     for (row, n) in [1u32, 2].into_iter().enumerate() {
         let mut images = vec![("box-filtered truth".to_string(), reference.clone())];
         for s in Sampler::ALL {
-            images.push((s.label().to_string(), study::zone_plate(s, n, size, f, 3)));
+            images.push((s.label().to_string(), patterns::zone_plate(s, n, size, f, 3)));
         }
         for (i, (label, img)) in images.iter().enumerate() {
             let (x0, y0) = (12 + i as i32 * cw as i32, row as i32 * ch as i32);
@@ -647,7 +392,7 @@ fn zone_plates(path: &Path, size: u32) -> Res {
 
 /// RMSE against samples per pixel, log-log, one panel per edge case. The axes are linear in
 /// log10 of the values (labelled with the values), so the grid and labels stay plain.
-fn error_figure(path: &Path, study: &EdgeStudy, results: &[CaseResults]) -> Res {
+pub(super) fn error_figure(path: &Path, study: &EdgeStudy, results: &[CaseResults]) -> Res {
     let spp = samples_per_pixel();
     let lspp: Vec<f64> = spp.iter().map(|s| s.log10()).collect();
     let root = BitMapBackend::new(path, (1400, 1160)).into_drawing_area();

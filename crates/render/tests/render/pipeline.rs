@@ -1,38 +1,9 @@
 //! End-to-end rendering tests: analytic coverage through the whole pipeline (scene, dicer,
 //! hider, film), determinism across thread counts, and the golden images.
 
-use reyes_render::golden::{self, Outcome};
 use reyes_render::{RenderOptions, render};
-
-/// Area of the convex polygon `poly` inside the unit pixel `[px, px+1] x [py, py+1]`
-/// (Sutherland-Hodgman clipping, then the shoelace formula), in f64.
-fn pixel_coverage(poly: &[(f64, f64)], px: f64, py: f64) -> f64 {
-    let mut pts: Vec<(f64, f64)> = poly.to_vec();
-    let planes: [(f64, f64, f64); 4] =
-        [(1.0, 0.0, px), (-1.0, 0.0, -(px + 1.0)), (0.0, 1.0, py), (0.0, -1.0, -(py + 1.0))];
-    for (a, b, c) in planes {
-        // keep a*x + b*y >= c
-        let mut out = Vec::new();
-        for k in 0..pts.len() {
-            let (p, q) = (pts[k], pts[(k + 1) % pts.len()]);
-            let (fp, fq) = (a * p.0 + b * p.1 - c, a * q.0 + b * q.1 - c);
-            if fp >= 0.0 {
-                out.push(p);
-            }
-            if (fp >= 0.0) != (fq >= 0.0) {
-                let t = fp / (fp - fq);
-                out.push((p.0 + t * (q.0 - p.0), p.1 + t * (q.1 - p.1)));
-            }
-        }
-        pts = out;
-        if pts.is_empty() {
-            return 0.0;
-        }
-    }
-    let n = pts.len();
-    (0..n).map(|k| pts[k].0 * pts[(k + 1) % n].1 - pts[(k + 1) % n].0 * pts[k].1).sum::<f64>().abs()
-        / 2.0
-}
+use reyes_testkit::geometry::coverage_of_pixel as pixel_coverage;
+use reyes_testkit::golden::{self, Outcome};
 
 /// A white triangle facing a camera at the origin, 90 degree fov on a 64x64 image, so a point
 /// (x, y, 1) lands on raster (32 + 32x, 32 - 32y). Returns the scene text and the triangle

@@ -1,0 +1,58 @@
+//! reyes-render: renders a validated [`Scene`] into a [`Film`]. It wires the stages together
+//! (scene → dicer → hider → film) and owns what is shared by both hiders:
+//!
+//! - [`settings`]: the one place where scene settings become stage settings (the hider's
+//!   configuration, the bucket frame, the filter table, the shutter's shape);
+//! - [`pool`]: the one thread pool and the fixed-order merge of bucket windows into the film;
+//! - [`stochastic`]: Appendix A's bucket loop, with lazy dicing row by row of buckets and,
+//!   where the scene needs it, ray-traced vertex shading;
+//! - [`rayhide`]: Appendix B's ray-tracing hider over the same samples and filter;
+//! - [`stats`]: what `--stats` prints.
+//!
+//! Invariant (determinism): every bucket's result depends only on the scene, the seed and the
+//! bucket index, and bucket windows are added to the image in bucket raster order, so the
+//! output is bit-identical for any thread count and scheduling.
+#![deny(missing_docs)]
+
+mod error;
+pub mod pool;
+pub mod rayhide;
+pub mod settings;
+pub mod stats;
+pub mod stochastic;
+
+pub use error::RenderError;
+pub use reyes_film::Film;
+pub use settings::{filter_table, frame_for, hider_config, shutter_shape};
+pub use stats::{DiceSummary, RaySummary, RenderStats, peak_memory};
+pub use stochastic::render_diced;
+
+use reyes_scene::{HiderMethod, Scene};
+
+/// Options that are not part of the scene.
+#[derive(Default)]
+pub struct RenderOptions<'a> {
+    /// Worker threads (None: rayon's default, one per core).
+    pub threads: Option<usize>,
+    /// Called once per finished bucket (from worker threads), e.g. to advance a progress bar.
+    pub on_bucket: Option<&'a (dyn Fn() + Sync)>,
+}
+
+/// A rendered frame.
+pub struct Rendered {
+    /// The image.
+    pub film: Film,
+    /// What it took.
+    pub stats: RenderStats,
+}
+
+/// Render a validated scene: with the ray-tracing hider when the scene asks for it, else
+/// with the stochastic hider, shading vertices with distributed rays where the scene needs
+/// them (shadows, area lights, reflection, refraction, patterns) and with the dicer's local
+/// illumination otherwise.
+pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<Rendered, RenderError> {
+    match scene.hider.method {
+        HiderMethod::RayTrace => rayhide::render_raytraced(scene, opts),
+        HiderMethod::Stochastic => stochastic::render_stochastic(scene, opts),
+    }
+}

@@ -1,0 +1,123 @@
+//! The one place where scene settings become stage settings: the hider's configuration, the
+//! bucket frame, the filter table and the shutter's time density. Both hiders, the golden
+//! harness and the tests read them from here, so they cannot drift apart.
+//!
+//! Invariant: every function here is a pure function of the (validated) scene.
+
+use reyes_dice::CameraSetup;
+use reyes_film::{FilmError, FilterTable};
+use reyes_hider::{
+    CsgOrder, Frame, Hider, HiderConfig, LensShape, MatteRule, Pairing, Pattern, ShutterShape,
+    TimePattern, border_for_filter_width,
+};
+use reyes_scene::{Scene, SpatialPattern};
+
+/// The hider configuration a scene asks for.
+pub fn hider_config(scene: &Scene, camera: &CameraSetup) -> HiderConfig {
+    let h = &scene.hider;
+    let pattern = if !h.jitter {
+        Pattern::Regular
+    } else {
+        match h.pattern {
+            SpatialPattern::Fig5 => Pattern::Fig5,
+            SpatialPattern::Fig6 => Pattern::Fig6,
+            SpatialPattern::Fig7 => Pattern::Fig7,
+            SpatialPattern::Random => Pattern::Random,
+            SpatialPattern::Sobol => Pattern::Sobol,
+        }
+    };
+    HiderConfig {
+        nx: h.pixel_samples.0,
+        ny: h.pixel_samples.1,
+        pattern,
+        time_pairing: if h.original.time_pairing {
+            Pairing::Original
+        } else {
+            Pairing::Decorrelated
+        },
+        time_pattern: match h.time_pattern {
+            reyes_scene::TimePattern::Fig13 => TimePattern::Fig13,
+            reyes_scene::TimePattern::Fig14 => TimePattern::Fig14,
+            reyes_scene::TimePattern::Fig15 => TimePattern::Fig15,
+        },
+        shutter: shutter_shape(scene.camera.shutter.shape),
+        lens_shape: if h.original.lens { LensShape::OriginalSquare } else { LensShape::Disk },
+        lens: camera.lens(),
+        hither: scene.camera.hither,
+        yon: scene.camera.yon,
+        seed: h.seed,
+        original_permute: h.original.permute,
+        original_jitter_tables: h.original.jitter_tables,
+        original_moving_clip: h.original.moving_clip,
+        matte: if h.original.matte { MatteRule::Original } else { MatteRule::Holdout },
+        csg_order: if h.original.csg_order { CsgOrder::Original } else { CsgOrder::Exact },
+        scan_all: false,
+    }
+}
+
+/// The filter table of a scene's `hider.filter` over `hider`'s sample locations (shared by
+/// both hiders and the golden tolerance).
+pub fn filter_table(scene: &Scene, hider: &Hider) -> Result<FilterTable, FilmError> {
+    let f = &scene.hider.filter;
+    let config = hider.config();
+    FilterTable::new(
+        f.kind,
+        f.width,
+        config.nx,
+        config.ny,
+        &hider.tables().location,
+        &scene.hider.original,
+    )
+}
+
+/// The time density of a scene's shutter shape.
+pub fn shutter_shape(shape: reyes_scene::ShutterShape) -> ShutterShape {
+    match shape {
+        reyes_scene::ShutterShape::Uniform => ShutterShape::Uniform,
+        reyes_scene::ShutterShape::Gradual { ramp } => ShutterShape::Gradual { ramp },
+    }
+}
+
+/// The bucket layout a scene asks for.
+pub fn frame_for(scene: &Scene) -> Frame {
+    Frame::new(
+        scene.image.width,
+        scene.image.height,
+        border_for_filter_width(scene.hider.filter.width),
+        scene.hider.bucket_size.0,
+        scene.hider.bucket_size.1,
+    )
+}
+
+/// Everything a hider needs of a scene, set up once: the frame, the camera, the hider with
+/// its sample tables, and the filter table over its sample locations.
+pub struct Stages {
+    /// The bucket layout.
+    pub frame: Frame,
+    /// The camera.
+    pub camera: CameraSetup,
+    /// The stochastic hider (both hiders take their samples from it).
+    pub hider: Hider,
+    /// The reconstruction filter's table.
+    pub table: FilterTable,
+}
+
+impl Stages {
+    /// Set up the stages of `scene`; `hider` may add to the hider (CSG trees) before the
+    /// filter table is built over its sample locations.
+    pub fn new(scene: &Scene, hider: impl FnOnce(Hider) -> Hider) -> Result<Stages, FilmError> {
+        Stages::with_frame(scene, frame_for(scene), hider)
+    }
+
+    /// [`Stages::new`] with the frame already laid out ([`frame_for`] of the scene).
+    pub fn with_frame(
+        scene: &Scene,
+        frame: Frame,
+        hider: impl FnOnce(Hider) -> Hider,
+    ) -> Result<Stages, FilmError> {
+        let camera = CameraSetup::new(scene);
+        let hider = hider(Hider::new(hider_config(scene, &camera), frame));
+        let table = filter_table(scene, &hider)?;
+        Ok(Stages { frame, camera, hider, table })
+    }
+}

@@ -1,0 +1,196 @@
+//! The stochastic hider's frame (Appendix A): dice, shade and bucket the scene row of
+//! buckets by row of buckets ([`Dicer`]), render each row's buckets in parallel with the
+//! [`Hider`], splat their samples through the filter table, and add their windows to the
+//! film in bucket raster order.
+//!
+//! Vertices are shaded by the dicer's local illumination, or, when the scene needs shadows,
+//! area lights, reflection, refraction or patterns ([`Shading::needed`]), by the distributed
+//! rays of [`RayVertexShader`].
+//!
+//! Invariant (determinism): a bucket's window depends only on the scene, the seed and the
+//! bucket; windows are merged in raster order ([`pool::merge`]).
+
+use std::time::{Duration, Instant};
+
+use rayon::prelude::*;
+use reyes_dice::{DiceError, DiceOptions, DiceStats, Dicer};
+use reyes_film::{Film, Window, splat};
+use reyes_hider::Scratch;
+use reyes_scene::Scene;
+use reyes_shade::{RayVertexShader, Shading};
+use reyes_trace::Tracer;
+
+use crate::pool::{self, Pool};
+use crate::settings::{Stages, frame_for, shutter_shape};
+use crate::stats::{DiceSummary, RaySummary, RenderStats};
+use crate::{RenderError, RenderOptions, Rendered};
+
+/// Render `scene` with the stochastic hider, shading vertices with distributed rays where
+/// the scene needs them and with the dicer's local illumination otherwise.
+pub(crate) fn render_stochastic(
+    scene: &Scene,
+    opts: &RenderOptions,
+) -> Result<Rendered, RenderError> {
+    if Shading::needed(scene) {
+        render_shaded(scene, opts)
+    } else {
+        render_diced(scene, opts, &DiceOptions::default())
+    }
+}
+
+/// Render `scene` with the stochastic hider and ray-traced vertex shading. The statistics
+/// gain the vertex and secondary-ray counts.
+fn render_shaded(scene: &Scene, opts: &RenderOptions) -> Result<Rendered, RenderError> {
+    let t0 = Instant::now();
+    let tracer = Tracer::new(scene);
+    let shading = Shading::new(scene, &tracer);
+    let shader = RayVertexShader::new(scene, &shading, shutter_shape(scene.camera.shutter.shape));
+    let t_build = t0.elapsed();
+    let mut rendered = render_diced(scene, opts, &DiceOptions { vertex_shader: Some(&shader) })?;
+    rendered.stats.t_dice += t_build;
+    let (vertices, secondary) = shader.counts();
+    rendered.stats.rays = Some(RaySummary {
+        ray_hider: false,
+        primitives: tracer.primitive_count() as u64,
+        nodes: tracer.node_count() as u64,
+        vertices,
+        vertex_rays: shader.rays(),
+        secondary,
+        ..Default::default()
+    });
+    Ok(rendered)
+}
+
+/// Render a validated scene with the stochastic hider, dicing it lazily row of buckets by row
+/// of buckets ([`Dicer`]) with `dice_options`. Should a patch bound miss (a micropolygon
+/// touching a row already rendered), the frame is rendered again with the whole scene
+/// diced up front, which gives the same image.
+pub fn render_diced(
+    scene: &Scene,
+    opts: &RenderOptions,
+    dice_options: &DiceOptions<'_>,
+) -> Result<Rendered, RenderError> {
+    let pool = Pool::new(opts.threads)?;
+    let run = |eager: bool| pool.install(|| render_rows(scene, opts, dice_options, eager));
+    match run(false) {
+        Err(RenderError::Dice(DiceError::BoundMissed { .. })) => run(true),
+        result => result,
+    }
+}
+
+/// Per-thread buffers, reused from bucket to bucket.
+#[derive(Default)]
+struct Buffers {
+    scratch: Scratch,
+    window: Window,
+    /// The bucket's own contiguous copy of its micropolygons.
+    mpolys: Vec<reyes_hider::Micropolygon>,
+    /// `0..n`: the indices of `mpolys`.
+    list: Vec<u32>,
+}
+
+/// The bucket loop: per row of buckets, dice what it needs, render its buckets in parallel,
+/// add their windows to the film in raster order, release what no later row needs.
+fn render_rows(
+    scene: &Scene,
+    opts: &RenderOptions,
+    dice_options: &DiceOptions<'_>,
+    eager: bool,
+) -> Result<Rendered, RenderError> {
+    let t0 = Instant::now();
+    let frame = frame_for(scene);
+    let mut dicer = if eager {
+        Dicer::new_eager(scene, &frame, dice_options)
+    } else {
+        Dicer::new(scene, &frame, dice_options)
+    }?;
+    let mut t_dice = t0.elapsed();
+    let Stages { hider, table, .. } =
+        Stages::with_frame(scene, frame, |hider| hider.with_csg(dicer.csg_trees().to_vec()))?;
+
+    let (mut t_hide, mut t_film) = (Duration::ZERO, Duration::ZERO);
+    let mut film = Film::new(scene.image.width, scene.image.height);
+    let mut hider_stats = reyes_hider::Stats::default();
+    let mut buckets_rendered = 0;
+    let across = frame.buckets_x as usize;
+    for row in 0..dicer.rows() {
+        let t = Instant::now();
+        dicer.dice_row(row)?;
+        t_dice += t.elapsed();
+
+        let t = Instant::now();
+        let first = row as usize * across;
+        let diced = &dicer;
+        let results = (first..first + across)
+            .into_par_iter()
+            .map_init(Buffers::default, |buf, b| {
+                let result = if diced.bucket_len(b) == 0 {
+                    // Appendix A's `emptybucket`: nothing to display.
+                    (None, Default::default())
+                } else {
+                    diced.copy_bucket(b, &mut buf.mpolys);
+                    let n = buf.mpolys.len() as u32;
+                    if (buf.list.len() as u32) < n {
+                        buf.list.extend(buf.list.len() as u32..n);
+                    }
+                    buf.scratch.stats = Default::default();
+                    let out = hider.render_bucket(
+                        b,
+                        &buf.mpolys,
+                        &buf.list[..n as usize],
+                        &mut buf.scratch,
+                    );
+                    let (left, top) = frame.bucket_origin(b);
+                    splat(
+                        &table,
+                        left,
+                        top,
+                        frame.bucket_w,
+                        frame.bucket_h,
+                        out.rgba,
+                        out.z,
+                        &mut buf.window,
+                    );
+                    (Some(buf.window.clone()), buf.scratch.stats)
+                };
+                if let Some(cb) = opts.on_bucket {
+                    cb();
+                }
+                result
+            })
+            .collect::<Vec<_>>();
+        t_hide += t.elapsed();
+
+        let t = Instant::now();
+        buckets_rendered += pool::merge(&mut film, &results, |s| hider_stats.merge(s));
+        t_film += t.elapsed();
+        dicer.release_row(row);
+    }
+    let dice_stats = dicer.stats();
+    let stats = RenderStats {
+        buckets_rendered,
+        dice: DiceSummary {
+            peak_micropolygons: dicer.peak_micropolygons(),
+            eager,
+            ..dice_summary(&dice_stats)
+        },
+        micropolygons: dice_stats.micropolygons,
+        hider: hider_stats,
+        t_dice,
+        t_hide,
+        t_film,
+        ..RenderStats::new(scene, hider.config(), frame)
+    };
+    Ok(Rendered { film, stats })
+}
+
+fn dice_summary(d: &DiceStats) -> DiceSummary {
+    DiceSummary {
+        primitives: d.primitives,
+        splits: d.splits,
+        grids: d.grids,
+        culled: d.culled,
+        peak_micropolygons: 0,
+        eager: false,
+    }
+}
