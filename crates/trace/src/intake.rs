@@ -135,7 +135,6 @@ fn corners(lo: DVec3, hi: DVec3) -> [DVec3; 8] {
 /// Primitives being collected, with their boxes (`None`: unbounded).
 #[derive(Default)]
 struct Builder {
-    objects: Vec<ObjectData>,
     prims: Vec<(Primitive, Option<Aabb>)>,
 }
 
@@ -152,8 +151,8 @@ impl Builder {
         self.prims.push((Primitive { geometry, id, object, surface, face }, bounds));
     }
 
-    /// Adds `object` (index `index`): its placement and its primitives.
-    fn add(&mut self, index: u32, object: &Object, scene: &Scene) {
+    /// Adds the primitives of `object` (index `index`) and returns its data.
+    fn add(&mut self, index: u32, object: &Object, scene: &Scene) -> ObjectData {
         let shutter = scene.camera.shutter;
         let span = shutter.close - shutter.open;
         let closed = !span.is_finite() || span <= 0.0;
@@ -173,7 +172,7 @@ impl Builder {
         let mut placement = Placement::from_keys(keys);
         let mut unbake = None;
         if placement == Placement::Degenerate {
-            return;
+            return ObjectData { placement, deform: Vec::new(), unbake: None };
         }
 
         // Points of a mesh or patch, per deformation key (one key when still).
@@ -202,19 +201,11 @@ impl Builder {
         if point_keys.is_empty() {
             point_keys = vec![PointKey { time: 0.0, points: own_points }];
         }
-        // A still affine placement is baked into the points (exact: the dicer applies the
-        // same matrix to the same points).
+        // A still affine placement of a mesh or patch is baked into its points (exact: the
+        // dicer applies the same matrix to the same points).
         if let Placement::Static(_) = &placement
             && !is_projective(&still)
-            && !matches!(
-                object.shape,
-                Shape::Sphere { .. }
-                    | Shape::Cylinder { .. }
-                    | Shape::Cone { .. }
-                    | Shape::Paraboloid { .. }
-                    | Shape::Disk { .. }
-                    | Shape::Torus { .. }
-            )
+            && matches!(object.shape, Shape::BilinearPatch { .. } | Shape::Mesh { .. })
         {
             for key in &mut point_keys {
                 for p in &mut key.points {
@@ -229,16 +220,26 @@ impl Builder {
         }
         let matrices = placement.key_matrices();
         let deforming = point_keys.len() > 1;
-        let point_sets = |idx: &[u32]| -> Vec<DVec3> {
-            point_keys
+        // The box of the points `idx` at every deformation key under every transform key.
+        let bound = |idx: &[u32]| {
+            let points: Vec<DVec3> = point_keys
                 .iter()
                 .flat_map(|k| {
                     idx.iter().filter_map(|&i| k.points.get(i as usize)).map(|p| p.as_dvec3())
                 })
-                .collect()
+                .collect();
+            bound_points(&matrices, &points)
         };
         let first_points = point_keys.first().map_or(&[][..], |k| k.points.as_slice());
         let first = |i: u32| first_points.get(i as usize).copied().unwrap_or(Vec3::ZERO);
+        // The bilinear patch with corners `idx`, RenderMan order.
+        let patch = |idx: [u32; 4]| {
+            if deforming {
+                Geometry::DeformingPatch(idx)
+            } else {
+                Geometry::Patch(idx.map(|i| first(i).as_dvec3()))
+            }
+        };
 
         match &object.shape {
             Shape::Sphere { .. }
@@ -255,13 +256,7 @@ impl Builder {
             }
             Shape::BilinearPatch { .. } => {
                 let idx = [0, 1, 2, 3];
-                let b = bound_points(&matrices, &point_sets(&idx));
-                let g = if deforming {
-                    Geometry::DeformingPatch(idx)
-                } else {
-                    Geometry::Patch(idx.map(|i| first(i).as_dvec3()))
-                };
-                self.push(g, index, 0, 0, b);
+                self.push(patch(idx), index, 0, 0, bound(&idx));
             }
             Shape::Mesh { points, faces, .. } => {
                 let mut surface = 0u32;
@@ -274,19 +269,13 @@ impl Builder {
                         4 => {
                             // Around the face a, b, c, d: P0 = a, P1 = b, P2 = d, P3 = c.
                             let idx = [face[0], face[1], face[3], face[2]];
-                            let b = bound_points(&matrices, &point_sets(&idx));
-                            let g = if deforming {
-                                Geometry::DeformingPatch(idx)
-                            } else {
-                                Geometry::Patch(idx.map(|i| first(i).as_dvec3()))
-                            };
-                            self.push(g, index, surface, f as u32, b);
+                            self.push(patch(idx), index, surface, f as u32, bound(&idx));
                             surface += 1;
                         }
                         n => {
                             for k in 1..n - 1 {
                                 let idx = [face[0], face[k], face[k + 1]];
-                                let b = bound_points(&matrices, &point_sets(&idx));
+                                let b = bound(&idx);
                                 let g = if deforming {
                                     Geometry::DeformingTriangle(idx)
                                 } else {
@@ -301,32 +290,20 @@ impl Builder {
             }
         }
         let deform = if deforming { point_keys } else { Vec::new() };
-        // Keep `objects[index]` aligned with scene indices.
-        while self.objects.len() < index as usize {
-            self.objects.push(ObjectData {
-                placement: Placement::Degenerate,
-                deform: Vec::new(),
-                unbake: None,
-            });
-        }
-        self.objects.push(ObjectData { placement, deform, unbake });
+        ObjectData { placement, deform, unbake }
     }
 }
 
 /// Builds the primitives of every object of `scene` and the hierarchy over them.
 pub(crate) fn build(scene: &Scene) -> Tracer {
     let mut builder = Builder::default();
-    for (i, object) in scene.objects.iter().enumerate() {
-        builder.add(i as u32, object, scene);
-    }
-    let mut objects = builder.objects;
-    while objects.len() < scene.objects.len() {
-        objects.push(ObjectData {
-            placement: Placement::Degenerate,
-            deform: Vec::new(),
-            unbake: None,
-        });
-    }
+    // One entry per scene object, so that `objects[i]` is `scene.objects[i]`.
+    let objects: Vec<ObjectData> = scene
+        .objects
+        .iter()
+        .enumerate()
+        .map(|(i, object)| builder.add(i as u32, object, scene))
+        .collect();
     let (bounded, unbounded): (Vec<_>, Vec<_>) =
         builder.prims.into_iter().partition(|(_, b)| b.is_some());
     let boxes: Vec<Aabb> = bounded.iter().map(|(_, b)| b.unwrap_or(Aabb::EMPTY)).collect();
