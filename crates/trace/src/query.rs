@@ -287,6 +287,7 @@ impl Tracer {
 }
 
 /// The deforming points `idx` at normalised `time`.
+#[inline]
 fn deformed<const N: usize>(keys: &[PointKey], idx: &[u32; N], time: f32) -> Option<[Vec3; N]> {
     let (i, j, w) = bracket(keys.iter().map(|k| k.time), time);
     let (a, b) = (&keys.get(i)?.points, &keys.get(j)?.points);
