@@ -196,14 +196,14 @@ pub(crate) fn triangle_normal(tri: &[Vec3; 3]) -> Vec3 {
 mod tests {
     use super::*;
 
+    /// Patch corners from their coordinates, in RenderMan order.
+    fn corners(c: [[f64; 3]; 4]) -> [DVec3; 4] {
+        c.map(DVec3::from)
+    }
+
     #[test]
     fn flat_square_patch_is_hit_at_the_right_uv() {
-        let p = [
-            DVec3::new(0.0, 0.0, 0.0),
-            DVec3::new(2.0, 0.0, 0.0),
-            DVec3::new(0.0, 1.0, 0.0),
-            DVec3::new(2.0, 1.0, 0.0),
-        ];
+        let p = corners([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 1.0, 0.0], [2.0, 1.0, 0.0]]);
         let ray = LocalRay::world(Vec3::new(0.5, 0.25, 3.0), Vec3::new(0.0, 0.0, -1.0));
         let hit = bilinear(&p, &ray).expect("hit");
         assert!((hit.s - 3.0).abs() < 1e-12);
@@ -213,12 +213,7 @@ mod tests {
 
     #[test]
     fn twisted_patch_hits_satisfy_the_patch_equation() {
-        let p = [
-            DVec3::new(0.0, 0.0, 0.0),
-            DVec3::new(1.0, 0.0, 1.0),
-            DVec3::new(0.0, 1.0, 1.0),
-            DVec3::new(1.0, 1.0, 0.0),
-        ];
+        let p = corners([[0.0, 0.0, 0.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0], [1.0, 1.0, 0.0]]);
         for i in 0..=10 {
             for j in 0..=10 {
                 let (u, v) = (0.01 + 0.098 * i as f64, 0.01 + 0.098 * j as f64);

@@ -183,20 +183,15 @@ impl Quadric {
                 let a = d.x * d.x + d.y * d.y;
                 let b = 2.0 * (o.x * d.x + o.y * d.y);
                 let c = o.x * o.x + o.y * o.y - radius * radius;
-                for &s in quadratic(a, b, c).as_slice() {
-                    if s.is_nan() || s <= 0.0 {
-                        continue;
-                    }
-                    let p = o + d * s;
+                first_root(ray, a, b, c, |s, p| {
                     if p.z < *zmin || p.z > *zmax {
-                        continue;
+                        return None;
                     }
-                    let Some(theta) = sweep.angle(p.x, p.y) else { continue };
+                    let theta = sweep.angle(p.x, p.y)?;
                     let n = DVec3::new(p.x, p.y, 0.0) / *radius;
                     let v = (p.z - zmin) / (zmax - zmin);
-                    return Some(LocalHit { s, p, n, u: sweep.u(theta), v });
-                }
-                None
+                    Some(LocalHit { s, p, n, u: sweep.u(theta), v })
+                })
             }
             Quadric::Cone { height, radius, sweep } => {
                 let (o, d, h, r) = (ray.o, ray.d, *height, *radius);
@@ -205,22 +200,17 @@ impl Quadric {
                 let a = d.x * d.x + d.y * d.y - k * k * d.z * d.z;
                 let b = 2.0 * (o.x * d.x + o.y * d.y + m * k * d.z);
                 let c = o.x * o.x + o.y * o.y - m * m;
-                for &s in quadratic(a, b, c).as_slice() {
-                    if s.is_nan() || s <= 0.0 {
-                        continue;
-                    }
-                    let p = o + d * s;
+                first_root(ray, a, b, c, |s, p| {
                     let v = p.z / h;
                     if !(0.0..=1.0).contains(&v) {
-                        continue;
+                        return None;
                     }
-                    let Some(theta) = sweep.angle(p.x, p.y) else { continue };
+                    let theta = sweep.angle(p.x, p.y)?;
                     let rho = p.x.hypot(p.y);
                     let (cx, cy) = if rho > 0.0 { (p.x / rho, p.y / rho) } else { (1.0, 0.0) };
                     let n = DVec3::new(h.abs() * cx, h.abs() * cy, r.copysign(h));
-                    return Some(LocalHit { s, p, n, u: sweep.u(theta), v });
-                }
-                None
+                    Some(LocalHit { s, p, n, u: sweep.u(theta), v })
+                })
             }
             Quadric::Paraboloid { rmax, zmin, zmax, sweep } => {
                 // x^2 + y^2 - k z = 0 with k = rmax^2 / zmax: a quadratic in s.
@@ -229,21 +219,16 @@ impl Quadric {
                 let a = d.x * d.x + d.y * d.y;
                 let b = 2.0 * (o.x * d.x + o.y * d.y) - k * d.z;
                 let c = o.x * o.x + o.y * o.y - k * o.z;
-                for &s in quadratic(a, b, c).as_slice() {
-                    if s.is_nan() || s <= 0.0 {
-                        continue;
-                    }
-                    let p = o + d * s;
+                first_root(ray, a, b, c, |s, p| {
                     if p.z < *zmin || p.z > *zmax {
-                        continue;
+                        return None;
                     }
-                    let Some(theta) = sweep.angle(p.x, p.y) else { continue };
+                    let theta = sweep.angle(p.x, p.y)?;
                     // The gradient: away from the axis and down, out of the solid bowl.
                     let n = DVec3::new(2.0 * p.x, 2.0 * p.y, -k);
                     let v = (p.z - zmin) / (zmax - zmin);
-                    return Some(LocalHit { s, p, n, u: sweep.u(theta), v });
-                }
-                None
+                    Some(LocalHit { s, p, n, u: sweep.u(theta), v })
+                })
             }
             Quadric::Disk { height, radius, sweep } => {
                 let (o, d) = (ray.o, ray.d);
@@ -267,6 +252,27 @@ impl Quadric {
             }
         }
     }
+}
+
+/// The hit at the first root `s > 0` of `a s^2 + b s + c` (ascending) whose point
+/// `o + d s` the shape's `hit` accepts (within its cuts and sweep).
+#[inline]
+fn first_root(
+    ray: &LocalRay,
+    a: f64,
+    b: f64,
+    c: f64,
+    hit: impl Fn(f64, DVec3) -> Option<LocalHit>,
+) -> Option<LocalHit> {
+    for &s in quadratic(a, b, c).as_slice() {
+        if s.is_nan() || s <= 0.0 {
+            continue;
+        }
+        if let Some(h) = hit(s, ray.o + ray.d * s) {
+            return Some(h);
+        }
+    }
+    None
 }
 
 /// Parameters `s > 0` where the ray meets the sphere of radius `r` about the origin,

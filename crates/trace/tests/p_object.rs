@@ -4,30 +4,25 @@
 
 mod common;
 
-use common::{close_v, deforming, moving, object, scene};
+use common::{ball, close_v, deforming, moving, object, placed, scene, slide};
 use glam::Vec3;
 use reyes_scene::object_to_world;
 use reyes_scene::{Shape, Transform};
-use reyes_trace::{Ray, Tracer};
+use reyes_trace::Tracer;
 
 fn shoot(t: &Tracer, origin: Vec3, dir: Vec3, time: f32) -> reyes_trace::Hit {
-    match t.intersect(&Ray::new(origin, dir, time), f32::INFINITY) {
+    match common::shoot(t, origin, dir, time) {
         Some(h) => h,
         None => panic!("ray from {origin} along {dir} at {time} misses"),
     }
 }
 
 fn turned() -> Vec<Transform> {
-    vec![
-        Transform::Scale([2.0, 1.0, 1.5]),
-        Transform::Rotate { angle: 30.0, axis: [1.0, 1.0, 0.0] },
-        Transform::Translate([0.5, -0.25, 3.0]),
-    ]
+    placed([2.0, 1.0, 1.5], 30.0, [1.0, 1.0, 0.0], [0.5, -0.25, 3.0])
 }
 
 #[test]
 fn p_object_undoes_the_static_transform() {
-    let ball = Shape::Sphere { radius: 1.0, zmin: None, zmax: None, thetamax: 360.0 };
     let quad = Shape::Mesh {
         points: vec![[-1.0, -1.0, 0.0], [1.0, -1.0, 0.0], [1.0, 1.0, 0.0], [-1.0, 1.0, 0.0]],
         faces: vec![vec![0, 1, 2, 3]],
@@ -36,7 +31,7 @@ fn p_object_undoes_the_static_transform() {
     let patch = Shape::BilinearPatch {
         points: [[-1.0, -1.0, 0.0], [1.0, -1.0, 0.0], [-1.0, 1.0, 0.0], [1.0, 1.0, 0.0]],
     };
-    for shape in [ball, quad, patch] {
+    for shape in [ball(), quad, patch] {
         let t = Tracer::new(&scene(vec![object(shape.clone(), turned())]));
         let to_object = object_to_world(&turned()).inverse();
         let origin = Vec3::new(0.4, -0.1, -10.0);
@@ -56,12 +51,7 @@ fn p_object_undoes_the_static_transform() {
 fn p_object_of_moving_and_deforming_objects() {
     // A ball moving along x by 2: at time 1/2 the hit's object point is the world point
     // less 1 in x.
-    let keys = vec![
-        (0.0, vec![Transform::Translate([0.0, 0.0, 0.0])]),
-        (1.0, vec![Transform::Translate([2.0, 0.0, 0.0])]),
-    ];
-    let ball = Shape::Sphere { radius: 1.0, zmin: None, zmax: None, thetamax: 360.0 };
-    let t = Tracer::new(&scene(vec![moving(ball, keys)]));
+    let t = Tracer::new(&scene(vec![moving(ball(), slide(0.0, 1.0))]));
     let h = shoot(&t, Vec3::new(1.3, 0.2, -10.0), Vec3::Z, 0.5);
     assert!(close_v(h.p_object, h.p_world - Vec3::X, 1e-5), "{} vs {}", h.p_object, h.p_world);
 

@@ -5,11 +5,11 @@ mod common;
 
 use std::f32::consts::PI;
 
-use common::{close, close_v, object, scene};
+use common::{ball, close, close_v, object, placed, scene};
 use glam::{Mat3, Mat4, Vec3};
 use reyes_scene::object_to_world;
 use reyes_scene::{Shape, Transform};
-use reyes_trace::{Hit, Ray, Tracer};
+use reyes_trace::{Hit, Tracer};
 
 const REL: f32 = 1e-4;
 
@@ -18,7 +18,7 @@ fn tracer(shape: Shape, transform: Vec<Transform>) -> Tracer {
 }
 
 fn shoot(t: &Tracer, origin: Vec3, dir: Vec3) -> Option<Hit> {
-    t.intersect(&Ray::new(origin, dir, 0.0), f32::INFINITY)
+    common::shoot(t, origin, dir, 0.0)
 }
 
 /// Fires at the object-space point `p` (outward normal `n`) of an object with matrix `m`
@@ -47,14 +47,7 @@ fn check_point(t: &Tracer, m: Mat4, p: Vec3, n: Vec3, uv: (f32, f32), what: &str
 }
 
 fn placements() -> Vec<Vec<Transform>> {
-    vec![
-        vec![],
-        vec![
-            Transform::Scale([1.0, 1.5, 0.75]),
-            Transform::Rotate { angle: 35.0, axis: [1.0, 2.0, 0.5] },
-            Transform::Translate([0.5, -1.0, 2.0]),
-        ],
-    ]
+    vec![vec![], placed([1.0, 1.5, 0.75], 35.0, [1.0, 2.0, 0.5], [0.5, -1.0, 2.0])]
 }
 
 #[test]
@@ -291,29 +284,33 @@ fn disk_points_hit_facing_plus_z() {
     assert!(shoot(&t, Vec3::new(1.0, 1.0, 5.0), Vec3::X).is_none(), "parallel");
 }
 
+/// The torus of radii `big` and `small`, tube angles `phi` and sweep `tmax` in degrees.
+fn torus_shape(big: f32, small: f32, (phimin, phimax): (f32, f32), tmax: f32) -> Shape {
+    Shape::Torus { major_radius: big, minor_radius: small, phimin, phimax, thetamax: tmax }
+}
+
+/// The dicer's torus (as [`torus_shape`]) at `(u, v)` and its outward normal.
+fn torus_at(big: f32, small: f32, (p0, p1): (f32, f32), tmax: f32, u: f32, v: f32) -> (Vec3, Vec3) {
+    let theta = u * tmax.to_radians();
+    let phi = (p0 + v * (p1 - p0)).to_radians();
+    let ring = big + small * phi.cos();
+    let p = Vec3::new(ring * theta.cos(), ring * theta.sin(), small * phi.sin());
+    let n = Vec3::new(phi.cos() * theta.cos(), phi.cos() * theta.sin(), phi.sin());
+    (p, n)
+}
+
 #[test]
 fn torus_points_hit_with_outward_normals() {
     let (big, small) = (3.0_f32, 1.0_f32);
     let (p0, p1, tmax) = (-60.0_f32, 240.0_f32, 315.0_f32);
     for xf in placements() {
         let m = object_to_world(&xf);
-        let shape = Shape::Torus {
-            major_radius: big,
-            minor_radius: small,
-            phimin: p0,
-            phimax: p1,
-            thetamax: tmax,
-        };
-        let t = tracer(shape, xf.clone());
+        let t = tracer(torus_shape(big, small, (p0, p1), tmax), xf.clone());
         for i in 0..=10 {
             for j in 0..=10 {
                 let u = 0.02 + 0.96 * i as f32 / 10.0;
                 let v = 0.02 + 0.96 * j as f32 / 10.0;
-                let theta = u * tmax.to_radians();
-                let phi = (p0 + v * (p1 - p0)).to_radians();
-                let n = Vec3::new(phi.cos() * theta.cos(), phi.cos() * theta.sin(), phi.sin());
-                let ring = big + small * phi.cos();
-                let p = Vec3::new(ring * theta.cos(), ring * theta.sin(), small * phi.sin());
+                let (p, n) = torus_at(big, small, (p0, p1), tmax, u, v);
                 check_point(&t, m, p, n, (u, v), "torus");
             }
         }
@@ -323,10 +320,7 @@ fn torus_points_hit_with_outward_normals() {
 #[test]
 fn torus_tube_range_and_sweep_cut() {
     let torus = |phimin: f32, phimax: f32, thetamax: f32| {
-        tracer(
-            Shape::Torus { major_radius: 3.0, minor_radius: 1.0, phimin, phimax, thetamax },
-            vec![],
-        )
+        tracer(torus_shape(3.0, 1.0, (phimin, phimax), thetamax), vec![])
     };
     let down = Vec3::NEG_Z;
     let upper = torus(0.0, 180.0, 360.0);
@@ -360,15 +354,11 @@ fn bilinear(c: &[Vec3; 4], u: f32, v: f32) -> (Vec3, Vec3) {
 
 #[test]
 fn bilinear_patch_points_hit() {
-    let corners = [
-        Vec3::new(0.0, 0.0, 0.0),
-        Vec3::new(2.0, 0.0, 0.5),
-        Vec3::new(0.0, 1.5, 0.8),
-        Vec3::new(2.2, 1.4, -0.4),
-    ];
+    let points = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.5], [0.0, 1.5, 0.8], [2.2, 1.4, -0.4]];
+    let corners = points.map(Vec3::from);
     for xf in placements() {
         let m = object_to_world(&xf);
-        let t = tracer(Shape::BilinearPatch { points: corners.map(|c| c.to_array()) }, xf.clone());
+        let t = tracer(Shape::BilinearPatch { points }, xf.clone());
         for i in 0..=8 {
             for j in 0..=8 {
                 let (u, v) = (0.02 + 0.96 * i as f32 / 8.0, 0.02 + 0.96 * j as f32 / 8.0);
@@ -377,7 +367,7 @@ fn bilinear_patch_points_hit() {
             }
         }
     }
-    let t = tracer(Shape::BilinearPatch { points: corners.map(|c| c.to_array()) }, vec![]);
+    let t = tracer(Shape::BilinearPatch { points }, vec![]);
     assert!(shoot(&t, Vec3::new(-0.5, 0.5, 5.0), Vec3::NEG_Z).is_none(), "beside the patch");
     // A ray in the plane of a flat patch and a ray parallel to an edge, seen edge on.
     let flat = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 1.0, 0.0]];
@@ -464,7 +454,7 @@ fn projective_matrix_normals_are_perpendicular_and_outward() {
     let xf = vec![Transform::Matrix(rows)];
     let m = object_to_world(&xf);
     let inv = m.inverse();
-    let t = tracer(Shape::Sphere { radius: 1.0, zmin: None, zmax: None, thetamax: 360.0 }, xf);
+    let t = tracer(ball(), xf);
     let mut hits = 0;
     for i in 0..10 {
         for j in 0..10 {
@@ -540,16 +530,7 @@ fn torus_reference(
 fn torus_agrees_with_a_marching_reference_on_random_rays() {
     let (big, small) = (2.0_f32, 0.6_f32);
     let (p0, p1, tmax) = (-30.0_f32, 200.0_f32, 290.0_f32);
-    let t = tracer(
-        Shape::Torus {
-            major_radius: big,
-            minor_radius: small,
-            phimin: p0,
-            phimax: p1,
-            thetamax: tmax,
-        },
-        vec![],
-    );
+    let t = tracer(torus_shape(big, small, (p0, p1), tmax), vec![]);
     let mut rng = common::Rng::new(42);
     let (mut agree, mut hits, total) = (0, 0, 2_000);
     for _ in 0..total {
@@ -580,10 +561,7 @@ fn torus_agrees_with_a_marching_reference_on_random_rays() {
 
 #[test]
 fn spawned_rays_leave_the_surface_cleanly() {
-    let t = tracer(
-        Shape::Sphere { radius: 1.0, zmin: None, zmax: None, thetamax: 360.0 },
-        vec![Transform::Translate([100.0, 50.0, -20.0])],
-    );
+    let t = tracer(ball(), vec![Transform::Translate([100.0, 50.0, -20.0])]);
     let centre = Vec3::new(100.0, 50.0, -20.0);
     let mut rng = common::Rng::new(8);
     for _ in 0..2_000 {
@@ -607,14 +585,7 @@ fn spawned_rays_leave_the_surface_cleanly() {
 fn torus_hits_invert_to_the_dicer_parametrisation_including_spindles() {
     for (big, small) in [(3.0_f32, 1.0_f32), (1.0, 1.5)] {
         let (p0, p1, tmax) = (-90.0_f32, 200.0_f32, 330.0_f32);
-        let shape = Shape::Torus {
-            major_radius: big,
-            minor_radius: small,
-            phimin: p0,
-            phimax: p1,
-            thetamax: tmax,
-        };
-        let t = tracer(shape, vec![]);
+        let t = tracer(torus_shape(big, small, (p0, p1), tmax), vec![]);
         let mut rng = common::Rng::new(17);
         let mut hits = 0;
         for _ in 0..3_000 {
@@ -623,11 +594,7 @@ fn torus_hits_invert_to_the_dicer_parametrisation_including_spindles() {
             let Some(h) = shoot(&t, origin, dir) else { continue };
             hits += 1;
             assert!((0.0..=1.0).contains(&h.u) && (0.0..=1.0).contains(&h.v), "{h:?}");
-            let theta = h.u * tmax.to_radians();
-            let phi = (p0 + h.v * (p1 - p0)).to_radians();
-            let ring = big + small * phi.cos();
-            let p = Vec3::new(ring * theta.cos(), ring * theta.sin(), small * phi.sin());
-            let n = Vec3::new(phi.cos() * theta.cos(), phi.cos() * theta.sin(), phi.sin());
+            let (p, n) = torus_at(big, small, (p0, p1), tmax, h.u, h.v);
             assert!(close_v(h.p_world, p, 2e-4), "R {big} r {small}: {} vs {p}", h.p_world);
             assert!(close_v(h.n_world, n, 2e-3), "R {big} r {small}: {} vs {n}", h.n_world);
         }

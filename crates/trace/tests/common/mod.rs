@@ -1,11 +1,13 @@
-//! Shared test helpers: scene construction, a seeded generator, approximate comparisons.
-//! Every helper is deterministic.
+//! Shared test helpers: scene construction, shapes and placements used by several tests,
+//! shooting a ray, a seeded generator, approximate comparisons. Every helper is
+//! deterministic.
 #![allow(dead_code)]
 
 use std::path::Path;
 
 use glam::Vec3;
 use reyes_scene::{Object, PointsKey, Scene, Shape, Transform, TransformKey};
+use reyes_trace::{Hit, Ray, Tracer};
 
 /// A minimal valid scene, parsed so that fields added to the model later take their
 /// defaults.
@@ -54,6 +56,29 @@ pub fn scene_with_shutter(objects: Vec<Object>, open: f32, close: f32) -> Scene 
     s.camera.shutter.open = open;
     s.camera.shutter.close = close;
     s
+}
+
+/// The whole unit sphere.
+pub fn ball() -> Shape {
+    Shape::Sphere { radius: 1.0, zmin: None, zmax: None, thetamax: 360.0 }
+}
+
+/// Scale, then rotate by `angle` degrees about `axis`, then translate by `offset`.
+pub fn placed(scale: [f32; 3], angle: f32, axis: [f32; 3], offset: [f32; 3]) -> Vec<Transform> {
+    vec![Transform::Scale(scale), Transform::Rotate { angle, axis }, Transform::Translate(offset)]
+}
+
+/// Transform keys sliding an object from where it is at time `t0` to `x + 2` at `t1`.
+pub fn slide(t0: f32, t1: f32) -> Vec<(f32, Vec<Transform>)> {
+    vec![
+        (t0, vec![Transform::Translate([0.0, 0.0, 0.0])]),
+        (t1, vec![Transform::Translate([2.0, 0.0, 0.0])]),
+    ]
+}
+
+/// The nearest hit of the ray `origin + t dir` at `time`, without a limit.
+pub fn shoot(t: &Tracer, origin: Vec3, dir: Vec3, time: f32) -> Option<Hit> {
+    t.intersect(&Ray::new(origin, dir, time), f32::INFINITY)
 }
 
 /// `|a - b| <= rel * max(1, |b|)`.

@@ -1,0 +1,317 @@
+//! The intake of the scene: every object's placement (transform and motion keys), its
+//! deformation keys and its primitives, with their boxes, collected into a [`Tracer`].
+//!
+//! Invariants: `Tracer::objects[i]` is the data of `Scene::objects[i]` (a degenerate
+//! placement for objects that cannot be hit); primitive ids follow creation order (scene
+//! order, then the dicer's surface order); key times are normalised over the shutter and
+//! strictly increasing; a still affine transform of a mesh or patch is baked into its
+//! points exactly as the dicer applies it; every primitive's box encloses it over the
+//! whole shutter, or is `None` when the primitive reaches infinity.
+
+use glam::{DMat4, DVec3, Vec3};
+use reyes_scene::object_to_world;
+use reyes_scene::{Object, Scene, Shape, V3};
+
+use crate::Tracer;
+use crate::bvh::{self, Aabb, Bvh};
+use crate::placement::{MatrixKey, Placement, is_projective};
+use crate::quadric::Quadric;
+
+/// The points of a shape at one normalised time.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct PointKey {
+    pub(crate) time: f32,
+    pub(crate) points: Vec<Vec3>,
+}
+
+/// One primitive's geometry, in its object's placement space (world space when the
+/// placement is `Identity`).
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum Geometry {
+    /// A quadric or torus.
+    Quadric(Quadric),
+    /// A bilinear patch, corners in RenderMan order.
+    Patch([DVec3; 4]),
+    /// A triangle `(a, b, c)`.
+    Triangle([Vec3; 3]),
+    /// A bilinear patch whose corners are the object's deforming points at these indices.
+    DeformingPatch([u32; 4]),
+    /// A triangle whose vertices are the object's deforming points at these indices.
+    DeformingTriangle([u32; 3]),
+}
+
+/// One primitive and what a hit on it reports.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Primitive {
+    pub(crate) geometry: Geometry,
+    /// Creation order: scene order, then the dicer's surface order. Breaks ties in `t`.
+    pub(crate) id: u32,
+    pub(crate) object: u32,
+    pub(crate) surface: u32,
+    pub(crate) face: u32,
+}
+
+/// What the queries need of one scene object, whatever its primitives.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct ObjectData {
+    pub(crate) placement: Placement,
+    /// Deformation keys (two or more) of a deforming mesh or patch; empty otherwise.
+    pub(crate) deform: Vec<PointKey>,
+    /// World to object for an object whose still, affine transform was baked into its
+    /// points (placement `Identity` but not object space), to report `Hit::p_object`.
+    pub(crate) unbake: Option<DMat4>,
+}
+
+/// Keys with strictly increasing normalised times (later keys at or before an earlier
+/// time are dropped; only the first key when the shutter is closed).
+fn clean_times<K>(
+    keys: &[K],
+    time: impl Fn(&K) -> f32,
+    norm: impl Fn(f32) -> f32,
+    closed: bool,
+) -> Vec<(f32, &K)> {
+    let mut out: Vec<(f32, &K)> = Vec::with_capacity(keys.len());
+    for key in keys {
+        let t = norm(time(key));
+        if out.last().is_some_and(|(before, _)| t <= *before) {
+            continue;
+        }
+        out.push((t, key));
+        if closed {
+            break;
+        }
+    }
+    out
+}
+
+fn v3(p: &V3) -> Vec3 {
+    Vec3::from(*p)
+}
+
+/// The box of the points `points` under every matrix of `matrices`, grown by a few ulps;
+/// `None` when some image is not finite or the homogeneous `w` changes sign (the
+/// primitive reaches infinity).
+fn bound_points(matrices: &[DMat4], points: &[DVec3]) -> Option<Aabb> {
+    let mut lo = DVec3::INFINITY;
+    let mut hi = DVec3::NEG_INFINITY;
+    let mut sign = 0.0_f64;
+    for m in matrices {
+        let projective = is_projective(m);
+        for &p in points {
+            let world = if projective {
+                let h = *m * p.extend(1.0);
+                if h.w == 0.0 || h.w.is_nan() || (sign != 0.0 && h.w.signum() != sign) {
+                    return None;
+                }
+                sign = h.w.signum();
+                h.truncate() / h.w
+            } else {
+                m.transform_point3(p)
+            };
+            lo = lo.min(world);
+            hi = hi.max(world);
+        }
+    }
+    if !lo.is_finite() || !hi.is_finite() {
+        return None;
+    }
+    let scale = lo.abs().max(hi.abs()).max_element();
+    let pad = scale * 8.0 * f64::from(f32::EPSILON) + f64::from(f32::MIN_POSITIVE);
+    let b = Aabb { min: (lo - pad).as_vec3(), max: (hi + pad).as_vec3() };
+    b.is_valid().then_some(b)
+}
+
+/// The eight corners of a box.
+fn corners(lo: DVec3, hi: DVec3) -> [DVec3; 8] {
+    std::array::from_fn(|k| {
+        DVec3::new(
+            if k & 1 == 0 { lo.x } else { hi.x },
+            if k & 2 == 0 { lo.y } else { hi.y },
+            if k & 4 == 0 { lo.z } else { hi.z },
+        )
+    })
+}
+
+/// Primitives being collected, with their boxes (`None`: unbounded).
+#[derive(Default)]
+struct Builder {
+    prims: Vec<(Primitive, Option<Aabb>)>,
+}
+
+impl Builder {
+    fn push(
+        &mut self,
+        geometry: Geometry,
+        object: u32,
+        surface: u32,
+        face: u32,
+        bounds: Option<Aabb>,
+    ) {
+        let id = self.prims.len() as u32;
+        self.prims.push((Primitive { geometry, id, object, surface, face }, bounds));
+    }
+
+    /// Adds the primitives of `object` (index `index`) and returns its data.
+    fn add(&mut self, index: u32, object: &Object, scene: &Scene) -> ObjectData {
+        let shutter = scene.camera.shutter;
+        let span = shutter.close - shutter.open;
+        let closed = !span.is_finite() || span <= 0.0;
+        // As the dicer: clamped to [0, 1], NaN as 0, everything at 0 when the shutter is closed.
+        let norm = |t: f32| {
+            let t = if closed { 0.0 } else { (t - shutter.open) / span };
+            if t.is_nan() { 0.0 } else { t.clamp(0.0, 1.0) }
+        };
+        let still = object_to_world(&object.transform).as_dmat4();
+        let mut keys: Vec<MatrixKey> = clean_times(&object.motion, |k| k.time, norm, closed)
+            .into_iter()
+            .map(|(time, k)| MatrixKey { time, matrix: object_to_world(&k.transform).as_dmat4() })
+            .collect();
+        if keys.is_empty() {
+            keys.push(MatrixKey { time: 0.0, matrix: still });
+        }
+        let mut placement = Placement::from_keys(keys);
+        let mut unbake = None;
+        if placement == Placement::Degenerate {
+            return ObjectData { placement, deform: Vec::new(), unbake: None };
+        }
+
+        // Points of a mesh or patch, per deformation key (one key when still).
+        let own_points: Vec<Vec3> = match &object.shape {
+            Shape::BilinearPatch { points } => points.iter().map(v3).collect(),
+            Shape::Mesh { points, .. } => points.iter().map(v3).collect(),
+            _ => Vec::new(),
+        };
+        // Deformation keys of a mesh or patch, each with exactly the shape's point count: a
+        // missing point is the shape's own, extra points are ignored (as the dicer does).
+        let mut point_keys: Vec<PointKey> = if own_points.is_empty() {
+            Vec::new()
+        } else {
+            clean_times(&object.deform, |k| k.time, norm, closed)
+                .into_iter()
+                .map(|(time, k)| PointKey {
+                    time,
+                    points: own_points
+                        .iter()
+                        .enumerate()
+                        .map(|(i, own)| k.points.get(i).map_or(*own, v3))
+                        .collect(),
+                })
+                .collect()
+        };
+        if point_keys.is_empty() {
+            point_keys = vec![PointKey { time: 0.0, points: own_points }];
+        }
+        // A still affine placement of a mesh or patch is baked into its points (exact: the
+        // dicer applies the same matrix to the same points).
+        if let Placement::Static(_) = &placement
+            && !is_projective(&still)
+            && matches!(object.shape, Shape::BilinearPatch { .. } | Shape::Mesh { .. })
+        {
+            for key in &mut point_keys {
+                for p in &mut key.points {
+                    *p = still.transform_point3(p.as_dvec3()).as_vec3();
+                }
+            }
+            placement = Placement::Identity;
+            // `Static` means invertible; identity matrices need no unbaking.
+            if still != DMat4::IDENTITY {
+                unbake = still.try_inverse().filter(|m| m.is_finite());
+            }
+        }
+        let matrices = placement.key_matrices();
+        let deforming = point_keys.len() > 1;
+        // The box of the points `idx` at every deformation key under every transform key.
+        let bound = |idx: &[u32]| {
+            let points: Vec<DVec3> = point_keys
+                .iter()
+                .flat_map(|k| {
+                    idx.iter().filter_map(|&i| k.points.get(i as usize)).map(|p| p.as_dvec3())
+                })
+                .collect();
+            bound_points(&matrices, &points)
+        };
+        let first_points = point_keys.first().map_or(&[][..], |k| k.points.as_slice());
+        let first = |i: u32| first_points.get(i as usize).copied().unwrap_or(Vec3::ZERO);
+        // The bilinear patch with corners `idx`, RenderMan order.
+        let patch = |idx: [u32; 4]| {
+            if deforming {
+                Geometry::DeformingPatch(idx)
+            } else {
+                Geometry::Patch(idx.map(|i| first(i).as_dvec3()))
+            }
+        };
+
+        match &object.shape {
+            Shape::Sphere { .. }
+            | Shape::Cylinder { .. }
+            | Shape::Cone { .. }
+            | Shape::Paraboloid { .. }
+            | Shape::Disk { .. }
+            | Shape::Torus { .. } => {
+                if let Some(q) = Quadric::from_shape(&object.shape) {
+                    let (lo, hi) = q.object_bounds();
+                    let b = bound_points(&matrices, &corners(lo, hi));
+                    self.push(Geometry::Quadric(q), index, 0, 0, b);
+                }
+            }
+            Shape::BilinearPatch { .. } => {
+                let idx = [0, 1, 2, 3];
+                self.push(patch(idx), index, 0, 0, bound(&idx));
+            }
+            Shape::Mesh { points, faces, .. } => {
+                let mut surface = 0u32;
+                for (f, face) in faces.iter().enumerate() {
+                    if face.iter().any(|&i| i as usize >= points.len()) {
+                        continue;
+                    }
+                    match face.len() {
+                        0..=2 => {}
+                        4 => {
+                            // Around the face a, b, c, d: P0 = a, P1 = b, P2 = d, P3 = c.
+                            let idx = [face[0], face[1], face[3], face[2]];
+                            self.push(patch(idx), index, surface, f as u32, bound(&idx));
+                            surface += 1;
+                        }
+                        n => {
+                            for k in 1..n - 1 {
+                                let idx = [face[0], face[k], face[k + 1]];
+                                let b = bound(&idx);
+                                let g = if deforming {
+                                    Geometry::DeformingTriangle(idx)
+                                } else {
+                                    Geometry::Triangle(idx.map(first))
+                                };
+                                self.push(g, index, surface, f as u32, b);
+                                surface += 1;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        let deform = if deforming { point_keys } else { Vec::new() };
+        ObjectData { placement, deform, unbake }
+    }
+}
+
+/// Builds the primitives of every object of `scene` and the hierarchy over them.
+pub(crate) fn build(scene: &Scene) -> Tracer {
+    let mut builder = Builder::default();
+    // One entry per scene object, so that `objects[i]` is `scene.objects[i]`.
+    let objects: Vec<ObjectData> = scene
+        .objects
+        .iter()
+        .enumerate()
+        .map(|(i, object)| builder.add(i as u32, object, scene))
+        .collect();
+    let (bounded, unbounded): (Vec<_>, Vec<_>) =
+        builder.prims.into_iter().partition(|(_, b)| b.is_some());
+    let boxes: Vec<Aabb> = bounded.iter().map(|(_, b)| b.unwrap_or(Aabb::EMPTY)).collect();
+    let Bvh { nodes, order } = bvh::build(&boxes);
+    let mut slots: Vec<Option<Primitive>> = bounded.into_iter().map(|(p, _)| Some(p)).collect();
+    let mut prims: Vec<Primitive> =
+        order.iter().filter_map(|&i| slots[i as usize].take()).collect();
+    let bounded = prims.len();
+    prims.extend(unbounded.into_iter().map(|(p, _)| p));
+    Tracer { objects, prims, bounded, nodes }
+}
