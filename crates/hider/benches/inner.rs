@@ -59,17 +59,10 @@ fn grid(
     for j in 0..ny {
         for i in 0..nx {
             let shade = unit(hash(seed, &[2, i as u64, j as u64]));
-            out.push(Micropolygon {
-                v: [vertex(i, j), vertex(i + 1, j), vertex(i + 1, j + 1), vertex(i, j + 1)],
-                speed: [[0.0; 3]; 4],
-                color: [[0.2 + 0.6 * shade, 0.4, 0.3]; 4],
-                trans: [[0.0; 3]; 4],
-                flags: flags::OPAQUE,
-                csg_tree: 0,
-                csg_node: 0,
-                glass_opacity: 0.0,
-                time: [0.0, 1.0],
-            });
+            out.push(Micropolygon::opaque(
+                [vertex(i, j), vertex(i + 1, j), vertex(i + 1, j + 1), vertex(i, j + 1)],
+                [[0.2 + 0.6 * shade, 0.4, 0.3]; 4],
+            ));
         }
     }
     out

@@ -53,6 +53,22 @@ pub struct Micropolygon {
 }
 
 impl Micropolygon {
+    /// A still, opaque, non-CSG micropolygon over the whole shutter with vertices `v` (raster
+    /// x, y and eye depth z, in cyclic order) and the premultiplied colour `color` at each.
+    pub fn opaque(v: [[f32; 3]; 4], color: [[f32; 3]; 4]) -> Micropolygon {
+        Micropolygon {
+            v,
+            speed: [[0.0; 3]; 4],
+            color,
+            trans: [[0.0; 3]; 4],
+            flags: flags::OPAQUE,
+            csg_tree: 0,
+            csg_node: 0,
+            glass_opacity: 0.0,
+            time: [0.0, 1.0],
+        }
+    }
+
     /// True if the flag bit(s) `f` are all set.
     #[inline]
     pub fn has(&self, f: u32) -> bool {

@@ -4,48 +4,25 @@
 use reyes_hider::{
     Frame, Hider, HiderConfig, LensSetup, LensShape, Micropolygon, Pairing, Pattern, Scratch, flags,
 };
+use reyes_sampling::SplitMix64;
 
 fn quad(p: [[f32; 2]; 4], z: f32, color: [f32; 3]) -> Micropolygon {
-    Micropolygon {
-        v: p.map(|q| [q[0], q[1], z]),
-        speed: [[0.0; 3]; 4],
-        color: [color; 4],
-        trans: [[0.0; 3]; 4],
-        flags: flags::OPAQUE,
-        csg_tree: 0,
-        csg_node: 0,
-        glass_opacity: 0.0,
-        time: [0.0, 1.0],
-    }
+    Micropolygon::opaque(p.map(|q| [q[0], q[1], z]), [color; 4])
 }
 
-/// Area of the unit square [0,1]^2 on the side `a*x + b*y <= c` (Sutherland-Hodgman + shoelace).
+/// Area of the unit square [0,1]^2 on the side `a*x + b*y <= c`.
 fn clipped_area(a: f64, b: f64, c: f64) -> f64 {
-    let sq = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)];
-    let f = |p: (f64, f64)| a * p.0 + b * p.1 - c;
-    let mut out: Vec<(f64, f64)> = Vec::new();
-    for k in 0..4 {
-        let (p, q) = (sq[k], sq[(k + 1) % 4]);
-        let (fp, fq) = (f(p), f(q));
-        if fp <= 0.0 {
-            out.push(p);
-        }
-        if (fp < 0.0) != (fq < 0.0) && fp != fq {
-            let t = fp / (fp - fq);
-            out.push((p.0 + t * (q.0 - p.0), p.1 + t * (q.1 - p.1)));
-        }
-    }
-    let n = out.len();
-    (0..n).map(|k| out[k].0 * out[(k + 1) % n].1 - out[(k + 1) % n].0 * out[k].1).sum::<f64>().abs()
-        / 2.0
+    reyes_testkit::geometry::pixel_below(a, b, c, 0.0, 0.0)
 }
 
-/// Tiny deterministic generator for test inputs.
-struct Lcg(u64);
+/// Uniform numbers in [0, 1) for test inputs.
+struct Lcg(SplitMix64);
 impl Lcg {
+    fn new(seed: u64) -> Lcg {
+        Lcg(SplitMix64::from_state(seed))
+    }
     fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+        self.0.next_f64()
     }
 }
 
@@ -86,7 +63,7 @@ fn stratified_coverage_error_shrinks_within_the_stratified_bound() {
     let trials = 400;
     let mut rms = Vec::new();
     for n in [2u32, 4, 8] {
-        let mut rng = Lcg(0x5eed + n as u64);
+        let mut rng = Lcg::new(0x5eed + n as u64);
         let sq: f64 = (0..trials).map(|t| coverage_error(n, t, &mut rng).powi(2)).sum();
         let r = (sq / trials as f64).sqrt();
         let bound = ((2 * n - 1) as f64).sqrt() / (2.0 * (n * n) as f64);
@@ -98,7 +75,7 @@ fn stratified_coverage_error_shrinks_within_the_stratified_bound() {
 
 /// A bucket of random small quads at random depths, some half transparent.
 fn random_bucket(seed: u64, count: usize) -> Vec<Micropolygon> {
-    let mut rng = Lcg(seed);
+    let mut rng = Lcg::new(seed);
     (0..count)
         .map(|_| {
             let (cx, cy) = (rng.next() * 18.0 - 1.0, rng.next() * 18.0 - 1.0);
@@ -156,7 +133,7 @@ fn static_lens_and_moving_paths_agree_on_the_same_input() {
 fn bound_culling_never_drops_a_hit() {
     // Moving and defocused quads: every hit found by testing all samples must also be found
     // with Appendix A's per-sample sliding bound and bounddof, and the image must not change.
-    let mut rng = Lcg(99);
+    let mut rng = Lcg::new(99);
     let mps: Vec<Micropolygon> = random_bucket(5, 80)
         .into_iter()
         .map(|mut m| {

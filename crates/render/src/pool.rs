@@ -7,7 +7,8 @@
 //! which callers keep in bucket raster order (rayon's `collect` of an indexed parallel
 //! iterator preserves it), so floating-point sums never depend on scheduling.
 
-use reyes_film::{Film, Window};
+use reyes_film::{Film, FilterTable, Window, splat};
+use reyes_hider::Frame;
 
 use crate::RenderError;
 
@@ -33,6 +34,20 @@ impl Pool {
             None => work(),
         }
     }
+}
+
+/// Splat bucket `b`'s per-sample colours `rgba` and depths `z` (laid out `pixel * NS + s`)
+/// through the filter `table` into `window`, the bucket's pixels plus the filter's border.
+pub fn splat_bucket(
+    table: &FilterTable,
+    frame: &Frame,
+    b: usize,
+    rgba: &[[f32; 4]],
+    z: &[f32],
+    window: &mut Window,
+) {
+    let (left, top) = frame.bucket_origin(b);
+    splat(table, left, top, frame.bucket_w, frame.bucket_h, rgba, z, window);
 }
 
 /// Add the bucket windows of `windows` (in bucket raster order; `None` for a bucket that

@@ -26,7 +26,7 @@ use std::time::{Duration, Instant};
 
 use glam::Vec2;
 use rayon::prelude::*;
-use reyes_film::{Film, Window, splat};
+use reyes_film::{Film, Window};
 use reyes_sampling::{Strata, hash};
 use reyes_scene::Scene;
 use reyes_shade::{RayCounts, Shading, Traced};
@@ -131,16 +131,7 @@ where
                     // Nothing seen: the window would add nothing to the film.
                     None
                 } else {
-                    splat(
-                        &table,
-                        left,
-                        top,
-                        frame.bucket_w,
-                        frame.bucket_h,
-                        &buf.rgba,
-                        &buf.z,
-                        &mut buf.window,
-                    );
+                    pool::splat_bucket(&table, &frame, b, &buf.rgba, &buf.z, &mut buf.window);
                     Some(buf.window.clone())
                 };
                 if let Some(cb) = opts.on_bucket {

@@ -14,7 +14,7 @@ use std::time::{Duration, Instant};
 
 use rayon::prelude::*;
 use reyes_dice::{DiceError, DiceOptions, DiceStats, Dicer};
-use reyes_film::{Film, Window, splat};
+use reyes_film::{Film, Window};
 use reyes_hider::Scratch;
 use reyes_scene::Scene;
 use reyes_shade::{RayVertexShader, Shading};
@@ -140,17 +140,7 @@ fn render_rows(
                         &buf.list[..n as usize],
                         &mut buf.scratch,
                     );
-                    let (left, top) = frame.bucket_origin(b);
-                    splat(
-                        &table,
-                        left,
-                        top,
-                        frame.bucket_w,
-                        frame.bucket_h,
-                        out.rgba,
-                        out.z,
-                        &mut buf.window,
-                    );
+                    pool::splat_bucket(&table, &frame, b, out.rgba, out.z, &mut buf.window);
                     (Some(buf.window.clone()), buf.scratch.stats)
                 };
                 if let Some(cb) = opts.on_bucket {

@@ -2,82 +2,10 @@
 #![allow(dead_code)]
 
 use reyes_dice::{Diced, dice_scene};
-use reyes_hider::{Frame, Micropolygon, border_for_filter_width};
-use reyes_scene::{
-    Camera, Hider, Image, Lens, Light, Material, Object, Scene, Shape, Shutter, Transform,
-};
-
-/// A camera at `eye` looking at `look_at` with +y up.
-pub fn camera(eye: [f32; 3], look_at: [f32; 3], fov: f32, lens: Option<Lens>) -> Camera {
-    Camera {
-        eye,
-        look_at,
-        up: [0.0, 1.0, 0.0],
-        fov,
-        hither: 0.1,
-        yon: 1000.0,
-        shutter: Shutter::default(),
-        lens,
-        motion: Vec::new(),
-    }
-}
-
-/// A scene of `objects` seen by `camera`, default hider, one ambient and one distant light.
-pub fn scene(width: u32, height: u32, camera: Camera, objects: Vec<Object>) -> Scene {
-    Scene {
-        image: Image { width, height },
-        camera,
-        hider: Hider::default(),
-        lights: vec![
-            Light::Ambient { color: [1.0; 3], intensity: 0.2 },
-            Light::Distant {
-                from: [1.0, 1.0, -1.0],
-                to: [0.0; 3],
-                color: [1.0; 3],
-                intensity: 1.0,
-                shadows: false,
-            },
-        ],
-        objects,
-        solids: Vec::new(),
-        raytrace: Default::default(),
-    }
-}
-
-/// A white matte object.
-pub fn object(shape: Shape, transform: Vec<Transform>) -> Object {
-    Object {
-        name: String::new(),
-        shape,
-        transform,
-        material: Material::Matte { color: [1.0; 3], opacity: [1.0; 3], ka: 1.0, kd: 1.0 },
-        matte: false,
-        motion: Vec::new(),
-        deform: Vec::new(),
-        interpolation: Default::default(),
-        glass: None,
-        reflect: None,
-        refract: None,
-        pattern: None,
-        roll: None,
-    }
-}
-
-/// A whole sphere of radius `r`.
-pub fn sphere(r: f32) -> Shape {
-    Shape::Sphere { radius: r, zmin: None, zmax: None, thetamax: 360.0 }
-}
-
-/// The frame `Frame::new` lays out for the scene's image and hider settings.
-pub fn frame_of(scene: &Scene) -> Frame {
-    Frame::new(
-        scene.image.width,
-        scene.image.height,
-        border_for_filter_width(scene.hider.filter.width),
-        scene.hider.bucket_size.0,
-        scene.hider.bucket_size.1,
-    )
-}
+use reyes_hider::{Frame, Micropolygon};
+use reyes_scene::Scene;
+#[allow(unused_imports)]
+pub use reyes_testkit::fixtures::{camera, frame_for as frame_of, object, scene, sphere};
 
 /// Dice a scene in its own frame, panicking on error.
 pub fn dice(scene: &Scene) -> (Diced, Frame) {

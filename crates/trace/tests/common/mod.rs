@@ -3,6 +3,7 @@
 //! deterministic.
 #![allow(dead_code)]
 
+use reyes_sampling::SplitMix64;
 use std::path::Path;
 
 use glam::Vec3;
@@ -91,27 +92,23 @@ pub fn close_v(a: Vec3, b: Vec3, tol: f32) -> bool {
     (a - b).abs().max_element() <= tol
 }
 
-/// SplitMix64: a small seeded generator.
-pub struct Rng(u64);
+/// A small seeded generator over the renderer's SplitMix64 stream.
+pub struct Rng(SplitMix64);
 
 impl Rng {
     /// A generator from a seed.
     pub fn new(seed: u64) -> Rng {
-        Rng(seed)
+        Rng(SplitMix64::from_state(seed))
     }
 
     /// The next 64 random bits.
     pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
+        self.0.next_u64()
     }
 
     /// Uniform in `[0, 1)`.
     pub fn unit(&mut self) -> f32 {
-        (self.next_u64() >> 40) as f32 / (1u64 << 24) as f32
+        self.0.next_f32()
     }
 
     /// Uniform in `[lo, hi)`.
