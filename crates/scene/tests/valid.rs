@@ -68,29 +68,22 @@ fn the_full_example_parses_with_the_expected_values() {
                 shadows: false,
             },
         ],
-        objects: vec![Object {
-            name: "ball".into(),
-            shape: Shape::Sphere { radius: 1.0, zmin: None, zmax: None, thetamax: 360.0 },
-            transform: vec![Transform::Translate([0.0, 0.0, 0.0])],
-            material: Material::Plastic {
-                color: [0.8, 0.1, 0.1],
-                opacity: [1.0, 1.0, 1.0],
-                ka: 1.0,
-                kd: 0.5,
-                ks: 0.5,
-                roughness: 0.1,
-                specular_color: [1.0, 1.0, 1.0],
-            },
-            matte: false,
-            motion: vec![],
-            deform: vec![],
-            interpolation: Interpolation::Flat,
-            glass: None,
-            reflect: None,
-            refract: None,
-            pattern: None,
-            roll: None,
-        }],
+        objects: vec![
+            Object::new(
+                Shape::Sphere { radius: 1.0, zmin: None, zmax: None, thetamax: 360.0 },
+                Material::Plastic {
+                    color: [0.8, 0.1, 0.1],
+                    opacity: [1.0, 1.0, 1.0],
+                    ka: 1.0,
+                    kd: 0.5,
+                    ks: 0.5,
+                    roughness: 0.1,
+                    specular_color: [1.0, 1.0, 1.0],
+                },
+            )
+            .named("ball")
+            .with_transform(vec![Transform::Translate([0.0, 0.0, 0.0])]),
+        ],
         solids: vec![],
         raytrace: reyes_scene::RayTrace::default(),
     };

@@ -60,6 +60,70 @@ pub struct Object {
     pub roll: Option<Roll>,
 }
 
+impl Object {
+    /// An object of `shape` and `material` with every other field at the value parsing
+    /// gives when it is absent: no name, no transform, not a matte, no motion or deformation,
+    /// `Flat` interpolation, no glass, reflection, refraction, pattern or roll.
+    ///
+    /// ```
+    /// use reyes_scene::{Material, Object, Shape, Transform};
+    ///
+    /// let ball = Object::new(
+    ///     Shape::Sphere { radius: 1.0, zmin: None, zmax: None, thetamax: 360.0 },
+    ///     Material::Constant { color: [1.0, 0.0, 0.0], opacity: [1.0; 3] },
+    /// )
+    /// .named("ball")
+    /// .with_transform(vec![Transform::Translate([0.0, 1.0, 0.0])]);
+    /// assert_eq!(ball.name, "ball");
+    /// assert!(ball.motion.is_empty() && ball.roll.is_none());
+    /// ```
+    pub fn new(shape: Shape, material: Material) -> Object {
+        Object {
+            name: String::new(),
+            shape,
+            transform: Vec::new(),
+            material,
+            matte: false,
+            motion: Vec::new(),
+            deform: Vec::new(),
+            interpolation: Interpolation::default(),
+            glass: None,
+            reflect: None,
+            refract: None,
+            pattern: None,
+            roll: None,
+        }
+    }
+
+    /// The same object named `name` (the name CSG leaves and messages use).
+    #[must_use]
+    pub fn named(mut self, name: impl Into<String>) -> Object {
+        self.name = name.into();
+        self
+    }
+
+    /// The same object with the object-to-world `transform` list (applied first item first).
+    #[must_use]
+    pub fn with_transform(mut self, transform: Vec<Transform>) -> Object {
+        self.transform = transform;
+        self
+    }
+
+    /// The same object with transform motion keys (which replace `transform` when rendered).
+    #[must_use]
+    pub fn with_motion(mut self, motion: Vec<TransformKey>) -> Object {
+        self.motion = motion;
+        self
+    }
+
+    /// The same object with deformation keys (which replace the shape's points when rendered).
+    #[must_use]
+    pub fn with_deform(mut self, deform: Vec<PointsKey>) -> Object {
+        self.deform = deform;
+        self
+    }
+}
+
 /// Traced reflection, added to the shaded colour.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -186,4 +250,47 @@ pub struct PointsKey {
     pub time: f32,
     /// The shape's points at that time (same count and order as the shape's `points`).
     pub points: Vec<V3>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sphere() -> Shape {
+        Shape::Sphere { radius: 1.0, zmin: None, zmax: None, thetamax: 360.0 }
+    }
+
+    fn matte() -> Material {
+        Material::Matte { color: [0.5, 0.5, 0.5], opacity: [1.0, 1.0, 1.0], ka: 1.0, kd: 1.0 }
+    }
+
+    /// `Object::new` is what the serde defaults give for a minimal object.
+    #[test]
+    fn new_is_a_minimal_parsed_object() {
+        let parsed: Object =
+            ron::from_str("(shape: Sphere(radius: 1.0), material: Matte(color: (0.5, 0.5, 0.5)))")
+                .unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(Object::new(sphere(), matte()), parsed);
+    }
+
+    /// Each builder sets its one field, as writing that field in RON does.
+    #[test]
+    fn builders_set_their_field() {
+        let parsed: Object = ron::from_str(
+            r#"(name: "ball", shape: Sphere(radius: 1.0), material: Matte(color: (0.5, 0.5, 0.5)),
+                transform: [Scale((2.0, 2.0, 2.0))],
+                motion: [(time: 0.0, transform: []), (time: 1.0, transform: [])],
+                deform: [(time: 0.0, points: [])])"#,
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
+        let built = Object::new(sphere(), matte())
+            .named("ball")
+            .with_transform(vec![Transform::Scale([2.0, 2.0, 2.0])])
+            .with_motion(vec![
+                TransformKey { time: 0.0, transform: vec![] },
+                TransformKey { time: 1.0, transform: vec![] },
+            ])
+            .with_deform(vec![PointsKey { time: 0.0, points: vec![] }]);
+        assert_eq!(built, parsed);
+    }
 }
