@@ -6,7 +6,9 @@
 use glam::DVec3;
 
 use super::keys::keys;
-use super::primitives::{Check, dvec, fail, finite, finite_all, int_in, positive};
+use super::primitives::{
+    Check, Interval, above, dvec, fail, finite, finite_all, int_in, parallel, positive, within,
+};
 use crate::model::{Camera, Image, ShutterShape, V3};
 
 pub(super) fn image(image: &Image) -> Check {
@@ -18,15 +20,10 @@ pub(super) fn camera(cam: &Camera) -> Check {
     finite_all("camera.eye", &cam.eye)?;
     finite_all("camera.look_at", &cam.look_at)?;
     finite_all("camera.up", &cam.up)?;
-    finite("camera.fov", cam.fov)?;
-    if !(cam.fov > 0.0 && cam.fov < 180.0) {
-        return fail("camera.fov", format!("must be in (0, 180) degrees, got {}", cam.fov));
-    }
+    within("camera.fov", cam.fov, Interval::open(0.0, 180.0), " degrees")?;
     positive("camera.hither", cam.hither)?;
     finite("camera.yon", cam.yon)?;
-    if cam.yon <= cam.hither {
-        return fail("camera.yon", format!("must be > hither ({}), got {}", cam.hither, cam.yon));
-    }
+    above("camera.yon", cam.yon, "hither", cam.hither)?;
     orientation("camera", &cam.eye, &cam.look_at, &cam.up)?;
     finite("camera.shutter.open", cam.shutter.open)?;
     finite("camera.shutter.close", cam.shutter.close)?;
@@ -37,10 +34,7 @@ pub(super) fn camera(cam: &Camera) -> Check {
         );
     }
     if let ShutterShape::Gradual { ramp } = cam.shutter.shape {
-        finite("camera.shutter.shape.ramp", ramp)?;
-        if !(ramp > 0.0 && ramp <= 0.5) {
-            return fail("camera.shutter.shape.ramp", format!("must be in (0, 0.5], got {ramp}"));
-        }
+        within("camera.shutter.shape.ramp", ramp, Interval::open_closed(0.0, 0.5), "")?;
     }
     if let Some(lens) = &cam.lens {
         positive("camera.lens.focal_length", lens.focal_length)?;
@@ -72,7 +66,7 @@ fn orientation(at: &str, eye: &V3, look_at: &V3, up: &V3) -> Check {
     if up == DVec3::ZERO {
         return fail(format!("{at}.up"), "must be non-zero");
     }
-    if up.cross(view).length() <= 1e-6 * up.length() * view.length() {
+    if parallel(up, view) {
         return fail(
             format!("{at}.up"),
             "must not be parallel to the view direction (look_at - eye)",

@@ -3,7 +3,7 @@
 //!
 //! Invariant: reports at `hider.<field>` paths, as the source map spells them.
 
-use super::primitives::{Check, fail, finite, int_in, positive};
+use super::primitives::{Check, Interval, fail, int_in, positive, within};
 use crate::model::{Hider, HiderMethod, Scene};
 
 pub(super) fn hider(h: &Hider, scene: &Scene) -> Check {
@@ -15,13 +15,7 @@ pub(super) fn hider(h: &Hider, scene: &Scene) -> Check {
     }
     int_in("hider.pixel_samples[0]", h.pixel_samples.0, 1, 64)?;
     int_in("hider.pixel_samples[1]", h.pixel_samples.1, 1, 64)?;
-    finite("hider.filter.width", h.filter.width)?;
-    if !(h.filter.width > 0.0 && h.filter.width <= 16.0) {
-        return fail(
-            "hider.filter.width",
-            format!("must be in (0, 16] pixels, got {}", h.filter.width),
-        );
-    }
+    within("hider.filter.width", h.filter.width, Interval::open_closed(0.0, 16.0), " pixels")?;
     int_in("hider.bucket_size[0]", h.bucket_size.0, 1, 1024)?;
     int_in("hider.bucket_size[1]", h.bucket_size.1, 1, 1024)?;
     positive("hider.shading_rate", h.shading_rate)?;

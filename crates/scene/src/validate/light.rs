@@ -4,7 +4,9 @@
 //! Invariant: every check reports under the light's own path (`lights[i]`).
 
 use super::keys::keys;
-use super::primitives::{Check, dvec, fail, finite_all, non_negative, nonzero_vector, positive};
+use super::primitives::{
+    Check, dvec, each, fail, finite_all, non_negative, nonzero_vector, parallel, positive,
+};
 use crate::model::{AreaShape, Light, Shutter};
 
 pub(super) fn light(at: &str, light: &Light, shutter: &Shutter) -> Check {
@@ -27,9 +29,7 @@ pub(super) fn light(at: &str, light: &Light, shutter: &Shutter) -> Check {
             (color, intensity)
         }
     };
-    for (i, v) in color.iter().enumerate() {
-        non_negative(&format!("{at}.color[{i}]"), *v)?;
-    }
+    each(&format!("{at}.color"), color, non_negative)?;
     non_negative(&format!("{at}.intensity"), *intensity)?;
     if let Light::Area { motion, .. } = light {
         let at = format!("{at}.motion");
@@ -66,7 +66,7 @@ fn area_shape(at: &str, shape: &AreaShape) -> Check {
             nonzero_vector(&field("edge_u"), edge_u)?;
             nonzero_vector(&field("edge_v"), edge_v)?;
             let (u, v) = (dvec(edge_u), dvec(edge_v));
-            if u.cross(v).length() <= 1e-6 * u.length() * v.length() {
+            if parallel(u, v) {
                 return fail(field("edge_v"), "must not be parallel to edge_u");
             }
             Ok(())

@@ -7,26 +7,21 @@
 use super::keys::keys;
 use super::material::material;
 use super::primitives::{
-    Check, fail, finite, finite_all, int_in, nonzero_vector, positive, spread, unit_rgb,
+    Check, UNIT, fail, finite_all, finite_each, int_in, nonzero_vector, positive, spread, unit_rgb,
+    within,
 };
-use super::shape::{shape, shape_name, transform};
+use super::shape::{shape, shape_name, transforms};
 use crate::model::{Object, Pattern, Roll, Shape, Shutter, Transform};
 use crate::roll;
 
 pub(super) fn object(at: &str, object: &Object, shutter: &Shutter) -> Check {
     shape(&format!("{at}.shape"), &object.shape)?;
-    for (i, t) in object.transform.iter().enumerate() {
-        transform(&format!("{at}.transform[{i}]"), t)?;
-    }
+    transforms(&format!("{at}.transform"), &object.transform)?;
     material(&format!("{at}.material"), &object.material)?;
     motion(&format!("{at}.motion"), object, shutter)?;
     deform(&format!("{at}.deform"), object, shutter)?;
     if let Some(a) = object.glass {
-        let path = format!("{at}.glass");
-        finite(&path, a)?;
-        if !(0.0..=1.0).contains(&a) {
-            return fail(path, format!("must be in [0, 1], got {a}"));
-        }
+        within(&format!("{at}.glass"), a, UNIT, "")?;
     }
     if let Some(r) = &object.reflect {
         unit_rgb(&format!("{at}.reflect.color"), &r.color)?;
@@ -53,12 +48,7 @@ fn motion(at: &str, object: &Object, shutter: &Shutter) -> Check {
         &object.motion,
         |k| k.time,
         shutter,
-        |i, key| {
-            for (j, t) in key.transform.iter().enumerate() {
-                transform(&format!("{at}[{i}].transform[{j}]"), t)?;
-            }
-            Ok(())
-        },
+        |i, key| transforms(&format!("{at}[{i}].transform"), &key.transform),
     )
 }
 
@@ -91,10 +81,7 @@ fn deform(at: &str, object: &Object, shutter: &Shutter) -> Check {
             if key.points.len() != count {
                 return fail(path, format!("expected {count} points, got {}", key.points.len()));
             }
-            for (j, p) in key.points.iter().enumerate() {
-                finite_all(&format!("{path}[{j}]"), p)?;
-            }
-            Ok(())
+            finite_each(&path, &key.points)
         },
     )
 }

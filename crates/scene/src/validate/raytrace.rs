@@ -3,7 +3,7 @@
 //! Invariant: runs last, after every object, since the depth limit depends on whether any
 //! object reflects or refracts.
 
-use super::primitives::{Check, fail, finite, int_in};
+use super::primitives::{Check, Interval, fail, int_in, within};
 use crate::model::{RayTrace, Scene};
 
 /// Most `raytrace.max_depth`: deeper chains of mirror bounces add nothing visible.
@@ -35,9 +35,6 @@ pub(super) fn raytrace(rt: &RayTrace, scene: &Scene) -> Check {
             );
         }
     }
-    finite("raytrace.min_weight", rt.min_weight)?;
-    if !(0.0..1.0).contains(&rt.min_weight) {
-        return fail("raytrace.min_weight", format!("must be in [0, 1), got {}", rt.min_weight));
-    }
+    within("raytrace.min_weight", rt.min_weight, Interval::closed_open(0.0, 1.0), "")?;
     int_in("raytrace.vertex_rays", rt.vertex_rays, 1, MAX_VERTEX_RAYS)
 }

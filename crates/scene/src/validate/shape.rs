@@ -3,9 +3,11 @@
 //!
 //! Invariant: no check can panic; the matrix determinant is computed in `f64`.
 
-use glam::{DMat4, DVec4};
+use glam::DMat4;
 
-use super::primitives::{Check, fail, finite, finite_all, positive, sweep};
+use super::primitives::{
+    Check, above, each, fail, finite, finite_all, finite_each, nonzero_vector, positive, sweep,
+};
 use crate::model::{Shape, Transform};
 
 /// The variant name of a shape, for messages.
@@ -51,9 +53,7 @@ pub(super) fn shape(at: &str, shape: &Shape) -> Check {
             positive(&field("radius"), *radius)?;
             finite(&field("zmin"), *zmin)?;
             finite(&field("zmax"), *zmax)?;
-            if zmax <= zmin {
-                return fail(field("zmax"), format!("must be > zmin ({zmin}), got {zmax}"));
-            }
+            above(&field("zmax"), *zmax, "zmin", *zmin)?;
             sweep(&field("thetamax"), *thetamax)
         }
         Shape::Cone { height, radius, thetamax } => {
@@ -76,9 +76,7 @@ pub(super) fn shape(at: &str, shape: &Shape) -> Check {
             if *zmin < 0.0 {
                 return fail(field("zmin"), format!("must be >= 0, got {zmin}"));
             }
-            if zmax <= zmin {
-                return fail(field("zmax"), format!("must be > zmin ({zmin}), got {zmax}"));
-            }
+            above(&field("zmax"), *zmax, "zmin", *zmin)?;
             sweep(&field("thetamax"), *thetamax)
         }
         Shape::Torus { major_radius, minor_radius, phimin, phimax, thetamax } => {
@@ -86,9 +84,7 @@ pub(super) fn shape(at: &str, shape: &Shape) -> Check {
             positive(&field("minor_radius"), *minor_radius)?;
             finite(&field("phimin"), *phimin)?;
             finite(&field("phimax"), *phimax)?;
-            if phimax <= phimin {
-                return fail(field("phimax"), format!("must be > phimin ({phimin}), got {phimax}"));
-            }
+            above(&field("phimax"), *phimax, "phimin", *phimin)?;
             if f64::from(*phimax) - f64::from(*phimin) > 360.0 {
                 return fail(
                     field("phimax"),
@@ -100,16 +96,9 @@ pub(super) fn shape(at: &str, shape: &Shape) -> Check {
             }
             sweep(&field("thetamax"), *thetamax)
         }
-        Shape::BilinearPatch { points } => {
-            for (i, p) in points.iter().enumerate() {
-                finite_all(&format!("{at}.points[{i}]"), p)?;
-            }
-            Ok(())
-        }
+        Shape::BilinearPatch { points } => finite_each(&field("points"), points),
         Shape::Mesh { points, faces, colors } => {
-            for (i, p) in points.iter().enumerate() {
-                finite_all(&format!("{at}.points[{i}]"), p)?;
-            }
+            finite_each(&field("points"), points)?;
             if faces.is_empty() {
                 return fail(field("faces"), "must hold at least one face");
             }
@@ -143,39 +132,36 @@ pub(super) fn shape(at: &str, shape: &Shape) -> Check {
                         ),
                     );
                 }
-                for (i, c) in colors.iter().enumerate() {
-                    finite_all(&format!("{at}.colors[{i}]"), c)?;
-                }
+                finite_each(&field("colors"), colors)?;
             }
             Ok(())
         }
     }
 }
 
-pub(super) fn transform(at: &str, t: &Transform) -> Check {
+/// Each step of a transform list at `at`, step `i` at `at[i]`.
+pub(super) fn transforms(at: &str, list: &[Transform]) -> Check {
+    for (i, t) in list.iter().enumerate() {
+        transform(&format!("{at}[{i}]"), t)?;
+    }
+    Ok(())
+}
+
+fn transform(at: &str, t: &Transform) -> Check {
     match t {
         Transform::Translate(v) => finite_all(at, v),
         Transform::Rotate { angle, axis } => {
             finite(&format!("{at}.angle"), *angle)?;
-            finite_all(&format!("{at}.axis"), axis)?;
-            if axis.iter().all(|&a| a == 0.0) {
-                return fail(format!("{at}.axis"), "must be non-zero");
-            }
-            Ok(())
+            nonzero_vector(&format!("{at}.axis"), axis)
         }
         Transform::Scale(v) => {
             finite_all(at, v)?;
-            for (i, s) in v.iter().enumerate() {
-                if *s == 0.0 {
-                    return fail(format!("{at}[{i}]"), "a scale factor must be non-zero, got 0");
-                }
-            }
-            Ok(())
+            each(at, v, |path, s| {
+                if s == 0.0 { fail(path, "a scale factor must be non-zero, got 0") } else { Ok(()) }
+            })
         }
         Transform::Matrix(rows) => {
-            for (r, row) in rows.iter().enumerate() {
-                finite_all(&format!("{at}[{r}]"), row)?;
-            }
+            finite_each(at, rows)?;
             if rows[3] != [0.0, 0.0, 0.0, 1.0] {
                 let [a, b, c, d] = rows[3];
                 return fail(
@@ -186,11 +172,7 @@ pub(super) fn transform(at: &str, t: &Transform) -> Check {
                     ),
                 );
             }
-            let row = |r: &[f32; 4]| {
-                DVec4::new(f64::from(r[0]), f64::from(r[1]), f64::from(r[2]), f64::from(r[3]))
-            };
-            let det = DMat4::from_cols(row(&rows[0]), row(&rows[1]), row(&rows[2]), row(&rows[3]))
-                .determinant();
+            let det = DMat4::from_cols_array_2d(&rows.map(|r| r.map(f64::from))).determinant();
             if det.abs() <= 1e-12 {
                 return fail(
                     at,
