@@ -3,6 +3,8 @@
 //!
 //! Each case edits one spot of a valid base scene; `at` is the expected 1-based line and column.
 
+mod common;
+
 use std::path::Path;
 
 use reyes_scene::{SceneError, parse};
@@ -508,14 +510,8 @@ fn operand_names_in_messages_are_clipped_and_escaped() {
 #[test]
 fn a_bad_solid_is_exit_code_2() {
     let case = CASES.iter().find(|c| c.name == "disk operand").unwrap_or_else(|| panic!("no case"));
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("reyes-scene-tests");
-    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
-    let path = dir.join("bad-solid.ron");
-    std::fs::write(&path, BASE.replacen(case.from, case.to, 1)).unwrap_or_else(|e| panic!("{e}"));
-    let err = reyes_scene::load(&path).err().unwrap_or_else(|| panic!("loaded a bad scene"));
-    assert_eq!(err.exit_code(), 2);
-    let shown = err.to_string();
-    assert!(!shown.contains('\n'), "{shown}");
+    let path = common::temp_file("bad-solid.ron", BASE.replacen(case.from, case.to, 1).as_bytes());
+    let shown = common::load_bad(&path).to_string();
     assert!(
         shown.ends_with(":11:46: solids[0].tree[1]: object \"plate\" is not closed (Disk); CSG operands must be closed solids"),
         "{shown}"
@@ -564,14 +560,8 @@ fn a_bad_motion_key_is_exit_code_2() {
         .iter()
         .find(|c| c.name == "transform motion keys out of order")
         .unwrap_or_else(|| panic!("no case"));
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("reyes-scene-tests");
-    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
-    let path = dir.join("bad-motion.ron");
-    std::fs::write(&path, BASE.replacen(case.from, case.to, 1)).unwrap_or_else(|e| panic!("{e}"));
-    let err = reyes_scene::load(&path).err().unwrap_or_else(|| panic!("loaded a bad scene"));
-    assert_eq!(err.exit_code(), 2);
-    let shown = err.to_string();
-    assert!(!shown.contains('\n'), "{shown}");
+    let path = common::temp_file("bad-motion.ron", BASE.replacen(case.from, case.to, 1).as_bytes());
+    let shown = common::load_bad(&path).to_string();
     assert!(
         shown.ends_with(":7:120: objects[0].motion[2].time: keys must be in increasing time order, got 0.5 after 0.7"),
         "{shown}"
