@@ -3,6 +3,8 @@
 //!
 //! Each case edits one spot of a valid base scene; `at` is the expected 1-based line and column.
 
+mod common;
+
 use std::path::Path;
 
 use reyes_scene::{SceneError, parse};
@@ -504,18 +506,18 @@ fn operand_names_in_messages_are_clipped_and_escaped() {
     assert_eq!(e.message, "no object is named \"a\\nb\"");
 }
 
+/// What `load` shows for the case `name` written to the file `file`, a bad scene (exit code
+/// 2) on one line.
+fn load_case(name: &str, file: &str) -> String {
+    let case = CASES.iter().find(|c| c.name == name).unwrap_or_else(|| panic!("no case {name}"));
+    let path = common::temp_file(file, BASE.replacen(case.from, case.to, 1).as_bytes());
+    common::load_bad(&path).to_string()
+}
+
 /// A bad solid is a bad scene for `load` too: one line, exit code 2.
 #[test]
 fn a_bad_solid_is_exit_code_2() {
-    let case = CASES.iter().find(|c| c.name == "disk operand").unwrap_or_else(|| panic!("no case"));
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("reyes-scene-tests");
-    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
-    let path = dir.join("bad-solid.ron");
-    std::fs::write(&path, BASE.replacen(case.from, case.to, 1)).unwrap_or_else(|e| panic!("{e}"));
-    let err = reyes_scene::load(&path).err().unwrap_or_else(|| panic!("loaded a bad scene"));
-    assert_eq!(err.exit_code(), 2);
-    let shown = err.to_string();
-    assert!(!shown.contains('\n'), "{shown}");
+    let shown = load_case("disk operand", "bad-solid.ron");
     assert!(
         shown.ends_with(":11:46: solids[0].tree[1]: object \"plate\" is not closed (Disk); CSG operands must be closed solids"),
         "{shown}"
@@ -560,18 +562,7 @@ fn object_keys_follow_the_shutter() {
 /// A bad motion key is a bad scene for `load` too: one line, exit code 2.
 #[test]
 fn a_bad_motion_key_is_exit_code_2() {
-    let case = CASES
-        .iter()
-        .find(|c| c.name == "transform motion keys out of order")
-        .unwrap_or_else(|| panic!("no case"));
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("reyes-scene-tests");
-    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
-    let path = dir.join("bad-motion.ron");
-    std::fs::write(&path, BASE.replacen(case.from, case.to, 1)).unwrap_or_else(|e| panic!("{e}"));
-    let err = reyes_scene::load(&path).err().unwrap_or_else(|| panic!("loaded a bad scene"));
-    assert_eq!(err.exit_code(), 2);
-    let shown = err.to_string();
-    assert!(!shown.contains('\n'), "{shown}");
+    let shown = load_case("transform motion keys out of order", "bad-motion.ron");
     assert!(
         shown.ends_with(":7:120: objects[0].motion[2].time: keys must be in increasing time order, got 0.5 after 0.7"),
         "{shown}"

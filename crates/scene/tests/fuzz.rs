@@ -118,6 +118,32 @@ fn parse_checked(text: &str) -> Result<(), TestCaseError> {
     }
 }
 
+/// A range law: `text` parses when `accepted`, else fails at `field` (and at `at`, the line and
+/// column, when given).
+fn accepted_exactly(
+    text: &str,
+    accepted: bool,
+    field: &str,
+    at: Option<(usize, usize)>,
+) -> Result<(), TestCaseError> {
+    let result = parse(text, Path::new("fuzz.ron"));
+    if accepted {
+        prop_assert!(result.is_ok(), "{:?}", result.err().map(|e| e.to_string()));
+    } else {
+        let e = result.err();
+        prop_assert_eq!(
+            e.as_ref().map(|e| e.field.as_str()),
+            Some(field),
+            "{:?}",
+            e.as_ref().map(|e| e.to_string())
+        );
+        if at.is_some() {
+            prop_assert_eq!(e.as_ref().and_then(|e| e.line.zip(e.col)), at);
+        }
+    }
+    Ok(())
+}
+
 /// One edit of a text: at char offset `at` (mod length), delete `del` chars, insert `ins`.
 fn apply(text: &str, edits: &[(usize, usize, String)]) -> String {
     let mut chars: Vec<char> = text.chars().collect();
@@ -159,73 +185,38 @@ proptest! {
     #[test]
     fn fov_is_accepted_exactly_inside_0_180(fov in prop_oneof![any::<f32>(), -10.0f32..200.0]) {
         let text = VALID.replace("fov: 35.0", &format!("fov: {fov:?}"));
-        let result = parse(&text, Path::new("fuzz.ron"));
-        if fov > 0.0 && fov < 180.0 {
-            prop_assert!(result.is_ok(), "{:?}", result.err().map(|e| e.to_string()));
-        } else {
-            let e = result.err();
-            prop_assert_eq!(e.as_ref().map(|e| e.field.as_str()), Some("camera.fov"));
-            prop_assert_eq!(e.as_ref().and_then(|e| e.line.zip(e.col)), Some((4, 17)));
-        }
+        accepted_exactly(&text, fov > 0.0 && fov < 180.0, "camera.fov", Some((4, 17)))?;
     }
 
     #[test]
     fn radius_is_accepted_exactly_when_positive(radius in prop_oneof![any::<f32>(), -2.0f32..2.0]) {
         let text = VALID.replace("Sphere(radius: 1.0, zmin: Some(-0.5)", &format!("Sphere(radius: {radius:?}, zmin: None"));
-        let result = parse(&text, Path::new("fuzz.ron"));
-        if radius > 0.0 && radius.is_finite() {
-            prop_assert!(result.is_ok(), "{:?}", result.err().map(|e| e.to_string()));
-        } else {
-            let e = result.err();
-            prop_assert_eq!(e.as_ref().map(|e| e.field.as_str()), Some("objects[0].shape.radius"));
-        }
+        let accepted = radius > 0.0 && radius.is_finite();
+        accepted_exactly(&text, accepted, "objects[0].shape.radius", None)?;
     }
 
     #[test]
     fn ramp_is_accepted_exactly_in_0_to_one_half(ramp in prop_oneof![any::<f32>(), -0.1f32..0.7]) {
         let text = VALID.replace("ramp: 0.25", &format!("ramp: {ramp:?}"));
-        let result = parse(&text, Path::new("fuzz.ron"));
-        if ramp > 0.0 && ramp <= 0.5 {
-            prop_assert!(result.is_ok(), "{:?}", result.err().map(|e| e.to_string()));
-        } else {
-            let e = result.err();
-            prop_assert_eq!(e.as_ref().map(|e| e.field.as_str()), Some("camera.shutter.shape.ramp"));
-        }
+        accepted_exactly(&text, ramp > 0.0 && ramp <= 0.5, "camera.shutter.shape.ramp", None)?;
     }
 
     /// The middle transform key is accepted exactly strictly between its neighbours (0 and 1).
     #[test]
     fn a_key_time_is_accepted_exactly_between_its_neighbours(time in prop_oneof![any::<f32>(), -0.5f32..1.5, Just(0.0f32), Just(1.0f32)]) {
         let text = VALID.replace("(time: 0.5, transform", &format!("(time: {time:?}, transform"));
-        let result = parse(&text, Path::new("fuzz.ron"));
-        if time > 0.0 && time < 1.0 {
-            prop_assert!(result.is_ok(), "{:?}", result.err().map(|e| e.to_string()));
-        } else {
-            // Non-finite, outside the shutter or not after key 0: the middle key is at fault;
-            // at exactly 1, key 2 (also at 1) is the one out of order.
-            let at_fault =
-                if time == 1.0 { "objects[0].motion[2].time" } else { "objects[0].motion[1].time" };
-            let e = result.err();
-            prop_assert_eq!(
-                e.as_ref().map(|e| e.field.as_str()),
-                Some(at_fault),
-                "{:?}",
-                e.as_ref().map(|e| e.to_string())
-            );
-        }
+        // Non-finite, outside the shutter or not after key 0: the middle key is at fault;
+        // at exactly 1, key 2 (also at 1) is the one out of order.
+        let at_fault =
+            if time == 1.0 { "objects[0].motion[2].time" } else { "objects[0].motion[1].time" };
+        accepted_exactly(&text, time > 0.0 && time < 1.0, at_fault, None)?;
     }
 
     #[test]
     fn glass_is_accepted_exactly_in_0_1(glass in prop_oneof![any::<f32>(), -0.5f32..1.5, Just(0.0f32), Just(1.0f32)]) {
         let text = VALID.replace("glass: Some(0.5)", &format!("glass: Some({glass:?})"));
-        let result = parse(&text, Path::new("fuzz.ron"));
-        if (0.0..=1.0).contains(&glass) {
-            prop_assert!(result.is_ok(), "{:?}", result.err().map(|e| e.to_string()));
-        } else {
-            let e = result.err();
-            prop_assert_eq!(e.as_ref().map(|e| e.field.as_str()), Some("objects[3].glass"));
-            prop_assert_eq!(e.as_ref().and_then(|e| e.line.zip(e.col)), Some((29, 78)));
-        }
+        let accepted = (0.0..=1.0).contains(&glass);
+        accepted_exactly(&text, accepted, "objects[3].glass", Some((29, 78)))?;
     }
 
     #[test]

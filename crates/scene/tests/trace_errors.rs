@@ -5,6 +5,8 @@
 //!
 //! Each case edits one spot of a valid base scene and gives the whole expected line.
 
+mod common;
+
 use std::path::Path;
 
 use reyes_scene::parse;
@@ -180,15 +182,9 @@ fn the_size_of_a_roll_is_limited() {
 /// A bad ray-tracing value is a bad scene for `load` too: one line, exit code 2.
 #[test]
 fn a_bad_ior_is_exit_code_2() {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("reyes-scene-tests");
-    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
-    let path = dir.join("bad-ior.ron");
-    std::fs::write(&path, BASE.replacen("ior: 1.5", "ior: -1.0", 1))
-        .unwrap_or_else(|e| panic!("{e}"));
-    let err = reyes_scene::load(&path).err().unwrap_or_else(|| panic!("loaded a bad scene"));
-    assert_eq!(err.exit_code(), 2);
-    let shown = err.to_string();
-    assert!(!shown.contains('\n'), "{shown}");
+    let path =
+        common::temp_file("bad-ior.ron", BASE.replacen("ior: 1.5", "ior: -1.0", 1).as_bytes());
+    let shown = common::load_bad(&path).to_string();
     assert!(
         shown.ends_with("bad-ior.ron:18:26: objects[2].refract.ior: must be > 0, got -1"),
         "{shown}"

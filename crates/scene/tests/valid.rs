@@ -1,7 +1,11 @@
 //! Valid scenes parse to the expected values, defaults fill omitted sections, and `load`
 //! reports unreadable and bad files with the right error kind and exit code.
 
-use std::path::{Path, PathBuf};
+mod common;
+
+use std::path::Path;
+
+use common::{load_bad, temp_file};
 
 use reyes_scene::{
     Camera, CameraKey, Csg, Filter, FilterKind, Hider, Image, Interpolation, Lens, LoadError,
@@ -26,6 +30,18 @@ Scene(
 
 fn ok(text: &str) -> Scene {
     parse(text, Path::new("test.ron")).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// What ron writes for `scene` parses back to `scene`.
+fn reads_back(scene: &Scene) {
+    let text = ron::ser::to_string_pretty(scene, ron::ser::PrettyConfig::default())
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(&ok(&text), scene);
+}
+
+/// An `f32` vector of the scene in `f64`.
+fn dvec(a: &[f32; 3]) -> glam::DVec3 {
+    glam::DVec3::new(f64::from(a[0]), f64::from(a[1]), f64::from(a[2]))
 }
 
 #[test]
@@ -68,29 +84,22 @@ fn the_full_example_parses_with_the_expected_values() {
                 shadows: false,
             },
         ],
-        objects: vec![Object {
-            name: "ball".into(),
-            shape: Shape::Sphere { radius: 1.0, zmin: None, zmax: None, thetamax: 360.0 },
-            transform: vec![Transform::Translate([0.0, 0.0, 0.0])],
-            material: Material::Plastic {
-                color: [0.8, 0.1, 0.1],
-                opacity: [1.0, 1.0, 1.0],
-                ka: 1.0,
-                kd: 0.5,
-                ks: 0.5,
-                roughness: 0.1,
-                specular_color: [1.0, 1.0, 1.0],
-            },
-            matte: false,
-            motion: vec![],
-            deform: vec![],
-            interpolation: Interpolation::Flat,
-            glass: None,
-            reflect: None,
-            refract: None,
-            pattern: None,
-            roll: None,
-        }],
+        objects: vec![
+            Object::new(
+                Shape::Sphere { radius: 1.0, zmin: None, zmax: None, thetamax: 360.0 },
+                Material::Plastic {
+                    color: [0.8, 0.1, 0.1],
+                    opacity: [1.0, 1.0, 1.0],
+                    ka: 1.0,
+                    kd: 0.5,
+                    ks: 0.5,
+                    roughness: 0.1,
+                    specular_color: [1.0, 1.0, 1.0],
+                },
+            )
+            .named("ball")
+            .with_transform(vec![Transform::Translate([0.0, 0.0, 0.0])]),
+        ],
         solids: vec![],
         raytrace: reyes_scene::RayTrace::default(),
     };
@@ -174,9 +183,7 @@ fn comments_byte_order_mark_and_anonymous_root_are_accepted() {
 #[test]
 fn what_ron_writes_reads_back() {
     let scene = ok(FULL);
-    let text = ron::ser::to_string_pretty(&scene, ron::ser::PrettyConfig::default())
-        .unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!(ok(&text), scene);
+    reads_back(&scene);
 }
 
 /// Every kind of motion at once: a moving camera, a gradual shutter, an object with three
@@ -279,9 +286,7 @@ fn motion_defaults_to_none() {
 #[test]
 fn motion_reads_back_from_what_ron_writes() {
     let scene = ok(MOTION);
-    let text = ron::ser::to_string_pretty(&scene, ron::ser::PrettyConfig::default())
-        .unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!(ok(&text), scene);
+    reads_back(&scene);
 }
 
 #[test]
@@ -318,15 +323,6 @@ fn keys_may_sit_on_a_shifted_or_closed_shutter() {
     assert_eq!(scene.objects[0].motion.len(), 2);
 }
 
-/// A fresh path under cargo's per-target temporary directory.
-fn temp_file(name: &str, bytes: &[u8]) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("reyes-scene-tests");
-    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
-    let path = dir.join(name);
-    std::fs::write(&path, bytes).unwrap_or_else(|e| panic!("{e}"));
-    path
-}
-
 #[test]
 fn load_reads_a_valid_file() {
     let path = temp_file("valid.ron", FULL.as_bytes());
@@ -348,8 +344,7 @@ fn load_reports_an_unreadable_file_with_exit_code_1() {
 #[test]
 fn load_reports_a_bad_scene_with_exit_code_2() {
     let path = temp_file("bad.ron", FULL.replace("radius: 1.0", "radius: -1.0").as_bytes());
-    let err = load(&path).err().unwrap_or_else(|| panic!("loaded a bad scene"));
-    assert_eq!(err.exit_code(), 2);
+    let err = load_bad(&path);
     let LoadError::Scene(scene_err) = &err else { panic!("{err:?}") };
     assert_eq!(scene_err.file, path);
     assert_eq!(scene_err.field, "objects[0].shape.radius");
@@ -362,8 +357,7 @@ fn load_reports_invalid_utf8_as_a_bad_scene() {
     let mut bytes = b"Scene(\n  image: (width: 8, hei".to_vec();
     bytes.push(0xff);
     let path = temp_file("latin1.ron", &bytes);
-    let err = load(&path).err().unwrap_or_else(|| panic!("loaded invalid UTF-8"));
-    assert_eq!(err.exit_code(), 2);
+    let err = load_bad(&path);
     let LoadError::Scene(e) = err else { panic!("not a scene error") };
     assert_eq!((e.line, e.col), (Some(2), Some(24)));
     assert_eq!(e.message, "the file is not valid UTF-8");
@@ -457,9 +451,7 @@ fn csg_defaults_to_nothing() {
 #[test]
 fn csg_reads_back_from_what_ron_writes() {
     let scene = ok(CSG);
-    let text = ron::ser::to_string_pretty(&scene, ron::ser::PrettyConfig::default())
-        .unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!(ok(&text), scene);
+    reads_back(&scene);
 }
 
 /// More closed operands: n-ary trees, sphere cuts at or beyond the poles, a deforming closed
@@ -603,15 +595,14 @@ fn limits_at_their_ends_are_accepted() {
 /// The object-to-world matrix of a transform list, as the dicer builds it (first item first),
 /// in `f64`.
 fn matrix(list: &[Transform]) -> glam::DMat4 {
-    use glam::{DMat4, DVec3};
-    let v = |a: &[f32; 3]| DVec3::new(f64::from(a[0]), f64::from(a[1]), f64::from(a[2]));
+    use glam::DMat4;
     list.iter().fold(DMat4::IDENTITY, |m, t| {
         let step = match t {
-            Transform::Translate(d) => DMat4::from_translation(v(d)),
+            Transform::Translate(d) => DMat4::from_translation(dvec(d)),
             Transform::Rotate { angle, axis } => {
-                DMat4::from_axis_angle(v(axis).normalize(), f64::from(*angle).to_radians())
+                DMat4::from_axis_angle(dvec(axis).normalize(), f64::from(*angle).to_radians())
             }
-            Transform::Scale(s) => DMat4::from_scale(v(s)),
+            Transform::Scale(s) => DMat4::from_scale(dvec(s)),
             Transform::Matrix(rows) => {
                 DMat4::from_cols_array_2d(&rows.map(|r| r.map(f64::from))).transpose()
             }
@@ -671,10 +662,7 @@ fn rolling_expands_into_transform_keys() {
         // The ball's centre (the object's origin) is on the path ...
         let segment = (k.saturating_sub(1) / 4).min(2);
         let f = if k == 0 { 0.0 } else { ((k - 1) % 4 + 1) as f64 / 4.0 };
-        let p = |i: usize| {
-            let v = roll.path[i].position;
-            glam::DVec3::new(f64::from(v[0]), f64::from(v[1]), f64::from(v[2]))
-        };
+        let p = |i: usize| dvec(&roll.path[i].position);
         let expected = p(segment) + (p(segment + 1) - p(segment)) * f;
         let centre = m.transform_point3(glam::DVec3::ZERO);
         assert!((centre - expected).length() < 1e-5, "key {k}: {centre} vs {expected}");
@@ -708,9 +696,7 @@ fn the_contact_point_does_not_slip() {
         let scene = ok(&rolling(steps));
         let ball = &scene.objects[0];
         let roll = ball.roll.as_ref().unwrap_or_else(|| panic!("no roll"));
-        let up =
-            glam::DVec3::new(f64::from(roll.up[0]), f64::from(roll.up[1]), f64::from(roll.up[2]))
-                .normalize();
+        let up = dvec(&roll.up).normalize();
         let radius = f64::from(roll.radius);
         let keys = &ball.motion;
         let mut ratio: f64 = 0.0;
@@ -758,14 +744,9 @@ fn the_contact_point_does_not_slip() {
 fn a_rolled_scene_reads_back_from_what_ron_writes() {
     let scene = ok(&rolling(8));
     assert!(!scene.objects[0].motion.is_empty() && scene.objects[0].roll.is_some());
-    let text = ron::ser::to_string_pretty(&scene, ron::ser::PrettyConfig::default())
-        .unwrap_or_else(|e| panic!("{e}"));
     // The written motion is exactly what the roll expands to, so it is accepted with it.
-    assert_eq!(ok(&text), scene);
-    let scene = ok(TRACED);
-    let text = ron::ser::to_string_pretty(&scene, ron::ser::PrettyConfig::default())
-        .unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!(ok(&text), scene);
+    reads_back(&scene);
+    reads_back(&ok(TRACED));
 }
 
 /// A closed shutter: every path key at `open`, the ball held at its first position.

@@ -1,0 +1,161 @@
+//! Sampling, filtering and bucketing: the [`Hider`] settings, its patterns and filter, and
+//! the [`Original`] switches that reproduce the 1985 behaviour.
+//!
+//! Invariant: `Default` of every type here is what an absent RON field gives.
+
+use serde::{Deserialize, Serialize};
+
+/// Sampling, filtering and bucketing.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Hider {
+    /// Which visibility algorithm renders the frame.
+    pub method: HiderMethod,
+    /// Samples per pixel as (nx, ny): NS = nx * ny strata per pixel.
+    pub pixel_samples: (u32, u32),
+    /// Appendix A's `jitter on/off`. `false` is the regular grid of FIG. 3 and overrides `pattern`.
+    pub jitter: bool,
+    /// Which jittered spatial pattern (FIGS. 5-7) to use when `jitter` is on.
+    pub pattern: SpatialPattern,
+    /// How each sample's time is chosen within its time stratum (FIGS. 13-15).
+    pub time_pattern: TimePattern,
+    /// Reconstruction filter.
+    pub filter: Filter,
+    /// Bucket size in pixels (x, y).
+    pub bucket_size: (u32, u32),
+    /// Target micropolygon area in pixels (> 0).
+    pub shading_rate: f32,
+    /// Seed of every pseudo-random choice.
+    pub seed: u64,
+    /// Largest number of micropolygons in one diced grid; bigger primitives are split.
+    pub max_grid_size: u32,
+    /// Drop back-facing micropolygons of closed, opaque objects (RenderMan's `Sides 1`;
+    /// pinhole cameras only): about half the micropolygons and sample tests of a scene of
+    /// balls. Off by default, because the back faces also fill the cracks between grids
+    /// diced at different rates: without them a few silhouette and crack pixels lose
+    /// coverage (on `scenes/bench/balls.ron` 1045 pixels change, by at most 0.08).
+    pub cull_back_faces: bool,
+    /// Switches that reproduce the original 1985 behaviour where it differs from ours.
+    pub original: Original,
+}
+
+impl Default for Hider {
+    fn default() -> Self {
+        Hider {
+            method: HiderMethod::default(),
+            pixel_samples: (4, 4),
+            jitter: true,
+            pattern: SpatialPattern::default(),
+            time_pattern: TimePattern::default(),
+            filter: Filter::default(),
+            bucket_size: (16, 16),
+            shading_rate: 1.0,
+            seed: 0,
+            max_grid_size: 256,
+            cull_back_faces: false,
+            original: Original::default(),
+        }
+    }
+}
+
+/// The visibility algorithm.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub enum HiderMethod {
+    /// Appendix A: dice into micropolygons, shade the vertices, point-sample the micropolygons.
+    #[default]
+    Stochastic,
+    /// Appendix B: trace a primary ray per sample (same positions, times, lens positions and
+    /// filter) and shade where it hits, with the distributed rays of the materials and lights.
+    RayTrace,
+}
+
+/// Jittered spatial sampling patterns of the patent (FIG. 3 is `jitter: false`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub enum SpatialPattern {
+    /// FIG. 5: one jittered pattern (one point anywhere in each cell), repeated in every pixel.
+    Fig5,
+    /// FIG. 6: each cell's point anywhere in the cell, new in every pixel (Appendix A's jitter).
+    #[default]
+    Fig6,
+    /// FIG. 7: a FIG. 5 reference pattern plus a bounded random offset in every pixel.
+    Fig7,
+    /// Pure random: every sample uniform anywhere in its pixel, no stratification.
+    Random,
+    /// Owen-scrambled Sobol (0,2) per pixel; needs power-of-two `pixel_samples`, else `Fig6`.
+    Sobol,
+}
+
+/// Temporal patterns of the patent (FIGS. 13-15), the counterparts in time of FIGS. 5-7.
+/// With `jitter: false` every sample takes its time stratum's centre.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub enum TimePattern {
+    /// FIG. 13: one pseudo-random time per stratum, the same in every pixel.
+    Fig13,
+    /// FIG. 14: a new pseudo-random time anywhere in the stratum for every pixel (Appendix A).
+    #[default]
+    Fig14,
+    /// FIG. 15: a FIG. 13 reference time plus a pseudo-random shift of at most a quarter stratum.
+    Fig15,
+}
+
+/// Reconstruction filter (`VisFilter`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Filter {
+    /// Kernel.
+    pub kind: FilterKind,
+    /// Full width in pixels (> 0).
+    pub width: f32,
+}
+
+impl Default for Filter {
+    fn default() -> Self {
+        Filter { kind: FilterKind::Gaussian, width: 2.0 }
+    }
+}
+
+/// The five filter kernels of Appendix A.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum FilterKind {
+    /// Box.
+    Box,
+    /// Truncated Gaussian `exp(-r^2) - exp(-(w/2)^2)`.
+    Gaussian,
+    /// Separable sinc, truncated to the footprint.
+    Sinc,
+    /// Separable tent.
+    Bartlett,
+    /// Jinc `J1(2r)/r`, truncated to the footprint.
+    Bessel,
+}
+
+/// Reproduce the original Appendix A behaviour where we deliberately differ
+/// (see docs/appendix-a.md). All `false` by default.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Original {
+    /// Use the original `permute`, which is not a permutation for some NS (3.4).
+    pub permute: bool,
+    /// Five 512-entry jitter tables laid out back to back, read past their ends as the C did (3.2).
+    pub jitter_tables: bool,
+    /// Box kernel cut on signed offsets at the full width (3.16).
+    pub box_filter: bool,
+    /// Bartlett kernel with the full width as half-width (3.16).
+    pub bartlett_filter: bool,
+    /// Sinc kernel centre value 1 instead of its limit 2 (2.3).
+    pub sinc_filter: bool,
+    /// CSG operands compared by depth-range minima, as Appendix A's `csg_resolve_surface`
+    /// did, instead of exact depths (3.15).
+    pub csg_order: bool,
+    /// Matte and opacity of a sample taken from the deepest composited surface, so a matte
+    /// behind a transparent surface drops the whole sample (3.14).
+    pub matte: bool,
+    /// Sample s has time stratum s in every pixel, tying time to sub-pixel position (3.3).
+    pub time_pairing: bool,
+    /// The square, uncentred lens of the original (the "kludge", 3.8), with lens position
+    /// tied to screen position.
+    pub lens: bool,
+    /// Moving micropolygons that straddle hither or yon at a sample's time are rejected for
+    /// that sample instead of clipped (3.6).
+    pub moving_clip: bool,
+}

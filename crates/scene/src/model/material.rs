@@ -1,0 +1,66 @@
+//! Surface materials: [`Material`].
+//!
+//! Invariant: colours and opacities are per channel, in [0, 1] once validated; the
+//! coefficients default as in RenderMan's shaders.
+
+use serde::{Deserialize, Serialize};
+
+use super::{Rgb, one, white};
+
+/// Surface materials. Colours and opacities are per channel in [0, 1].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum Material {
+    /// Unlit colour.
+    Constant {
+        /// Colour.
+        color: Rgb,
+        /// Opacity per channel.
+        #[serde(default = "white")]
+        opacity: Rgb,
+    },
+    /// Lambertian.
+    Matte {
+        /// Colour.
+        color: Rgb,
+        /// Opacity per channel.
+        #[serde(default = "white")]
+        opacity: Rgb,
+        /// Ambient coefficient.
+        #[serde(default = "one")]
+        ka: f32,
+        /// Diffuse coefficient.
+        #[serde(default = "one")]
+        kd: f32,
+    },
+    /// RenderMan plastic: ambient + diffuse in the surface colour, specular in `specular_color`.
+    Plastic {
+        /// Colour.
+        color: Rgb,
+        /// Opacity per channel.
+        #[serde(default = "white")]
+        opacity: Rgb,
+        /// Ambient coefficient.
+        #[serde(default = "one")]
+        ka: f32,
+        /// Diffuse coefficient.
+        #[serde(default = "half")]
+        kd: f32,
+        /// Specular coefficient.
+        #[serde(default = "half")]
+        ks: f32,
+        /// Specular roughness (> 0): exponent is `1 / roughness`.
+        #[serde(default = "tenth")]
+        roughness: f32,
+        /// Specular colour.
+        #[serde(default = "white")]
+        specular_color: Rgb,
+    },
+}
+
+fn half() -> f32 {
+    0.5
+}
+fn tenth() -> f32 {
+    0.1
+}

@@ -1,0 +1,73 @@
+//! The scene model: plain serde types mirroring the RON file field by field.
+//!
+//! Invariant: a `Scene` returned by [`crate::load`] or [`crate::parse`] has passed
+//! validation, so every later stage may assume finite numbers and in-range values.
+//! Vectors are `[f32; 3]`, written in RON as tuples `(x, y, z)`. Angles are in degrees.
+//! World space is left-handed like RenderMan's: with the camera looking down +z and +y up,
+//! +x is to the right.
+//!
+//! One submodule per section of the file (camera, hider, lights, objects, shapes, materials,
+//! solids, ray tracing); every type is re-exported here, so `model::X` (and, through the
+//! crate root, `reyes_scene::X`) names it whichever file it lives in.
+
+use serde::{Deserialize, Serialize};
+
+mod camera;
+mod hider;
+mod light;
+mod material;
+mod object;
+mod raytrace;
+mod shape;
+mod solid;
+
+pub use camera::*;
+pub use hider::*;
+pub use light::*;
+pub use material::*;
+pub use object::*;
+pub use raytrace::*;
+pub use shape::*;
+pub use solid::*;
+
+/// A 3-vector as written in the scene file: `(x, y, z)`.
+pub type V3 = [f32; 3];
+/// An RGB triple, linear light.
+pub type Rgb = [f32; 3];
+
+/// A whole scene: one frame.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    /// Output resolution.
+    pub image: Image,
+    /// The camera.
+    pub camera: Camera,
+    /// Sampling, filtering and bucketing settings.
+    #[serde(default)]
+    pub hider: Hider,
+    /// Light sources.
+    #[serde(default)]
+    pub lights: Vec<Light>,
+    /// Geometric objects.
+    #[serde(default)]
+    pub objects: Vec<Object>,
+    /// Constructive solid geometry: each solid combines closed objects (named in `objects`)
+    /// with union, intersection and difference. An object used in a solid is drawn only as
+    /// part of it, and may be used in one solid only.
+    #[serde(default)]
+    pub solids: Vec<Solid>,
+    /// Settings of the distributed ray tracing (shadows, glossy reflection, translucency).
+    #[serde(default)]
+    pub raytrace: RayTrace,
+}
+
+fn default_up() -> V3 {
+    [0.0, 1.0, 0.0]
+}
+fn white() -> Rgb {
+    [1.0, 1.0, 1.0]
+}
+fn one() -> f32 {
+    1.0
+}

@@ -1,0 +1,75 @@
+//! The rules of one light: its position or shape, then colour and intensity, then an area
+//! light's motion keys.
+//!
+//! Invariant: every check reports under the light's own path (`lights[i]`).
+
+use super::keys::keys;
+use super::primitives::{
+    Check, dvec, each, fail, finite_all, non_negative, nonzero_vector, parallel, positive,
+};
+use crate::model::{AreaShape, Light, Shutter};
+
+pub(super) fn light(at: &str, light: &Light, shutter: &Shutter) -> Check {
+    let (color, intensity) = match light {
+        Light::Ambient { color, intensity } => (color, intensity),
+        Light::Distant { from, to, color, intensity, .. } => {
+            finite_all(&format!("{at}.from"), from)?;
+            finite_all(&format!("{at}.to"), to)?;
+            if from == to {
+                return fail(format!("{at}.to"), "must differ from `from`");
+            }
+            (color, intensity)
+        }
+        Light::Point { from, color, intensity, .. } => {
+            finite_all(&format!("{at}.from"), from)?;
+            (color, intensity)
+        }
+        Light::Area { shape, color, intensity, .. } => {
+            area_shape(&format!("{at}.shape"), shape)?;
+            (color, intensity)
+        }
+    };
+    each(&format!("{at}.color"), color, non_negative)?;
+    non_negative(&format!("{at}.intensity"), *intensity)?;
+    if let Light::Area { motion, .. } = light {
+        let at = format!("{at}.motion");
+        keys(
+            &at,
+            motion,
+            |k| k.time,
+            shutter,
+            |i, key| {
+                finite_all(&format!("{at}[{i}].offset"), &key.offset)?;
+                non_negative(&format!("{at}[{i}].intensity"), key.intensity)
+            },
+        )?;
+    }
+    Ok(())
+}
+
+/// The shape of an area light: finite; radii > 0; a disk's normal non-zero; a rectangle's
+/// edges non-zero and not parallel.
+fn area_shape(at: &str, shape: &AreaShape) -> Check {
+    let field = |name: &str| format!("{at}.{name}");
+    match shape {
+        AreaShape::Sphere { center, radius } => {
+            finite_all(&field("center"), center)?;
+            positive(&field("radius"), *radius)
+        }
+        AreaShape::Disk { center, normal, radius } => {
+            finite_all(&field("center"), center)?;
+            nonzero_vector(&field("normal"), normal)?;
+            positive(&field("radius"), *radius)
+        }
+        AreaShape::Rectangle { corner, edge_u, edge_v } => {
+            finite_all(&field("corner"), corner)?;
+            nonzero_vector(&field("edge_u"), edge_u)?;
+            nonzero_vector(&field("edge_v"), edge_v)?;
+            let (u, v) = (dvec(edge_u), dvec(edge_v));
+            if parallel(u, v) {
+                return fail(field("edge_v"), "must not be parallel to edge_u");
+            }
+            Ok(())
+        }
+    }
+}

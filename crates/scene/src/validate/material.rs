@@ -1,0 +1,32 @@
+//! The rules of a surface [`Material`]: colours and opacities in [0, 1], coefficients
+//! non-negative, roughness positive, in field order.
+//!
+//! Invariant: reports under the material's path (`objects[i].material`).
+
+use super::primitives::{Check, non_negative, positive, unit_rgb};
+use crate::model::Material;
+
+pub(super) fn material(at: &str, m: &Material) -> Check {
+    let field = |name: &str| format!("{at}.{name}");
+    match m {
+        Material::Constant { color, opacity } => {
+            unit_rgb(&field("color"), color)?;
+            unit_rgb(&field("opacity"), opacity)
+        }
+        Material::Matte { color, opacity, ka, kd } => {
+            unit_rgb(&field("color"), color)?;
+            unit_rgb(&field("opacity"), opacity)?;
+            non_negative(&field("ka"), *ka)?;
+            non_negative(&field("kd"), *kd)
+        }
+        Material::Plastic { color, opacity, ka, kd, ks, roughness, specular_color } => {
+            unit_rgb(&field("color"), color)?;
+            unit_rgb(&field("opacity"), opacity)?;
+            non_negative(&field("ka"), *ka)?;
+            non_negative(&field("kd"), *kd)?;
+            non_negative(&field("ks"), *ks)?;
+            positive(&field("roughness"), *roughness)?;
+            unit_rgb(&field("specular_color"), specular_color)
+        }
+    }
+}
