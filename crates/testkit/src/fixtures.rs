@@ -61,21 +61,7 @@ pub fn white_matte() -> Material {
 
 /// A white matte object.
 pub fn object(shape: Shape, transform: Vec<Transform>) -> Object {
-    Object {
-        name: String::new(),
-        shape,
-        transform,
-        material: white_matte(),
-        matte: false,
-        motion: Vec::new(),
-        deform: Vec::new(),
-        interpolation: Default::default(),
-        glass: None,
-        reflect: None,
-        refract: None,
-        pattern: None,
-        roll: None,
-    }
+    Object::new(shape, white_matte()).with_transform(transform)
 }
 
 /// A whole sphere of radius `r`.
