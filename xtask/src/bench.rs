@@ -1,7 +1,11 @@
-//! `cargo xtask bench [--runs N] [--threads T] [SCENE...]`: render every scene of
-//! `scenes/bench/` N times with the release binary and report wall time (min, median, max),
-//! peak resident memory, micropolygons, sample tests per second and hits; also written as JSON
-//! to `target/bench.json` so runs can be compared.
+//! `cargo xtask bench [--runs N] [--threads T] [--baseline BIN] [SCENE...]`: render every
+//! scene of `scenes/bench/` N times with the release binary and report wall time (min, median,
+//! max), peak resident memory, micropolygons, sample tests per second and hits; also written as
+//! JSON to `target/bench.json` so runs can be compared.
+//!
+//! With `--baseline BIN` (another build's `reyes-render`), every run renders each scene with
+//! both binaries, alternating which goes first, so that a noisy machine slows both alike; the
+//! table then adds the baseline's median and the ratio new / baseline.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -11,6 +15,8 @@ use std::time::Instant;
 struct Row {
     scene: String,
     times: Vec<f64>,
+    /// The baseline binary's times (empty without `--baseline`).
+    base_times: Vec<f64>,
     peak_mb: f64,
     micropolygons: u64,
     tests: u64,
@@ -39,10 +45,14 @@ fn number_before(text: &str, key: &str) -> Option<f64> {
 pub fn run(root: &Path, args: &[String]) -> Result<(), String> {
     let mut runs = 3usize;
     let mut threads: Option<String> = None;
+    let mut baseline: Option<PathBuf> = None;
     let mut only = Vec::new();
     let mut it = args.iter();
     while let Some(a) = it.next() {
         match a.as_str() {
+            "--baseline" => {
+                baseline = Some(PathBuf::from(it.next().ok_or("--baseline takes a binary")?))
+            }
             "--runs" => {
                 runs = it.next().and_then(|v| v.parse().ok()).ok_or("--runs takes a number")?
             }
@@ -76,16 +86,32 @@ pub fn run(root: &Path, args: &[String]) -> Result<(), String> {
         let mut row = Row {
             scene: name.clone(),
             times: Vec::new(),
+            base_times: Vec::new(),
             peak_mb: 0.0,
             micropolygons: 0,
             tests: 0,
             hits: 0,
             hide_s: f64::INFINITY,
         };
-        for _ in 0..runs {
+        for run in 0..runs {
+            let base_out = out_dir.join(format!("{name}.baseline.exr"));
+            let time_base = |row: &mut Row| -> Result<(), String> {
+                if let Some(b) = &baseline {
+                    let (wall, _) = render_timed(b, scene, &base_out, &threads)
+                        .map_err(|e| format!("{name} (baseline): {e}"))?;
+                    row.base_times.push(wall);
+                }
+                Ok(())
+            };
+            if run % 2 == 0 {
+                time_base(&mut row)?;
+            }
             let (wall, stats) =
                 render_timed(&bin, scene, &out_dir.join(format!("{name}.exr")), &threads)
                     .map_err(|e| format!("{name}: {e}"))?;
+            if run % 2 == 1 {
+                time_base(&mut row)?;
+            }
             row.times.push(wall);
             row.peak_mb = row.peak_mb.max(
                 field(&stats, "Memory:").and_then(|m| number_after(m, "resident")).unwrap_or(0.0),
@@ -100,6 +126,7 @@ pub fn run(root: &Path, args: &[String]) -> Result<(), String> {
             row.hide_s = row.hide_s.min(number_after(time, "hide").unwrap_or(f64::INFINITY));
         }
         row.times.sort_by(f64::total_cmp);
+        row.base_times.sort_by(f64::total_cmp);
         rows.push(row);
     }
     println!(
@@ -137,6 +164,16 @@ pub fn run(root: &Path, args: &[String]) -> Result<(), String> {
         ));
     }
     json.push_str("]\n");
+    if baseline.is_some() {
+        println!(
+            "\n{:<14} {:>14} {:>12} {:>12}",
+            "scene", "baseline med s", "new med s", "new / base"
+        );
+        for r in &rows {
+            let (b, n) = (r.base_times[r.base_times.len() / 2], r.times[r.times.len() / 2]);
+            println!("{:<14} {:>14.3} {:>12.3} {:>12.3}", r.scene, b, n, n / b);
+        }
+    }
     let path = root.join("target/bench.json");
     std::fs::write(&path, json).map_err(|e| format!("{}: {e}", path.display()))?;
     println!("wrote {}", path.display());

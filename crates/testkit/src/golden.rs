@@ -85,7 +85,8 @@ fn err(e: impl std::fmt::Display) -> GoldenError {
 
 /// The workspace root (where `golden/` and `scenes/` are).
 pub fn workspace_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    root.canonicalize().unwrap_or(root)
 }
 
 /// Read `golden/manifest.ron`.
