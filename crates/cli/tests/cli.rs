@@ -35,6 +35,23 @@ fn scene_with(dir: &Path, name: &str, edit: impl Fn(&str) -> String) -> PathBuf 
     path
 }
 
+/// Render `scene_with(dir, NAME.ron)` with its one occurrence of `from` replaced by `to`,
+/// expecting a scene error: exit code 2 and exactly one line on stderr, which is returned,
+/// and no `NAME.exr` written.
+fn scene_error(dir: &Path, name: &str, from: &str, to: &str) -> String {
+    let scene = scene_with(dir, &format!("{name}.ron"), |t| {
+        assert_eq!(t.matches(from).count(), 1, "{name}");
+        t.replacen(from, to, 1)
+    });
+    let out = dir.join(format!("{name}.exr"));
+    let o = run(&[scene.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{name}: {err}");
+    assert_eq!(err.lines().count(), 1, "{name}: {err}");
+    assert!(!out.exists(), "{name}: output written");
+    err
+}
+
 fn files_in(dir: &Path) -> Vec<String> {
     let mut v: Vec<String> = std::fs::read_dir(dir)
         .unwrap()
@@ -98,22 +115,13 @@ fn bad_scenes_exit_2_with_one_line_and_no_output() {
     ];
     let mut snapshot = String::new();
     for (name, from, to, field) in cases {
-        let scene = scene_with(dir.path(), &format!("{name}.ron"), |t| {
-            assert!(t.contains(from), "{name}");
-            t.replacen(from, to, 1)
-        });
-        let out = dir.path().join(format!("{name}.exr"));
-        let o = run(&[scene.to_str().unwrap(), "-o", out.to_str().unwrap()]);
-        let err = stderr(&o);
-        assert_eq!(o.status.code(), Some(2), "{name}: {err}");
-        assert_eq!(err.lines().count(), 1, "{name}: {err}");
+        let err = scene_error(dir.path(), name, from, to);
         assert!(err.contains(&format!("{name}.ron:")), "{name}: {err}");
         assert!(err.contains(field), "{name}: {err}");
         let pos = err.split(&format!("{name}.ron:")).nth(1).unwrap();
         let mut parts = pos.split(':');
         assert!(parts.next().unwrap().parse::<u32>().is_ok(), "{name}: no line in {err}");
         assert!(parts.next().unwrap().parse::<u32>().is_ok(), "{name}: no column in {err}");
-        assert!(!out.exists(), "{name}: output written");
         snapshot.push_str(&err.replace(&dir.path().display().to_string(), "DIR"));
     }
     insta::assert_snapshot!("bad_scenes", snapshot);
@@ -158,18 +166,9 @@ fn bad_ray_tracing_values_exit_2_with_one_line() {
         ),
     ];
     for (name, from, to, expected) in cases {
-        let scene = scene_with(dir.path(), &format!("{name}.ron"), |t| {
-            assert_eq!(t.matches(from).count(), 1, "{name}");
-            t.replacen(from, to, 1)
-        });
-        let out = dir.path().join(format!("{name}.exr"));
-        let o = run(&[scene.to_str().unwrap(), "-o", out.to_str().unwrap()]);
-        let err = stderr(&o);
-        assert_eq!(o.status.code(), Some(2), "{name}: {err}");
-        assert_eq!(err.lines().count(), 1, "{name}: {err}");
+        let err = scene_error(dir.path(), name, from, to);
         let shown = err.trim_end().replace(&dir.path().display().to_string(), "DIR");
         assert_eq!(shown, format!("reyes-render: error: DIR/{expected}"), "{name}");
-        assert!(!out.exists(), "{name}: output written");
     }
 }
 

@@ -64,20 +64,6 @@ impl Quadric {
     }
 }
 
-/// The shape's variant name.
-pub(crate) fn shape_name(shape: &Shape) -> &'static str {
-    match shape {
-        Shape::Sphere { .. } => "Sphere",
-        Shape::Cylinder { .. } => "Cylinder",
-        Shape::Cone { .. } => "Cone",
-        Shape::Disk { .. } => "Disk",
-        Shape::Torus { .. } => "Torus",
-        Shape::Paraboloid { .. } => "Paraboloid",
-        Shape::BilinearPatch { .. } => "BilinearPatch",
-        Shape::Mesh { .. } => "Mesh",
-    }
-}
-
 /// The closed quadric of a shape, `Ok(None)` for a mesh, or why the shape bounds no volume.
 /// Whether it is closed is the scene's own rule ([`reyes_scene::closure`], the one CSG
 /// operands obey); a mesh's face orientation does not matter to the parity test.
@@ -106,7 +92,7 @@ pub(crate) fn closed_quadric(shape: &Shape) -> Result<Option<Quadric>, String> {
         }
         Shape::Mesh { .. } => return Ok(None),
         // `closure` calls these open.
-        Shape::Disk { .. } | Shape::BilinearPatch { .. } => return Err(shape_name(shape).into()),
+        Shape::Disk { .. } | Shape::BilinearPatch { .. } => return Err(shape.name().into()),
     }))
 }
 

@@ -45,7 +45,7 @@ use glam::DVec3;
 use reyes_scene::Scene;
 
 use crate::estimator::{grid, sample};
-use crate::inside::{Node, member, shape_name, solid_node};
+use crate::inside::{Node, member, solid_node};
 
 /// Default number of sample points.
 pub const DEFAULT_SAMPLES: u64 = 1_000_000;
@@ -244,7 +244,7 @@ pub fn measure(
     } else {
         let objects =
             scene.objects.iter().enumerate().filter(|(_, o)| o.name == name).map(|(index, o)| {
-                (format!("objects[{index}]"), Target::Object { index, shape: shape_name(&o.shape) })
+                (format!("objects[{index}]"), Target::Object { index, shape: o.shape.name() })
             });
         let solids = scene
             .solids

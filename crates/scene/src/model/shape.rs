@@ -109,6 +109,22 @@ pub enum Shape {
     },
 }
 
+impl Shape {
+    /// The variant's name as RON spells it (`"Sphere"`, `"Mesh"`, ...), for messages.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Shape::Sphere { .. } => "Sphere",
+            Shape::Cylinder { .. } => "Cylinder",
+            Shape::Cone { .. } => "Cone",
+            Shape::Disk { .. } => "Disk",
+            Shape::Torus { .. } => "Torus",
+            Shape::Paraboloid { .. } => "Paraboloid",
+            Shape::BilinearPatch { .. } => "BilinearPatch",
+            Shape::Mesh { .. } => "Mesh",
+        }
+    }
+}
+
 /// One step of an object's transform.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

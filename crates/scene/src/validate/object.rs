@@ -10,7 +10,7 @@ use super::primitives::{
     Check, UNIT, fail, finite_all, finite_each, int_in, nonzero_vector, positive, spread, unit_rgb,
     within,
 };
-use super::shape::{shape, shape_name, transforms};
+use super::shape::{shape, transforms};
 use crate::model::{Object, Pattern, Roll, Shape, Shutter, Transform};
 use crate::roll;
 
@@ -66,7 +66,7 @@ fn deform(at: &str, object: &Object, shutter: &Shutter) -> Check {
                 at,
                 format!(
                     "deformation keys need a Mesh or BilinearPatch shape, got {}",
-                    shape_name(other)
+                    other.name()
                 ),
             );
         }

@@ -10,20 +10,6 @@ use super::primitives::{
 };
 use crate::model::{Shape, Transform};
 
-/// The variant name of a shape, for messages.
-pub(super) fn shape_name(shape: &Shape) -> &'static str {
-    match shape {
-        Shape::Sphere { .. } => "Sphere",
-        Shape::Cylinder { .. } => "Cylinder",
-        Shape::Cone { .. } => "Cone",
-        Shape::Disk { .. } => "Disk",
-        Shape::Torus { .. } => "Torus",
-        Shape::Paraboloid { .. } => "Paraboloid",
-        Shape::BilinearPatch { .. } => "BilinearPatch",
-        Shape::Mesh { .. } => "Mesh",
-    }
-}
-
 pub(super) fn shape(at: &str, shape: &Shape) -> Check {
     let field = |name: &str| format!("{at}.{name}");
     match shape {
