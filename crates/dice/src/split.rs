@@ -441,21 +441,7 @@ mod tests {
     }
 
     fn shape_object(shape: Shape) -> Object {
-        Object {
-            name: String::new(),
-            shape,
-            transform: vec![],
-            material: Material::Constant { color: [1.0; 3], opacity: [1.0; 3] },
-            matte: false,
-            motion: vec![],
-            deform: vec![],
-            interpolation: Default::default(),
-            glass: None,
-            reflect: None,
-            refract: None,
-            pattern: None,
-            roll: None,
-        }
+        Object::new(shape, Material::Constant { color: [1.0; 3], opacity: [1.0; 3] })
     }
 
     #[test]

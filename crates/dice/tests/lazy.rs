@@ -100,12 +100,10 @@ fn awkward_scene(lens: Option<Lens>) -> Scene {
     ];
     for k in 0..6 {
         let x = -3.0 + k as f32 * 1.2;
-        let mut ball = object(sphere(0.5), vec![]);
-        ball.motion = vec![
+        objects.push(object(sphere(0.5), vec![]).with_motion(vec![
             TransformKey { time: 0.0, transform: vec![Transform::Translate([x, -2.0, 8.0])] },
             TransformKey { time: 1.0, transform: vec![Transform::Translate([x + 0.5, 2.5, 8.0])] },
-        ];
-        objects.push(ball);
+        ]));
     }
     let mut s = scene(160, 120, camera([0.0, 0.5, -1.0], [0.0, 0.0, 6.0], 50.0, lens), objects);
     s.camera.motion = vec![

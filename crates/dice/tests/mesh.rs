@@ -9,38 +9,25 @@ use reyes_hider::flags;
 use reyes_scene::{Material, Object, Shape};
 
 fn mesh_object(material: Material, matte: bool) -> Object {
-    Object {
-        name: "mesh".into(),
-        shape: Shape::Mesh {
-            points: vec![
-                [-2.0, -1.0, 8.0],
-                [0.0, -1.0, 8.0],
-                [0.0, 1.0, 9.0],
-                [-2.0, 1.0, 9.0],
-                [2.0, -1.0, 8.0],
-            ],
-            // A quad and a triangle sharing the edge 1-2.
-            faces: vec![vec![0, 1, 2, 3], vec![1, 4, 2]],
-            colors: Some(vec![
-                [1.0, 0.0, 0.0],
-                [0.0, 1.0, 0.0],
-                [0.0, 0.0, 1.0],
-                [1.0, 1.0, 0.0],
-                [0.0, 1.0, 1.0],
-            ]),
-        },
-        transform: vec![],
-        material,
-        matte,
-        motion: Vec::new(),
-        deform: Vec::new(),
-        interpolation: Default::default(),
-        glass: None,
-        reflect: None,
-        refract: None,
-        pattern: None,
-        roll: None,
-    }
+    let shape = Shape::Mesh {
+        points: vec![
+            [-2.0, -1.0, 8.0],
+            [0.0, -1.0, 8.0],
+            [0.0, 1.0, 9.0],
+            [-2.0, 1.0, 9.0],
+            [2.0, -1.0, 8.0],
+        ],
+        // A quad and a triangle sharing the edge 1-2.
+        faces: vec![vec![0, 1, 2, 3], vec![1, 4, 2]],
+        colors: Some(vec![
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 1.0],
+        ]),
+    };
+    Object { matte, ..Object::new(shape, material).named("mesh") }
 }
 
 #[test]

@@ -187,9 +187,7 @@ fn view_scene(objects: Vec<Object>) -> Scene {
 
 /// One sphere under `transform` and, if not empty, transform keys `motion`.
 fn sphere_scene(transform: Vec<Transform>, motion: Vec<TransformKey>) -> Scene {
-    let mut o = object(sphere(1.0), transform);
-    o.motion = motion;
-    view_scene(vec![o])
+    view_scene(vec![object(sphere(1.0), transform).with_motion(motion)])
 }
 
 /// The raw bytes of the micropolygons.
@@ -430,11 +428,10 @@ fn a_deforming_bilinear_patch_moves_with_its_points() {
     let p1 = p0.map(|p| m.transform_point3(Vec3::from(p)).to_array());
     // The shape's own points are off screen: the keys replace them.
     let far = [[100.0, 0.0, 5.0], [101.0, 0.0, 5.0], [100.0, 1.0, 5.0], [101.0, 1.0, 5.0]];
-    let mut o = object(Shape::BilinearPatch { points: far }, vec![]);
-    o.deform = vec![
+    let o = object(Shape::BilinearPatch { points: far }, vec![]).with_deform(vec![
         PointsKey { time: 0.0, points: p0.to_vec() },
         PointsKey { time: 1.0, points: p1.to_vec() },
-    ];
+    ]);
     let s = view_scene(vec![o]);
     let cam = CameraSetup::new(&s);
     let (d, _) = dice(&s);
@@ -478,20 +475,20 @@ fn a_deforming_mesh_moves_with_its_points_and_odd_keys_do_not_panic() {
     let m = affine();
     let moved: Vec<[f32; 3]> =
         points.iter().map(|p| m.transform_point3(Vec3::from(*p)).to_array()).collect();
-    let mut o = object(
+    let o = object(
         Shape::Mesh {
             points: points.clone(),
             faces: vec![vec![0, 1, 2, 3], vec![1, 4, 2], vec![1, 4, 5, 2, 3]],
             colors: None,
         },
         vec![Transform::Translate([0.0, 0.0, 1.0])],
-    );
-    let shift = Mat4::from_translation(Vec3::Z);
-    let moved_world = shift * m * shift.inverse();
-    o.deform = vec![
+    )
+    .with_deform(vec![
         PointsKey { time: 0.0, points: points.clone() },
         PointsKey { time: 1.0, points: moved.clone() },
-    ];
+    ]);
+    let shift = Mat4::from_translation(Vec3::Z);
+    let moved_world = shift * m * shift.inverse();
     let s = view_scene(vec![o]);
     let cam = CameraSetup::new(&s);
     let (d, _) = dice(&s);

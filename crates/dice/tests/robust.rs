@@ -71,21 +71,7 @@ fn odd_shapes_and_transforms_do_not_panic() {
     let mut objects = Vec::new();
     for shape in &shapes {
         for t in &transforms {
-            objects.push(Object {
-                name: String::new(),
-                shape: shape.clone(),
-                transform: t.clone(),
-                material: plastic.clone(),
-                matte: false,
-                motion: Vec::new(),
-                deform: Vec::new(),
-                interpolation: Default::default(),
-                glass: None,
-                reflect: None,
-                refract: None,
-                pattern: None,
-                roll: None,
-            });
+            objects.push(Object::new(shape.clone(), plastic.clone()).with_transform(t.clone()));
         }
     }
     let lens = Lens { focal_length: 0.1, f_stop: 2.0, focal_distance: 5.0 };
