@@ -416,28 +416,15 @@ mod tests {
     use crate::shapes::{Surface, surfaces};
     use glam::Mat4;
     use proptest::prelude::*;
-    use reyes_scene::{Camera, Hider, Image, Material, Object, Scene, Shape, Shutter};
+    use reyes_scene::{Camera, Material, Object, Scene, Shape};
+    use reyes_testkit::fixtures;
 
+    /// A 160x120 scene of nothing, with no lights, seen from the origin down +z (fov 40,
+    /// yon 100) through `lens`.
     fn scene(lens: Option<reyes_scene::Lens>) -> Scene {
-        Scene {
-            image: Image { width: 160, height: 120 },
-            camera: Camera {
-                eye: [0.0, 0.0, 0.0],
-                look_at: [0.0, 0.0, 1.0],
-                up: [0.0, 1.0, 0.0],
-                fov: 40.0,
-                hither: 0.1,
-                yon: 100.0,
-                shutter: Shutter::default(),
-                lens,
-                motion: vec![],
-            },
-            hider: Hider::default(),
-            lights: vec![],
-            objects: vec![],
-            solids: vec![],
-            raytrace: Default::default(),
-        }
+        let camera =
+            Camera { yon: 100.0, ..fixtures::camera([0.0; 3], [0.0, 0.0, 1.0], 40.0, lens) };
+        Scene { lights: vec![], ..fixtures::scene(160, 120, camera, vec![]) }
     }
 
     fn shape_object(shape: Shape) -> Object {
