@@ -208,16 +208,19 @@ fn operand_scene(shape: Shape) -> Scene {
     s
 }
 
-fn label_of(s: &Scene, object: usize) -> (u16, u16) {
-    CsgSetup::new(s).leaf[object].expect("an operand")
+/// [`operand_scene`] of `shape`, diced, and the operand's `(tree, slot)` label.
+fn diced_operand(shape: Shape) -> (Scene, Diced, (u16, u16)) {
+    let s = operand_scene(shape);
+    let (diced, _) = dice(&s);
+    let label = CsgSetup::new(&s).leaf[0].expect("an operand");
+    (s, diced, label)
 }
 
 #[test]
 fn cylinder_operand_is_closed_by_caps_facing_out() {
     let (r, z0, z1) = (1.0_f32, -1.0_f32, 2.0_f32);
-    let s = operand_scene(Shape::Cylinder { radius: r, zmin: z0, zmax: z1, thetamax: 360.0 });
-    let (diced, _) = dice(&s);
-    let label = label_of(&s, 0);
+    let (s, diced, label) =
+        diced_operand(Shape::Cylinder { radius: r, zmin: z0, zmax: z1, thetamax: 360.0 });
     let pieces = [
         plane("bottom", z0, false),
         plane("top", z1, true),
@@ -243,9 +246,7 @@ fn cylinder_operand_is_closed_by_caps_facing_out() {
 fn cone_and_paraboloid_operands_are_closed_by_caps_facing_out() {
     for height in [1.5_f32, -1.5] {
         let radius = 1.0_f32;
-        let s = operand_scene(Shape::Cone { height, radius, thetamax: 360.0 });
-        let (diced, _) = dice(&s);
-        let label = label_of(&s, 0);
+        let (s, diced, label) = diced_operand(Shape::Cone { height, radius, thetamax: 360.0 });
         let pieces = [
             plane("base", 0.0, height < 0.0),
             Piece {
@@ -269,9 +270,8 @@ fn cone_and_paraboloid_operands_are_closed_by_caps_facing_out() {
     for zmin in [0.0_f32, 0.5] {
         let (rmax, zmax) = (1.2_f32, 2.0_f32);
         let k = rmax * rmax / zmax;
-        let s = operand_scene(Shape::Paraboloid { rmax, zmin, zmax, thetamax: 360.0 });
-        let (diced, _) = dice(&s);
-        let label = label_of(&s, 0);
+        let (s, diced, label) =
+            diced_operand(Shape::Paraboloid { rmax, zmin, zmax, thetamax: 360.0 });
         let pieces = [
             plane("bottom", zmin, false),
             plane("top", zmax, true),
