@@ -33,10 +33,10 @@ fn mesh_object(material: Material, matte: bool) -> Object {
 #[test]
 fn vertex_colours_arrive_at_the_corners() {
     let tint = [0.5, 1.0, 0.25];
-    let s = scene(
+    let s = scene_ahead(
         320,
         240,
-        camera([0.0; 3], [0.0, 0.0, 1.0], 40.0, None),
+        40.0,
         vec![mesh_object(Material::Constant { color: tint, opacity: [1.0; 3] }, false)],
     );
     let (d, _) = dice(&s);
@@ -77,10 +77,10 @@ fn vertex_colours_arrive_at_the_corners() {
 
 #[test]
 fn transparency_is_premultiplied_and_matte_is_flagged() {
-    let s = scene(
+    let s = scene_ahead(
         320,
         240,
-        camera([0.0; 3], [0.0, 0.0, 1.0], 40.0, None),
+        40.0,
         vec![mesh_object(Material::Constant { color: [1.0; 3], opacity: [0.5, 1.0, 0.25] }, true)],
     );
     let (d, _) = dice(&s);

@@ -180,7 +180,7 @@ fn sideways_sphere(centre: [f32; 3]) -> Vec<Transform> {
 
 /// A 160x120 scene looking down +z from the origin at `objects`, diced in whole grids.
 fn view_scene(objects: Vec<Object>) -> Scene {
-    let mut s = scene(160, 120, camera([0.0; 3], [0.0, 0.0, 1.0], 40.0, None), objects);
+    let mut s = scene_ahead(160, 120, 40.0, objects);
     s.hider.max_grid_size = 1 << 16;
     s
 }

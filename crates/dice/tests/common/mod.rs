@@ -3,9 +3,19 @@
 
 use reyes_dice::{Diced, dice_scene};
 use reyes_hider::{Frame, Micropolygon};
-use reyes_scene::Scene;
+use reyes_scene::{Camera, Lens, Object, Scene};
 #[allow(unused_imports)]
 pub use reyes_testkit::fixtures::{camera, frame_for as frame_of, object, scene, sphere};
+
+/// The camera at the origin looking down +z with field of view `fov`, through `lens`.
+pub fn camera_ahead(fov: f32, lens: Option<Lens>) -> Camera {
+    camera([0.0; 3], [0.0, 0.0, 1.0], fov, lens)
+}
+
+/// A `width x height` scene of `objects` seen by the pinhole [`camera_ahead`]`(fov)`.
+pub fn scene_ahead(width: u32, height: u32, fov: f32, objects: Vec<Object>) -> Scene {
+    scene(width, height, camera_ahead(fov, None), objects)
+}
 
 /// Dice a scene in its own frame, panicking on error.
 pub fn dice(scene: &Scene) -> (Diced, Frame) {
@@ -40,6 +50,12 @@ pub fn inside(mp: &Micropolygon, x: f32, y: f32, eps: f32) -> bool {
         (d0 >= -tol && d1 >= -tol && d2 >= -tol) || (d0 <= tol && d1 <= tol && d2 <= tol)
     };
     tri(mp.v[0], mp.v[1], mp.v[2]) || tri(mp.v[0], mp.v[2], mp.v[3])
+}
+
+/// Does some micropolygon listed in the bucket of raster point `(x, y)` cover it (within
+/// 1e-4)?
+pub fn covered(d: &Diced, frame: &Frame, x: f32, y: f32) -> bool {
+    d.buckets[bucket_of(frame, x, y)].iter().any(|&i| inside(&d.mpolys[i as usize], x, y, 1e-4))
 }
 
 /// Bucket number of the bucket holding raster pixel `(x, y)`.
