@@ -10,14 +10,7 @@ use reyes_scene::{Material, Object, Shape};
 
 fn mesh_object(material: Material, matte: bool) -> Object {
     let shape = Shape::Mesh {
-        points: vec![
-            [-2.0, -1.0, 8.0],
-            [0.0, -1.0, 8.0],
-            [0.0, 1.0, 9.0],
-            [-2.0, 1.0, 9.0],
-            [2.0, -1.0, 8.0],
-        ],
-        // A quad and a triangle sharing the edge 1-2.
+        points: quad_and_triangle(),
         faces: vec![vec![0, 1, 2, 3], vec![1, 4, 2]],
         colors: Some(vec![
             [1.0, 0.0, 0.0],

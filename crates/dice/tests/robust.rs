@@ -3,7 +3,7 @@
 mod common;
 
 use common::*;
-use reyes_scene::{Lens, Material, Object, Shape, Transform};
+use reyes_scene::{Lens, Object, Shape, Transform};
 
 fn check_finite(d: &reyes_dice::Diced) {
     for mp in &d.mpolys {
@@ -15,15 +15,7 @@ fn check_finite(d: &reyes_dice::Diced) {
 
 #[test]
 fn odd_shapes_and_transforms_do_not_panic() {
-    let plastic = Material::Plastic {
-        color: [0.8, 0.2, 0.2],
-        opacity: [1.0; 3],
-        ka: 1.0,
-        kd: 0.5,
-        ks: 0.5,
-        roughness: 0.05,
-        specular_color: [1.0; 3],
-    };
+    let plastic = plastic([0.8, 0.2, 0.2], 0.05);
     let shapes = vec![
         Shape::Sphere { radius: 1.0, zmin: Some(0.5), zmax: Some(-0.5), thetamax: 0.01 },
         Shape::Sphere { radius: 1.0, zmin: Some(-5.0), zmax: Some(5.0), thetamax: 360.0 },
