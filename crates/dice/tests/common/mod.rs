@@ -1,4 +1,5 @@
-//! Shared helpers for the integration tests: scene builders and raster geometry.
+//! Shared helpers for the integration tests: scene builders, raster geometry, brute-force
+//! bucket checks and the FNV-1a digest.
 #![allow(dead_code)]
 
 use reyes_dice::{Diced, dice_scene};
