@@ -282,28 +282,14 @@ fn fallback_basis(view: &View) -> Basis {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use reyes_scene::{Hider, Image, Shutter};
+    use reyes_scene::Shutter;
+    use reyes_testkit::fixtures;
 
+    /// A `w x h` scene of nothing, with no lights, seen by a pinhole camera (`up` as given,
+    /// otherwise the testkit camera).
     fn scene(eye: [f32; 3], look_at: [f32; 3], up: [f32; 3], fov: f32, w: u32, h: u32) -> Scene {
-        Scene {
-            image: Image { width: w, height: h },
-            camera: Camera {
-                eye,
-                look_at,
-                up,
-                fov,
-                hither: 0.1,
-                yon: 1000.0,
-                shutter: Shutter::default(),
-                lens: None,
-                motion: vec![],
-            },
-            hider: Hider::default(),
-            lights: vec![],
-            objects: vec![],
-            solids: vec![],
-            raytrace: Default::default(),
-        }
+        let camera = Camera { up, ..fixtures::camera(eye, look_at, fov, None) };
+        Scene { lights: vec![], ..fixtures::scene(w, h, camera, vec![]) }
     }
 
     fn close(a: f32, b: f32, tol: f32) -> bool {

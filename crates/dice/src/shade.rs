@@ -209,6 +209,11 @@ mod tests {
 
     const EYE: Vec3 = Vec3::new(0.0, 0.0, -10.0);
 
+    /// A white distant light of intensity 1 shining from `from` towards the origin.
+    fn distant(from: [f32; 3]) -> Light {
+        Light::Distant { from, to: [0.0; 3], color: [1.0; 3], intensity: 1.0, shadows: false }
+    }
+
     #[test]
     fn constant_is_premultiplied_colour() {
         let m = Material::Constant { color: [0.5, 1.0, 0.2], opacity: [0.5, 1.0, 0.0] };
@@ -279,24 +284,12 @@ mod tests {
             specular_color: [1.0, 1.0, 1.0],
         };
         // Light straight along the view: N.L = N.H = 1.
-        let lights = [Light::Distant {
-            from: [0.0, 0.0, -1.0],
-            to: [0.0; 3],
-            color: [1.0; 3],
-            intensity: 1.0,
-            shadows: false,
-        }];
+        let lights = [distant([0.0, 0.0, -1.0])];
         let s = Shader::new(&m, &lights, EYE);
         let (c, _) = s.shade(Vec3::ZERO, Vec3::NEG_Z, Vec3::ONE);
         assert!(close3(c, Vec3::new(1.0, 0.5, 0.5)), "{c:?}");
         // Off the mirror direction the highlight falls as cos^(1/roughness).
-        let tilted = [Light::Distant {
-            from: [0.0, 1.0, -1.0],
-            to: [0.0; 3],
-            color: [1.0; 3],
-            intensity: 1.0,
-            shadows: false,
-        }];
+        let tilted = [distant([0.0, 1.0, -1.0])];
         let s = Shader::new(&m, &tilted, EYE);
         let (c, _) = s.shade(Vec3::ZERO, Vec3::NEG_Z, Vec3::ONE);
         let n_dot_l = 0.5_f32.sqrt();
@@ -304,13 +297,7 @@ mod tests {
         let spec = 0.5 * n_dot_h.powf(10.0);
         assert!(close3(c, Vec3::new(0.5 * n_dot_l + spec, spec, spec)), "{c:?}");
         // Light behind the surface: no diffuse and no specular.
-        let behind = [Light::Distant {
-            from: [0.0, 0.0, 1.0],
-            to: [0.0; 3],
-            color: [1.0; 3],
-            intensity: 1.0,
-            shadows: false,
-        }];
+        let behind = [distant([0.0, 0.0, 1.0])];
         let s = Shader::new(&m, &behind, EYE);
         let (c, _) = s.shade(Vec3::ZERO, Vec3::NEG_Z, Vec3::ONE);
         assert!(close3(c, Vec3::ZERO), "{c:?}");

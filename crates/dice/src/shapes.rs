@@ -321,21 +321,7 @@ mod tests {
     use reyes_scene::Material;
 
     fn object(shape: Shape) -> Object {
-        Object {
-            name: String::new(),
-            shape,
-            transform: vec![],
-            material: Material::Constant { color: [1.0; 3], opacity: [1.0; 3] },
-            matte: false,
-            motion: vec![],
-            deform: vec![],
-            interpolation: Default::default(),
-            glass: None,
-            reflect: None,
-            refract: None,
-            pattern: None,
-            roll: None,
-        }
+        Object::new(shape, Material::Constant { color: [1.0; 3], opacity: [1.0; 3] })
     }
 
     fn params() -> impl Iterator<Item = (f32, f32)> {

@@ -416,46 +416,31 @@ mod tests {
     use crate::shapes::{Surface, surfaces};
     use glam::Mat4;
     use proptest::prelude::*;
-    use reyes_scene::{Camera, Hider, Image, Material, Object, Scene, Shape, Shutter};
+    use reyes_scene::{Camera, Material, Object, Scene, Shape};
+    use reyes_testkit::fixtures;
 
-    fn scene(lens: Option<reyes_scene::Lens>) -> Scene {
-        Scene {
-            image: Image { width: 160, height: 120 },
-            camera: Camera {
-                eye: [0.0, 0.0, 0.0],
-                look_at: [0.0, 0.0, 1.0],
-                up: [0.0, 1.0, 0.0],
-                fov: 40.0,
-                hither: 0.1,
-                yon: 100.0,
-                shutter: Shutter::default(),
-                lens,
-                motion: vec![],
-            },
-            hider: Hider::default(),
+    /// The camera seeing a 160x120 scene of nothing from the origin down +z (fov 40, yon
+    /// 100) through `lens`, and its splitter (border 1, 16x16 buckets, shading rate 1,
+    /// grids of at most 256).
+    fn splitter(lens: Option<reyes_scene::Lens>) -> (CameraSetup, Splitter) {
+        let camera =
+            Camera { yon: 100.0, ..fixtures::camera([0.0; 3], [0.0, 0.0, 1.0], 40.0, lens) };
+        let cam = CameraSetup::new(&Scene {
             lights: vec![],
-            objects: vec![],
-            solids: vec![],
-            raytrace: Default::default(),
-        }
+            ..fixtures::scene(160, 120, camera, vec![])
+        });
+        let frame = Frame::new(160, 120, 1, 16, 16);
+        let sp = Splitter::new(&cam, &frame, 1.0, 256);
+        (cam, sp)
+    }
+
+    /// The one surface of a whole unit sphere.
+    fn unit_sphere() -> Surface {
+        surfaces(&shape_object(fixtures::sphere(1.0))).remove(0)
     }
 
     fn shape_object(shape: Shape) -> Object {
-        Object {
-            name: String::new(),
-            shape,
-            transform: vec![],
-            material: Material::Constant { color: [1.0; 3], opacity: [1.0; 3] },
-            matte: false,
-            motion: vec![],
-            deform: vec![],
-            interpolation: Default::default(),
-            glass: None,
-            reflect: None,
-            refract: None,
-            pattern: None,
-            roll: None,
-        }
+        Object::new(shape, Material::Constant { color: [1.0; 3], opacity: [1.0; 3] })
     }
 
     #[test]
@@ -478,17 +463,8 @@ mod tests {
 
     #[test]
     fn patches_behind_the_eye_or_off_screen_are_culled() {
-        let s = scene(None);
-        let cam = CameraSetup::new(&s);
-        let frame = Frame::new(160, 120, 1, 16, 16);
-        let sp = Splitter::new(&cam, &frame, 1.0, 256);
-        let sphere = surfaces(&shape_object(Shape::Sphere {
-            radius: 1.0,
-            zmin: None,
-            zmax: None,
-            thetamax: 360.0,
-        }))
-        .remove(0);
+        let (_, sp) = splitter(None);
+        let sphere = unit_sphere();
         let decide = |x: f32, y: f32, z: f32| decide_at(&sp, &sphere, &[Vec3::new(x, y, z)]);
         assert_eq!(decide(0.0, 0.0, -5.0), Decision::Cull);
         assert_eq!(decide(0.0, 0.0, 200.0), Decision::Cull);
@@ -520,17 +496,8 @@ mod tests {
 
     #[test]
     fn moving_patches_are_judged_over_the_whole_shutter() {
-        let s = scene(None);
-        let cam = CameraSetup::new(&s);
-        let frame = Frame::new(160, 120, 1, 16, 16);
-        let sp = Splitter::new(&cam, &frame, 1.0, 256);
-        let sphere = surfaces(&shape_object(Shape::Sphere {
-            radius: 1.0,
-            zmin: None,
-            zmax: None,
-            thetamax: 360.0,
-        }))
-        .remove(0);
+        let (_, sp) = splitter(None);
+        let sphere = unit_sphere();
         let off_left = Vec3::new(-60.0, 0.0, 60.0);
         let off_right = Vec3::new(60.0, 0.0, 60.0);
         let centre = Vec3::new(0.0, 0.0, 60.0);
@@ -581,10 +548,7 @@ mod tests {
             with_lens in any::<bool>(),
         ) {
             let lens = with_lens.then_some(reyes_scene::Lens { focal_length: 0.1, f_stop: 2.0, focal_distance: 8.0 });
-            let s = scene(lens);
-            let cam = CameraSetup::new(&s);
-            let frame = Frame::new(160, 120, 1, 16, 16);
-            let sp = Splitter::new(&cam, &frame, 1.0, 256);
+            let (cam, sp) = splitter(lens);
             let shape = if torus {
                 Shape::Torus { major_radius: 1.0, minor_radius: 0.4, phimin: 0.0, phimax: 360.0, thetamax: 360.0 }
             } else {

@@ -15,12 +15,8 @@ fn square_scene(shading_rate: f32, offset: [f32; 2]) -> reyes_scene::Scene {
         [ox - 1.0, oy + 1.0, 5.0],
         [ox + 1.0, oy + 1.0, 5.0],
     ];
-    let mut s = scene(
-        640,
-        480,
-        camera([0.0; 3], [0.0, 0.0, 1.0], 35.0, None),
-        vec![object(Shape::BilinearPatch { points: pts }, vec![])],
-    );
+    let mut s =
+        scene_ahead(640, 480, 35.0, vec![object(Shape::BilinearPatch { points: pts }, vec![])]);
     s.hider.shading_rate = shading_rate;
     s
 }
@@ -68,12 +64,7 @@ fn sphere_projected_area_matches_the_analytic_disk() {
     for rotate in orientations {
         let mut transform = rotate.clone();
         transform.push(Transform::Translate([0.0, 0.0, 10.0]));
-        let s = scene(
-            640,
-            480,
-            camera([0.0; 3], [0.0, 0.0, 1.0], 35.0, None),
-            vec![object(sphere(1.0), transform)],
-        );
+        let s = scene_ahead(640, 480, 35.0, vec![object(sphere(1.0), transform)]);
         let (d, _) = dice(&s);
         let k = f64::from(CameraSetup::new(&s).pixels_per_unit());
         let expect = sphere_disk_area(k, 1.0, 10.0);
@@ -97,12 +88,7 @@ fn transforms_place_the_object() {
         Transform::Rotate { angle: 90.0, axis: [0.0, 1.0, 0.0] },
         Transform::Translate([2.0, 1.0, 8.0]),
     ];
-    let s = scene(
-        320,
-        240,
-        camera([0.0; 3], [0.0, 0.0, 1.0], 45.0, None),
-        vec![object(sphere(1.0), transform)],
-    );
+    let s = scene_ahead(320, 240, 45.0, vec![object(sphere(1.0), transform)]);
     let (d, _) = dice(&s);
     let cam = CameraSetup::new(&s);
     let centre = cam.eye_to_raster(glam::Vec3::new(2.0, 1.0, 12.0));

@@ -11,7 +11,7 @@ use reyes_scene::{Shape, Transform};
 /// with a wide lens and hither = 1 so that the hither cut is on screen.
 fn wall_scene() -> reyes_scene::Scene {
     let pts = [[1.0, -1.0, -5.0], [1.0, -1.0, 20.0], [1.0, 1.0, -5.0], [1.0, 1.0, 20.0]];
-    let mut cam = camera([0.0; 3], [0.0, 0.0, 1.0], 120.0, None);
+    let mut cam = camera_ahead(120.0, None);
     cam.hither = 1.0;
     cam.yon = 15.0;
     scene(320, 240, cam, vec![object(Shape::BilinearPatch { points: pts }, vec![])])
@@ -54,10 +54,8 @@ fn a_patch_crossing_the_eye_plane_keeps_its_visible_part() {
                 continue;
             }
             checked += 1;
-            let b = bucket_of(&frame, x, y);
-            let hit = d.buckets[b].iter().any(|&i| inside(&d.mpolys[i as usize], x, y, 1e-4));
             assert!(
-                hit,
+                covered(&d, &frame, x, y),
                 "pixel ({px}, {py}) sees the wall at z = {z} but no micropolygon covers it"
             );
         }
@@ -82,7 +80,7 @@ fn geometry_behind_the_camera_produces_nothing() {
             vec![],
         ),
     ];
-    let s = scene(320, 240, camera([0.0; 3], [0.0, 0.0, 1.0], 45.0, None), objects);
+    let s = scene_ahead(320, 240, 45.0, objects);
     let (d, _) = dice(&s);
     assert!(d.mpolys.is_empty());
     assert_eq!(d.stats.grids, 0, "{:?}", d.stats);
@@ -100,7 +98,7 @@ fn geometry_off_screen_or_beyond_yon_produces_nothing() {
         // Beside the eye, outside the frustum, partly behind it.
         object(sphere(1.0), vec![Transform::Translate([0.0, -6.0, 0.0])]),
     ];
-    let s = scene(320, 240, camera([0.0; 3], [0.0, 0.0, 1.0], 45.0, None), objects);
+    let s = scene_ahead(320, 240, 45.0, objects);
     let (d, _) = dice(&s);
     assert!(d.mpolys.is_empty(), "{:?}", d.stats);
     assert_eq!(d.stats.grids, 0, "{:?}", d.stats);
@@ -110,12 +108,7 @@ fn geometry_off_screen_or_beyond_yon_produces_nothing() {
 fn sphere_around_the_eye_is_cut_at_hither() {
     // The eye is inside a sphere: everything in front is visible, nothing is projected
     // from behind the eye.
-    let s = scene(
-        64,
-        48,
-        camera([0.0; 3], [0.0, 0.0, 1.0], 60.0, None),
-        vec![object(sphere(3.0), vec![])],
-    );
+    let s = scene_ahead(64, 48, 60.0, vec![object(sphere(3.0), vec![])]);
     let (d, _) = dice(&s);
     assert!(!d.mpolys.is_empty());
     assert!(d.mpolys.iter().all(|m| m.v.iter().all(|v| v[2] >= 0.05 && v[0].is_finite())));
@@ -124,11 +117,7 @@ fn sphere_around_the_eye_is_cut_at_hither() {
     for py in 0..48 {
         for px in 0..64 {
             let (x, y) = (px as f32 + 0.5, py as f32 + 0.5);
-            let b = bucket_of(&frame, x, y);
-            assert!(
-                d.buckets[b].iter().any(|&i| inside(&d.mpolys[i as usize], x, y, 1e-4)),
-                "({px}, {py})"
-            );
+            assert!(covered(&d, &frame, x, y), "({px}, {py})");
         }
     }
 }

@@ -21,13 +21,6 @@ use reyes_hider::{Micropolygon, flags};
 use reyes_scene::object_to_world;
 use reyes_scene::{Csg, Interpolation, Object, Scene, Shape, Solid, Transform};
 
-/// A named object at `transform`.
-fn named(name: &str, shape: Shape, transform: Vec<Transform>) -> Object {
-    let mut o = object(shape, transform);
-    o.name = name.to_string();
-    o
-}
-
 fn leaf(name: &str) -> Csg {
     Csg::Object(name.to_string())
 }
@@ -83,16 +76,17 @@ fn operands_carry_their_tree_and_slot_and_others_zero() {
     let xs = [-7.5_f32, -4.5, -1.5, 1.5, 4.5, 7.5];
     let cyl = Shape::Cylinder { radius: 0.6, zmin: -0.8, zmax: 0.8, thetamax: 360.0 };
     let objects = vec![
-        named("a", sphere(0.9), at(xs[0], 0.0, 0.0)),
-        named("plain", cyl.clone(), at(xs[1], 0.0, 0.0)),
-        named("b", cyl, at(xs[2], 0.0, 0.0)),
-        named("c", Shape::Cone { height: 1.2, radius: 0.8, thetamax: 360.0 }, at(xs[3], 0.0, 0.0)),
-        named(
-            "d",
+        object(sphere(0.9), at(xs[0], 0.0, 0.0)).named("a"),
+        object(cyl.clone(), at(xs[1], 0.0, 0.0)).named("plain"),
+        object(cyl, at(xs[2], 0.0, 0.0)).named("b"),
+        object(Shape::Cone { height: 1.2, radius: 0.8, thetamax: 360.0 }, at(xs[3], 0.0, 0.0))
+            .named("c"),
+        object(
             Shape::Paraboloid { rmax: 0.8, zmin: 0.2, zmax: 1.2, thetamax: 360.0 },
             at(xs[4], 0.0, 0.0),
-        ),
-        named("e", sphere(0.9), at(xs[5], 0.0, 0.0)),
+        )
+        .named("d"),
+        object(sphere(0.9), at(xs[5], 0.0, 0.0)).named("e"),
     ];
     let mut s = strip(objects);
     s.solids = vec![
@@ -208,22 +202,25 @@ fn operand_scene(shape: Shape) -> Scene {
         96,
         96,
         camera([0.0, 0.0, -10.0], [0.0, 0.0, 1.0], 40.0, None),
-        vec![named("x", shape, xf), named("s", sphere(0.3), at(0.3, -0.2, 1.0))],
+        vec![object(shape, xf).named("x"), object(sphere(0.3), at(0.3, -0.2, 1.0)).named("s")],
     );
     s.solids = vec![solid(Csg::Difference(Box::new(leaf("x")), Box::new(leaf("s"))))];
     s
 }
 
-fn label_of(s: &Scene, object: usize) -> (u16, u16) {
-    CsgSetup::new(s).leaf[object].expect("an operand")
+/// [`operand_scene`] of `shape`, diced, and the operand's `(tree, slot)` label.
+fn diced_operand(shape: Shape) -> (Scene, Diced, (u16, u16)) {
+    let s = operand_scene(shape);
+    let (diced, _) = dice(&s);
+    let label = CsgSetup::new(&s).leaf[0].expect("an operand");
+    (s, diced, label)
 }
 
 #[test]
 fn cylinder_operand_is_closed_by_caps_facing_out() {
     let (r, z0, z1) = (1.0_f32, -1.0_f32, 2.0_f32);
-    let s = operand_scene(Shape::Cylinder { radius: r, zmin: z0, zmax: z1, thetamax: 360.0 });
-    let (diced, _) = dice(&s);
-    let label = label_of(&s, 0);
+    let (s, diced, label) =
+        diced_operand(Shape::Cylinder { radius: r, zmin: z0, zmax: z1, thetamax: 360.0 });
     let pieces = [
         plane("bottom", z0, false),
         plane("top", z1, true),
@@ -249,9 +246,7 @@ fn cylinder_operand_is_closed_by_caps_facing_out() {
 fn cone_and_paraboloid_operands_are_closed_by_caps_facing_out() {
     for height in [1.5_f32, -1.5] {
         let radius = 1.0_f32;
-        let s = operand_scene(Shape::Cone { height, radius, thetamax: 360.0 });
-        let (diced, _) = dice(&s);
-        let label = label_of(&s, 0);
+        let (s, diced, label) = diced_operand(Shape::Cone { height, radius, thetamax: 360.0 });
         let pieces = [
             plane("base", 0.0, height < 0.0),
             Piece {
@@ -275,9 +270,8 @@ fn cone_and_paraboloid_operands_are_closed_by_caps_facing_out() {
     for zmin in [0.0_f32, 0.5] {
         let (rmax, zmax) = (1.2_f32, 2.0_f32);
         let k = rmax * rmax / zmax;
-        let s = operand_scene(Shape::Paraboloid { rmax, zmin, zmax, thetamax: 360.0 });
-        let (diced, _) = dice(&s);
-        let label = label_of(&s, 0);
+        let (s, diced, label) =
+            diced_operand(Shape::Paraboloid { rmax, zmin, zmax, thetamax: 360.0 });
         let pieces = [
             plane("bottom", zmin, false),
             plane("top", zmax, true),
@@ -306,23 +300,24 @@ fn cone_and_paraboloid_operands_are_closed_by_caps_facing_out() {
 #[test]
 fn objects_in_no_solid_dice_exactly_as_without_csg() {
     let plain = vec![
-        named(
-            "cyl",
+        object(
             Shape::Cylinder { radius: 0.6, zmin: -0.8, zmax: 0.8, thetamax: 360.0 },
             at(-6.0, 0.0, 0.0),
-        ),
-        named(
-            "para",
+        )
+        .named("cyl"),
+        object(
             Shape::Paraboloid { rmax: 0.8, zmin: 0.2, zmax: 1.2, thetamax: 360.0 },
             at(-3.0, 0.0, 0.0),
-        ),
-        named("cone", Shape::Cone { height: 1.2, radius: 0.8, thetamax: 360.0 }, at(0.0, 0.0, 0.0)),
+        )
+        .named("para"),
+        object(Shape::Cone { height: 1.2, radius: 0.8, thetamax: 360.0 }, at(0.0, 0.0, 0.0))
+            .named("cone"),
     ];
     let alone = strip(plain.clone());
     let (before, _) = dice(&alone);
     let mut objects = plain;
-    objects.push(named("p", sphere(0.9), at(4.0, 0.0, 0.0)));
-    objects.push(named("q", sphere(0.9), at(4.5, 0.0, 0.0)));
+    objects.push(object(sphere(0.9), at(4.0, 0.0, 0.0)).named("p"));
+    objects.push(object(sphere(0.9), at(4.5, 0.0, 0.0)).named("q"));
     let mut with = strip(objects);
     with.solids = vec![solid(Csg::Union(vec![leaf("p"), leaf("q")]))];
     let (after, _) = dice(&with);
@@ -355,7 +350,7 @@ fn gouraud_and_glass_set_their_flags() {
     objects[3].interpolation = Interpolation::Gouraud;
     objects[3].glass = Some(0.75);
     objects[3].name = "both".into();
-    objects.push(named("other", sphere(1.0), at(6.5, 0.0, 0.0)));
+    objects.push(object(sphere(1.0), at(6.5, 0.0, 0.0)).named("other"));
     let mut s = strip(objects);
     s.solids = vec![solid(Csg::Intersection(vec![leaf("both"), leaf("other")]))];
     let centres = [xs[0], xs[1], xs[2], xs[3], 6.5];

@@ -45,7 +45,7 @@ fn ball_scene(cull: bool, moving: bool) -> Scene {
             },
         ];
     }
-    let mut s = scene(W, H, camera([0.0; 3], [0.0, 0.0, 1.0], FOV, None), vec![ball]);
+    let mut s = scene_ahead(W, H, FOV, vec![ball]);
     s.hider.cull_back_faces = cull;
     s
 }

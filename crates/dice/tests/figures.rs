@@ -8,10 +8,10 @@ use reyes_scene::Transform;
 
 #[test]
 fn unit_sphere_at_ten_units() {
-    let s = scene(
+    let s = scene_ahead(
         640,
         480,
-        camera([0.0; 3], [0.0, 0.0, 1.0], 35.0, None),
+        35.0,
         vec![object(sphere(1.0), vec![Transform::Translate([0.0, 0.0, 10.0])])],
     );
     let start = std::time::Instant::now();

@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use common::*;
 use reyes_dice::{DiceOptions, Dicer, VertexContext, VertexShader, dice_scene_with};
 use reyes_hider::Micropolygon;
-use reyes_scene::{CameraKey, Lens, Scene, Shape, Transform, TransformKey};
+use reyes_scene::{CameraKey, Lens, Scene, Transform, TransformKey};
 
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
@@ -72,42 +72,15 @@ fn lazy_buckets_are_the_eager_buckets_for_every_scene() {
 /// A floor through the eye (hither splits, patches with no raster bound), a moving camera, a
 /// lens, spheres moving across rows, a torus, all in small buckets.
 fn awkward_scene(lens: Option<Lens>) -> Scene {
-    let mut objects = vec![
-        object(
-            Shape::BilinearPatch {
-                points: [
-                    [-40.0, -1.0, -40.0],
-                    [40.0, -1.0, -40.0],
-                    [-40.0, -1.0, 40.0],
-                    [40.0, -1.5, 40.0],
-                ],
-            },
-            vec![],
-        ),
-        object(
-            Shape::Torus {
-                major_radius: 1.0,
-                minor_radius: 0.3,
-                phimin: 0.0,
-                phimax: 360.0,
-                thetamax: 300.0,
-            },
-            vec![
-                Transform::Rotate { angle: 60.0, axis: [1.0, 0.2, 0.0] },
-                Transform::Translate([1.5, -0.5, 7.0]),
-            ],
-        ),
-    ];
+    let mut objects = vec![floor_through_the_eye(), tilted_torus()];
     for k in 0..6 {
         let x = -3.0 + k as f32 * 1.2;
-        let mut ball = object(sphere(0.5), vec![]);
-        ball.motion = vec![
+        objects.push(object(sphere(0.5), vec![]).with_motion(vec![
             TransformKey { time: 0.0, transform: vec![Transform::Translate([x, -2.0, 8.0])] },
             TransformKey { time: 1.0, transform: vec![Transform::Translate([x + 0.5, 2.5, 8.0])] },
-        ];
-        objects.push(ball);
+        ]));
     }
-    let mut s = scene(160, 120, camera([0.0, 0.5, -1.0], [0.0, 0.0, 6.0], 50.0, lens), objects);
+    let mut s = small_buckets_scene(busy_camera(lens), objects);
     s.camera.motion = vec![
         CameraKey {
             time: 0.0,
@@ -122,8 +95,6 @@ fn awkward_scene(lens: Option<Lens>) -> Scene {
             up: [0.0, 1.0, 0.0],
         },
     ];
-    s.hider.bucket_size = (8, 8);
-    s.hider.shading_rate = 2.0;
     s
 }
 
@@ -160,20 +131,17 @@ fn lazy_digest(scene: &Scene, threads: usize) -> u64 {
     pool.install(|| {
         let frame = frame_of(scene);
         let mut dicer = Dicer::new(scene, &frame, &DiceOptions::default()).expect("dicer");
-        let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+        let mut h = Fnv::default();
         let mut got = Vec::new();
         for row in 0..dicer.rows() {
             dicer.dice_row(row).expect("row");
             for b in (row * frame.buckets_x) as usize..((row + 1) * frame.buckets_x) as usize {
                 dicer.copy_bucket(b, &mut got);
-                for &byte in bytemuck::cast_slice::<_, u8>(&got) {
-                    h ^= u64::from(byte);
-                    h = h.wrapping_mul(0x0100_0000_01b3);
-                }
+                h.eat(bytemuck::cast_slice(&got));
             }
             dicer.release_row(row);
         }
-        h
+        h.0
     })
 }
 

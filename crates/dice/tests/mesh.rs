@@ -9,47 +9,27 @@ use reyes_hider::flags;
 use reyes_scene::{Material, Object, Shape};
 
 fn mesh_object(material: Material, matte: bool) -> Object {
-    Object {
-        name: "mesh".into(),
-        shape: Shape::Mesh {
-            points: vec![
-                [-2.0, -1.0, 8.0],
-                [0.0, -1.0, 8.0],
-                [0.0, 1.0, 9.0],
-                [-2.0, 1.0, 9.0],
-                [2.0, -1.0, 8.0],
-            ],
-            // A quad and a triangle sharing the edge 1-2.
-            faces: vec![vec![0, 1, 2, 3], vec![1, 4, 2]],
-            colors: Some(vec![
-                [1.0, 0.0, 0.0],
-                [0.0, 1.0, 0.0],
-                [0.0, 0.0, 1.0],
-                [1.0, 1.0, 0.0],
-                [0.0, 1.0, 1.0],
-            ]),
-        },
-        transform: vec![],
-        material,
-        matte,
-        motion: Vec::new(),
-        deform: Vec::new(),
-        interpolation: Default::default(),
-        glass: None,
-        reflect: None,
-        refract: None,
-        pattern: None,
-        roll: None,
-    }
+    let shape = Shape::Mesh {
+        points: quad_and_triangle(),
+        faces: vec![vec![0, 1, 2, 3], vec![1, 4, 2]],
+        colors: Some(vec![
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 1.0],
+        ]),
+    };
+    Object { matte, ..Object::new(shape, material).named("mesh") }
 }
 
 #[test]
 fn vertex_colours_arrive_at_the_corners() {
     let tint = [0.5, 1.0, 0.25];
-    let s = scene(
+    let s = scene_ahead(
         320,
         240,
-        camera([0.0; 3], [0.0, 0.0, 1.0], 40.0, None),
+        40.0,
         vec![mesh_object(Material::Constant { color: tint, opacity: [1.0; 3] }, false)],
     );
     let (d, _) = dice(&s);
@@ -90,10 +70,10 @@ fn vertex_colours_arrive_at_the_corners() {
 
 #[test]
 fn transparency_is_premultiplied_and_matte_is_flagged() {
-    let s = scene(
+    let s = scene_ahead(
         320,
         240,
-        camera([0.0; 3], [0.0, 0.0, 1.0], 40.0, None),
+        40.0,
         vec![mesh_object(Material::Constant { color: [1.0; 3], opacity: [0.5, 1.0, 0.25] }, true)],
     );
     let (d, _) = dice(&s);

@@ -6,24 +6,18 @@ mod common;
 use common::*;
 use glam::{Mat4, Vec3};
 use reyes_dice::{CameraSetup, Diced, dice_scene, screen_bound};
-use reyes_hider::{Frame, Micropolygon, flags};
+use reyes_hider::{Micropolygon, flags};
 use reyes_scene::{
     CameraKey, Lens, Material, Object, PointsKey, Scene, Shape, Shutter, Transform, TransformKey,
 };
 
 /// FNV-1a over the micropolygon bytes, the bucket lists and the counts of `d`.
 fn digest(d: &Diced) -> u64 {
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    let mut eat = |bytes: &[u8]| {
-        for &b in bytes {
-            h ^= u64::from(b);
-            h = h.wrapping_mul(0x0100_0000_01b3);
-        }
-    };
-    eat(bytemuck::cast_slice(&d.mpolys));
+    let mut h = Fnv::default();
+    h.eat(bytemuck::cast_slice(&d.mpolys));
     for list in &d.buckets {
-        eat(&(list.len() as u64).to_le_bytes());
-        eat(bytemuck::cast_slice(list));
+        h.eat(&(list.len() as u64).to_le_bytes());
+        h.eat(bytemuck::cast_slice(list));
     }
     let s = &d.stats;
     for n in [
@@ -38,44 +32,15 @@ fn digest(d: &Diced) -> u64 {
         s.crossing,
         s.bucket_entries,
     ] {
-        eat(&n.to_le_bytes());
+        h.eat(&n.to_le_bytes());
     }
-    h
+    h.0
 }
 
 /// Static scenes covering every shape, hither splits, a lens, a mesh and transparency.
 fn static_scenes() -> Vec<Scene> {
-    let plastic = Material::Plastic {
-        color: [0.8, 0.3, 0.2],
-        opacity: [1.0; 3],
-        ka: 1.0,
-        kd: 0.5,
-        ks: 0.5,
-        roughness: 0.1,
-        specular_color: [1.0; 3],
-    };
-    let mut objects = vec![
-        object(sphere(1.0), vec![Transform::Translate([-1.5, 0.3, 6.0])]),
-        object(
-            Shape::Torus {
-                major_radius: 1.0,
-                minor_radius: 0.3,
-                phimin: 0.0,
-                phimax: 360.0,
-                thetamax: 300.0,
-            },
-            vec![
-                Transform::Rotate { angle: 60.0, axis: [1.0, 0.2, 0.0] },
-                Transform::Translate([1.5, -0.5, 7.0]),
-            ],
-        ),
-        object(
-            Shape::Cone { height: 1.5, radius: 0.7, thetamax: 360.0 },
-            vec![
-                Transform::Rotate { angle: -90.0, axis: [1.0, 0.0, 0.0] },
-                Transform::Translate([3.5, 1.0, 5.0]),
-            ],
-        ),
+    let mut objects = sphere_torus_cone();
+    objects.extend([
         object(
             Shape::Cylinder { radius: 0.5, zmin: -0.5, zmax: 0.8, thetamax: 270.0 },
             vec![Transform::Translate([0.0, 1.5, 8.0])],
@@ -88,45 +53,26 @@ fn static_scenes() -> Vec<Scene> {
             ],
         ),
         // A floor through the eye: hither splits and crossing micropolygons.
-        object(
-            Shape::BilinearPatch {
-                points: [
-                    [-40.0, -1.0, -40.0],
-                    [40.0, -1.0, -40.0],
-                    [-40.0, -1.0, 40.0],
-                    [40.0, -1.5, 40.0],
-                ],
-            },
-            vec![],
-        ),
+        floor_through_the_eye(),
         object(
             Shape::Mesh {
-                points: vec![
-                    [-2.0, -1.0, 8.0],
-                    [0.0, -1.0, 8.0],
-                    [0.0, 1.0, 9.0],
-                    [-2.0, 1.0, 9.0],
-                    [2.0, -1.0, 8.0],
-                    [3.0, 0.0, 8.5],
-                ],
+                points: [quad_and_triangle(), vec![[3.0, 0.0, 8.5]]].concat(),
                 faces: vec![vec![0, 1, 2, 3], vec![1, 4, 2], vec![1, 4, 5, 2, 3]],
                 colors: None,
             },
             vec![Transform::Translate([0.0, -0.5, 2.0])],
         ),
-    ];
-    objects[1].material = plastic;
+    ]);
+    objects[1].material = plastic([0.8, 0.3, 0.2], 0.1);
     objects[3].material = Material::Constant { color: [0.2, 0.9, 0.4], opacity: [0.5, 0.6, 0.7] };
     objects[4].matte = true;
     let lens = Lens { focal_length: 0.2, f_stop: 4.0, focal_distance: 6.0 };
     let mut out = Vec::new();
     for lens in [None, Some(lens)] {
-        let mut cam = camera([0.0, 0.5, -1.0], [0.0, 0.0, 6.0], 50.0, lens);
+        let mut cam = busy_camera(lens);
         cam.hither = 1.0;
         cam.yon = 30.0;
-        let mut s = scene(160, 120, cam, objects.clone());
-        s.hider.bucket_size = (8, 8);
-        s.hider.shading_rate = 2.0;
+        let mut s = small_buckets_scene(cam, objects.clone());
         s.lights.push(reyes_scene::Light::Point {
             from: [2.0, 3.0, 2.0],
             color: [1.0; 3],
@@ -180,16 +126,14 @@ fn sideways_sphere(centre: [f32; 3]) -> Vec<Transform> {
 
 /// A 160x120 scene looking down +z from the origin at `objects`, diced in whole grids.
 fn view_scene(objects: Vec<Object>) -> Scene {
-    let mut s = scene(160, 120, camera([0.0; 3], [0.0, 0.0, 1.0], 40.0, None), objects);
+    let mut s = scene_ahead(160, 120, 40.0, objects);
     s.hider.max_grid_size = 1 << 16;
     s
 }
 
 /// One sphere under `transform` and, if not empty, transform keys `motion`.
 fn sphere_scene(transform: Vec<Transform>, motion: Vec<TransformKey>) -> Scene {
-    let mut o = object(sphere(1.0), transform);
-    o.motion = motion;
-    view_scene(vec![o])
+    view_scene(vec![object(sphere(1.0), transform).with_motion(motion)])
 }
 
 /// The raw bytes of the micropolygons.
@@ -430,11 +374,10 @@ fn a_deforming_bilinear_patch_moves_with_its_points() {
     let p1 = p0.map(|p| m.transform_point3(Vec3::from(p)).to_array());
     // The shape's own points are off screen: the keys replace them.
     let far = [[100.0, 0.0, 5.0], [101.0, 0.0, 5.0], [100.0, 1.0, 5.0], [101.0, 1.0, 5.0]];
-    let mut o = object(Shape::BilinearPatch { points: far }, vec![]);
-    o.deform = vec![
+    let o = object(Shape::BilinearPatch { points: far }, vec![]).with_deform(vec![
         PointsKey { time: 0.0, points: p0.to_vec() },
         PointsKey { time: 1.0, points: p1.to_vec() },
-    ];
+    ]);
     let s = view_scene(vec![o]);
     let cam = CameraSetup::new(&s);
     let (d, _) = dice(&s);
@@ -467,31 +410,24 @@ fn a_deforming_bilinear_patch_moves_with_its_points() {
 
 #[test]
 fn a_deforming_mesh_moves_with_its_points_and_odd_keys_do_not_panic() {
-    let points = vec![
-        [-2.0, -1.0, 8.0],
-        [0.0, -1.0, 8.0],
-        [0.0, 1.0, 9.0],
-        [-2.0, 1.0, 9.0],
-        [2.0, -1.0, 8.0],
-        [2.5, 0.5, 8.5],
-    ];
+    let points = [quad_and_triangle(), vec![[2.5, 0.5, 8.5]]].concat();
     let m = affine();
     let moved: Vec<[f32; 3]> =
         points.iter().map(|p| m.transform_point3(Vec3::from(*p)).to_array()).collect();
-    let mut o = object(
+    let o = object(
         Shape::Mesh {
             points: points.clone(),
             faces: vec![vec![0, 1, 2, 3], vec![1, 4, 2], vec![1, 4, 5, 2, 3]],
             colors: None,
         },
         vec![Transform::Translate([0.0, 0.0, 1.0])],
-    );
-    let shift = Mat4::from_translation(Vec3::Z);
-    let moved_world = shift * m * shift.inverse();
-    o.deform = vec![
+    )
+    .with_deform(vec![
         PointsKey { time: 0.0, points: points.clone() },
         PointsKey { time: 1.0, points: moved.clone() },
-    ];
+    ]);
+    let shift = Mat4::from_translation(Vec3::Z);
+    let moved_world = shift * m * shift.inverse();
     let s = view_scene(vec![o]);
     let cam = CameraSetup::new(&s);
     let (d, _) = dice(&s);
@@ -515,15 +451,6 @@ fn a_deforming_mesh_moves_with_its_points_and_odd_keys_do_not_panic() {
     quadric.objects[0].shape = sphere(1.0);
     let (d, _) = dice(&quadric);
     assert_eq!(d.stats.moving, 0);
-}
-
-/// Brute force: does the box `[lo, hi]` reach a pixel of bucket `b`?
-fn touches(frame: &Frame, b: usize, lo: [f32; 3], hi: [f32; 3]) -> bool {
-    let e = frame.border as f32;
-    let (left, top) = frame.bucket_origin(b);
-    let (left, top) = (left as f32 + e, top as f32 + e);
-    let (right, bottom) = (left + frame.bucket_w as f32, top + frame.bucket_h as f32);
-    lo[0] + e < right && hi[0] + e >= left && lo[1] + e < bottom && hi[1] + e >= top
 }
 
 /// A busy scene in which everything moves: transform keys (a translation, a spin, three
@@ -582,13 +509,7 @@ fn moving_micropolygons_are_in_every_bucket_their_sweep_touches() {
         // behind the eye must not defeat culling (with a lens there are no frustum planes;
         // judging the whole shutter at once once took 72k grids here).
         assert!(d.stats.grids < 1000, "{:?}", d.stats);
-        let mut listed: Vec<Vec<usize>> = vec![Vec::new(); d.mpolys.len()];
-        for (b, list) in d.buckets.iter().enumerate() {
-            assert!(list.windows(2).all(|w| w[0] < w[1]));
-            for &i in list {
-                listed[i as usize].push(b);
-            }
-        }
+        let listed = buckets_of_each(&d);
         let (hither, yon) = (s.camera.hither, s.camera.yon);
         let mut entries = 0;
         for (i, mp) in d.mpolys.iter().enumerate() {
@@ -603,8 +524,7 @@ fn moving_micropolygons_are_in_every_bucket_their_sweep_touches() {
                     }
                 }
             }
-            let expect: Vec<usize> =
-                (0..frame.bucket_count()).filter(|&b| touches(&frame, b, lo, hi)).collect();
+            let expect = touched_buckets(&frame, lo, hi);
             assert!(!expect.is_empty(), "micropolygon {i} touches no bucket but was kept");
             assert_eq!(listed[i], expect, "micropolygon {i}");
             entries += expect.len() as u64;

@@ -3,7 +3,7 @@
 mod common;
 
 use common::*;
-use reyes_scene::{Lens, Material, Object, Shape, Transform};
+use reyes_scene::{Lens, Object, Shape, Transform};
 
 fn check_finite(d: &reyes_dice::Diced) {
     for mp in &d.mpolys {
@@ -15,15 +15,7 @@ fn check_finite(d: &reyes_dice::Diced) {
 
 #[test]
 fn odd_shapes_and_transforms_do_not_panic() {
-    let plastic = Material::Plastic {
-        color: [0.8, 0.2, 0.2],
-        opacity: [1.0; 3],
-        ka: 1.0,
-        kd: 0.5,
-        ks: 0.5,
-        roughness: 0.05,
-        specular_color: [1.0; 3],
-    };
+    let plastic = plastic([0.8, 0.2, 0.2], 0.05);
     let shapes = vec![
         Shape::Sphere { radius: 1.0, zmin: Some(0.5), zmax: Some(-0.5), thetamax: 0.01 },
         Shape::Sphere { radius: 1.0, zmin: Some(-5.0), zmax: Some(5.0), thetamax: 360.0 },
@@ -71,26 +63,12 @@ fn odd_shapes_and_transforms_do_not_panic() {
     let mut objects = Vec::new();
     for shape in &shapes {
         for t in &transforms {
-            objects.push(Object {
-                name: String::new(),
-                shape: shape.clone(),
-                transform: t.clone(),
-                material: plastic.clone(),
-                matte: false,
-                motion: Vec::new(),
-                deform: Vec::new(),
-                interpolation: Default::default(),
-                glass: None,
-                reflect: None,
-                refract: None,
-                pattern: None,
-                roll: None,
-            });
+            objects.push(Object::new(shape.clone(), plastic.clone()).with_transform(t.clone()));
         }
     }
     let lens = Lens { focal_length: 0.1, f_stop: 2.0, focal_distance: 5.0 };
     for lens in [None, Some(lens)] {
-        let mut s = scene(96, 64, camera([0.0; 3], [0.0, 0.0, 1.0], 60.0, lens), objects.clone());
+        let mut s = scene(96, 64, camera_ahead(60.0, lens), objects.clone());
         s.lights.push(reyes_scene::Light::Point {
             from: [0.0, 0.0, 5.0],
             color: [1.0; 3],
@@ -115,8 +93,7 @@ fn ground_plane_through_the_eye_is_cheap_and_clean() {
             [500.0, -1.0, 500.0],
         ],
     };
-    let s =
-        scene(320, 240, camera([0.0; 3], [0.0, 0.0, 1.0], 45.0, None), vec![object(floor, vec![])]);
+    let s = scene_ahead(320, 240, 45.0, vec![object(floor, vec![])]);
     let start = std::time::Instant::now();
     let (d, frame) = dice(&s);
     println!("ground plane: {:?} in {:?}", d.stats, start.elapsed());
@@ -126,11 +103,7 @@ fn ground_plane_through_the_eye_is_cheap_and_clean() {
     for py in 125..240 {
         for px in 0..320 {
             let (x, y) = (px as f32 + 0.5, py as f32 + 0.5);
-            let b = bucket_of(&frame, x, y);
-            assert!(
-                d.buckets[b].iter().any(|&i| inside(&d.mpolys[i as usize], x, y, 1e-4)),
-                "({px}, {py})"
-            );
+            assert!(covered(&d, &frame, x, y), "({px}, {py})");
         }
     }
     assert!(d.stats.micropolygons < 400_000, "{:?}", d.stats);

@@ -1,11 +1,102 @@
-//! Shared helpers for the integration tests: scene builders and raster geometry.
+//! Shared helpers for the integration tests: scene builders, raster geometry, brute-force
+//! bucket checks and the FNV-1a digest.
 #![allow(dead_code)]
 
 use reyes_dice::{Diced, dice_scene};
 use reyes_hider::{Frame, Micropolygon};
-use reyes_scene::Scene;
+use reyes_scene::{Camera, Lens, Material, Object, Rgb, Scene, Shape, Transform};
 #[allow(unused_imports)]
 pub use reyes_testkit::fixtures::{camera, frame_for as frame_of, object, scene, sphere};
+
+/// The camera at the origin looking down +z with field of view `fov`, through `lens`.
+pub fn camera_ahead(fov: f32, lens: Option<Lens>) -> Camera {
+    camera([0.0; 3], [0.0, 0.0, 1.0], fov, lens)
+}
+
+/// A `width x height` scene of `objects` seen by the pinhole [`camera_ahead`]`(fov)`.
+pub fn scene_ahead(width: u32, height: u32, fov: f32, objects: Vec<Object>) -> Scene {
+    scene(width, height, camera_ahead(fov, None), objects)
+}
+
+/// The camera of the busy scenes: from `(0, 0.5, -1)` towards `(0, 0, 6)`, fov 50.
+pub fn busy_camera(lens: Option<Lens>) -> Camera {
+    camera([0.0, 0.5, -1.0], [0.0, 0.0, 6.0], 50.0, lens)
+}
+
+/// A 160x120 scene of `objects` seen by `camera`, in 8x8 buckets at shading rate 2 (many
+/// buckets, a busy scene's micropolygons in several of them).
+pub fn small_buckets_scene(camera: Camera, objects: Vec<Object>) -> Scene {
+    let mut s = scene(160, 120, camera, objects);
+    s.hider.bucket_size = (8, 8);
+    s.hider.shading_rate = 2.0;
+    s
+}
+
+/// The busy scenes' sphere, torus and cone, seen by [`busy_camera`] partly off screen.
+pub fn sphere_torus_cone() -> Vec<Object> {
+    vec![
+        object(sphere(1.0), vec![Transform::Translate([-1.5, 0.3, 6.0])]),
+        tilted_torus(),
+        object(
+            Shape::Cone { height: 1.5, radius: 0.7, thetamax: 360.0 },
+            vec![
+                Transform::Rotate { angle: -90.0, axis: [1.0, 0.0, 0.0] },
+                Transform::Translate([3.5, 1.0, 5.0]),
+            ],
+        ),
+    ]
+}
+
+/// An open torus (300 degrees of it) tilted 60 degrees, centred at `(1.5, -0.5, 7)`.
+pub fn tilted_torus() -> Object {
+    object(
+        Shape::Torus {
+            major_radius: 1.0,
+            minor_radius: 0.3,
+            phimin: 0.0,
+            phimax: 360.0,
+            thetamax: 300.0,
+        },
+        vec![
+            Transform::Rotate { angle: 60.0, axis: [1.0, 0.2, 0.0] },
+            Transform::Translate([1.5, -0.5, 7.0]),
+        ],
+    )
+}
+
+/// An 80x80 floor a little below [`busy_camera`]'s eye, reaching behind it: hither splits,
+/// patches with no raster bound, micropolygons crossing hither.
+pub fn floor_through_the_eye() -> Object {
+    object(
+        Shape::BilinearPatch {
+            points: [
+                [-40.0, -1.0, -40.0],
+                [40.0, -1.0, -40.0],
+                [-40.0, -1.0, 40.0],
+                [40.0, -1.5, 40.0],
+            ],
+        },
+        vec![],
+    )
+}
+
+/// The points of a quad 0-1-2-3 and a triangle 1-4-2 sharing its edge 1-2, at depths 8 to 9.
+pub fn quad_and_triangle() -> Vec<[f32; 3]> {
+    vec![[-2.0, -1.0, 8.0], [0.0, -1.0, 8.0], [0.0, 1.0, 9.0], [-2.0, 1.0, 9.0], [2.0, -1.0, 8.0]]
+}
+
+/// Plastic of `color` and `roughness`: ambient 1, diffuse and specular 0.5, white highlights.
+pub fn plastic(color: Rgb, roughness: f32) -> Material {
+    Material::Plastic {
+        color,
+        opacity: [1.0; 3],
+        ka: 1.0,
+        kd: 0.5,
+        ks: 0.5,
+        roughness,
+        specular_color: [1.0; 3],
+    }
+}
 
 /// Dice a scene in its own frame, panicking on error.
 pub fn dice(scene: &Scene) -> (Diced, Frame) {
@@ -40,6 +131,57 @@ pub fn inside(mp: &Micropolygon, x: f32, y: f32, eps: f32) -> bool {
         (d0 >= -tol && d1 >= -tol && d2 >= -tol) || (d0 <= tol && d1 <= tol && d2 <= tol)
     };
     tri(mp.v[0], mp.v[1], mp.v[2]) || tri(mp.v[0], mp.v[2], mp.v[3])
+}
+
+/// Does some micropolygon listed in the bucket of raster point `(x, y)` cover it (within
+/// 1e-4)?
+pub fn covered(d: &Diced, frame: &Frame, x: f32, y: f32) -> bool {
+    d.buckets[bucket_of(frame, x, y)].iter().any(|&i| inside(&d.mpolys[i as usize], x, y, 1e-4))
+}
+
+/// Brute force: the buckets whose pixels the box `[lo, hi]` reaches (pixel x is reached iff
+/// `lo.x < x + 1` and `hi.x >= x`), computed in extended-screen coordinates as the frame does.
+pub fn touched_buckets(frame: &Frame, lo: [f32; 3], hi: [f32; 3]) -> Vec<usize> {
+    let e = frame.border as f32;
+    let touches = |b: usize| {
+        let (left, top) = frame.bucket_origin(b);
+        let (left, top) = (left as f32 + e, top as f32 + e);
+        let (right, bottom) = (left + frame.bucket_w as f32, top + frame.bucket_h as f32);
+        lo[0] + e < right && hi[0] + e >= left && lo[1] + e < bottom && hi[1] + e >= top
+    };
+    (0..frame.bucket_count()).filter(|&b| touches(b)).collect()
+}
+
+/// The buckets listing each micropolygon of `d` (its bucket lists inverted), checking that
+/// every list is strictly increasing.
+pub fn buckets_of_each(d: &Diced) -> Vec<Vec<usize>> {
+    let mut listed: Vec<Vec<usize>> = vec![Vec::new(); d.mpolys.len()];
+    for (b, list) in d.buckets.iter().enumerate() {
+        assert!(list.windows(2).all(|w| w[0] < w[1]), "bucket {b} is not strictly increasing");
+        for &i in list {
+            listed[i as usize].push(b);
+        }
+    }
+    listed
+}
+
+/// 64-bit FNV-1a over the bytes it is fed, in order.
+pub struct Fnv(pub u64);
+
+impl Default for Fnv {
+    fn default() -> Fnv {
+        Fnv(0xcbf2_9ce4_8422_2325)
+    }
+}
+
+impl Fnv {
+    /// Feed `bytes`.
+    pub fn eat(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.0 ^= u64::from(b);
+            self.0 = self.0.wrapping_mul(0x0100_0000_01b3);
+        }
+    }
 }
 
 /// Bucket number of the bucket holding raster pixel `(x, y)`.
