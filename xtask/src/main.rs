@@ -5,6 +5,7 @@
 //! sampling study's figures in docs/study/).
 
 mod bench;
+mod compare;
 mod study;
 
 use std::process::ExitCode;
@@ -13,7 +14,7 @@ use reyes_testkit::golden::{self, Outcome};
 
 fn usage() -> ExitCode {
     eprintln!(
-        "usage: cargo xtask <golden | bless [SCENE...] | bench [--runs N] [--threads T] [--baseline BIN] [SCENE...] | scaling [--threads T] [N...] | study [--quick]>"
+        "usage: cargo xtask <golden | bless [SCENE...] | bench [--runs N] [--threads T] [--baseline BIN] [SCENE...] | scaling [--threads T] [N...] | study [--quick] | compare A.exr B.exr>"
     );
     ExitCode::from(2)
 }
@@ -35,6 +36,15 @@ fn main() -> ExitCode {
             Ok(()) => ExitCode::SUCCESS,
             Err(e) => {
                 eprintln!("xtask scaling: {e}");
+                ExitCode::FAILURE
+            }
+        };
+    }
+    if args.first().map(String::as_str) == Some("compare") {
+        return match compare::run(&args[1..]) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(e) => {
+                eprintln!("xtask compare: {e}");
                 ExitCode::FAILURE
             }
         };

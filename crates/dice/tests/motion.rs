@@ -277,12 +277,14 @@ fn a_still_scene_is_unchanged_bit_for_bit() {
 }
 
 /// The still scenes diced by the dicer before motion blur existed, digested on x86-64
-/// Linux (the digests depend on the platform's `sin`/`cos`).
+/// Linux (the digests depend on the platform's `sin`/`cos`). Re-pinned once, when Plastic's
+/// specular exponent became RenderMan's `8 / roughness` (issue #12): that changed the
+/// vertex colours of the plastic objects and nothing else.
 #[test]
 #[cfg(all(target_arch = "x86_64", target_os = "linux", target_env = "gnu"))]
 fn still_scenes_match_the_dicer_before_motion() {
     let digests: Vec<u64> = static_scenes().iter().map(|s| digest(&dice(s).0)).collect();
-    assert_eq!(digests, [0xf844_6361_4784_0b2d, 0x5049_a9b2_bc74_e8cd]);
+    assert_eq!(digests, [0x4b8c_a79b_fe3d_1f8e, 0xef4f_b1db_f50d_df12]);
 }
 
 #[test]

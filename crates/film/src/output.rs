@@ -186,12 +186,13 @@ pub fn read_exr(path: &Path) -> Result<Film, FilmError> {
     let width = u32::try_from(w).map_err(|_| bad(format!("width {w} is too large")))?;
     let height = u32::try_from(h).map_err(|_| bad(format!("height {h} is too large")))?;
     let n = w * h;
+    // `R`, or a layer's `NAME.R` when the file has no top-level R (Aqsis writes `layer_0.R`).
     let channel = |name: &str| -> Option<Vec<f32>> {
-        layer
-            .channel_data
-            .list
-            .iter()
+        let list = &layer.channel_data.list;
+        let suffix = format!(".{name}");
+        list.iter()
             .find(|c| c.name.eq(name))
+            .or_else(|| list.iter().find(|c| c.name.to_string().ends_with(&suffix)))
             .map(|c| c.sample_data.values_as_f32().collect())
     };
     let mut rgba = vec![[0.0_f32; 4]; n];

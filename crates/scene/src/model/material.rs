@@ -49,7 +49,7 @@ pub enum Material {
         /// Specular coefficient.
         #[serde(default = "half")]
         ks: f32,
-        /// Specular roughness (> 0): exponent is `1 / roughness`.
+        /// Specular roughness (> 0): the exponent is `8 / roughness`, RenderMan's `specular()`.
         #[serde(default = "tenth")]
         roughness: f32,
         /// Specular colour.

@@ -1,0 +1,60 @@
+//! `cargo xtask compare A.exr B.exr`: how closely two renders agree, as the peer comparison
+//! of `../shared/peers/README.md` measures it: PSNR over the whole image (values in 0..1,
+//! peak 1) of each of R, G, B and alpha, of RGB together, and each image's channel means.
+
+use std::path::Path;
+
+use reyes_film::Film;
+
+/// PSNR in dB of channel `c` of `b` against `a` (peak 1), over every pixel.
+pub fn psnr(a: &Film, b: &Film, channels: &[usize]) -> f64 {
+    let mut se = 0.0f64;
+    let mut n = 0usize;
+    for (p, q) in a.rgba().iter().zip(b.rgba()) {
+        for &c in channels {
+            se += f64::from(p[c] - q[c]).powi(2);
+            n += 1;
+        }
+    }
+    10.0 * (n as f64 / se.max(1e-30)).log10()
+}
+
+fn means(f: &Film) -> [f64; 4] {
+    let mut m = [0.0f64; 4];
+    for p in f.rgba() {
+        for c in 0..4 {
+            m[c] += f64::from(p[c]);
+        }
+    }
+    m.map(|v| v / f.rgba().len().max(1) as f64)
+}
+
+pub fn run(args: &[String]) -> Result<(), String> {
+    let [a, b] = args else {
+        return Err("usage: cargo xtask compare A.exr B.exr".into());
+    };
+    let read = |p: &str| reyes_film::read_exr(Path::new(p)).map_err(|e| e.to_string());
+    let (fa, fb) = (read(a)?, read(b)?);
+    if (fa.width(), fa.height()) != (fb.width(), fb.height()) {
+        return Err(format!(
+            "sizes differ: {}x{} and {}x{}",
+            fa.width(),
+            fa.height(),
+            fb.width(),
+            fb.height()
+        ));
+    }
+    println!(
+        "PSNR dB: R {:.1}, G {:.1}, B {:.1}, RGB {:.1}, alpha {:.1}",
+        psnr(&fa, &fb, &[0]),
+        psnr(&fa, &fb, &[1]),
+        psnr(&fa, &fb, &[2]),
+        psnr(&fa, &fb, &[0, 1, 2]),
+        psnr(&fa, &fb, &[3])
+    );
+    for (name, f) in [(a, &fa), (b, &fb)] {
+        let m = means(f);
+        println!("means {name}: R {:.4} G {:.4} B {:.4} A {:.4}", m[0], m[1], m[2], m[3]);
+    }
+    Ok(())
+}
