@@ -19,6 +19,7 @@ use std::path::Path;
 pub use closure::{Closure, closure};
 pub use error::{LoadError, SceneError};
 pub use model::*;
+pub use validate::Issue;
 pub use xform::{normal_matrix, object_to_world, transform_matrix};
 
 /// Parses and validates the RON scene `text`. `file` is used only in error messages.
@@ -35,9 +36,9 @@ pub fn parse(text: &str, file: &Path) -> Result<Scene, SceneError> {
         Ok(scene) => scene,
         Err(err) => return Err(syntax::from_ron(text, file, &err)),
     };
-    match validate::check(&scene) {
-        None => Ok(expand_rolls(scene)),
-        Some(issue) => {
+    match validate(scene) {
+        Ok(scene) => Ok(scene),
+        Err(issue) => {
             let pos = locate::SourceMap::scan(text).find(&issue.path);
             Err(SceneError {
                 file: file.to_path_buf(),
@@ -47,6 +48,16 @@ pub fn parse(text: &str, file: &Path) -> Result<Scene, SceneError> {
                 message: issue.message,
             })
         }
+    }
+}
+
+/// Validates a scene built in code or by another front-end (RIB) exactly as [`parse`] validates
+/// a RON file, and completes it as [`parse`] does (rolls expanded into motion keys). The error
+/// names the path of the offending value; the caller maps it to a position in its own source.
+pub fn validate(scene: Scene) -> Result<Scene, Issue> {
+    match validate::check(&scene) {
+        None => Ok(expand_rolls(scene)),
+        Some(issue) => Err(issue),
     }
 }
 

@@ -43,8 +43,10 @@ use primitives::Check;
 
 /// A validation failure: the path of the value at fault and what is wrong with it.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub(crate) struct Issue {
+pub struct Issue {
+    /// Path of the offending value as RON spells it, e.g. `objects[0].shape.radius`.
     pub path: String,
+    /// What is wrong, e.g. `must be > 0, got -1`.
     pub message: String,
 }
 
