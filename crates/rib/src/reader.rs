@@ -166,7 +166,6 @@ impl Reader {
             }
             let (pos, tok) = match frame.next() {
                 Ok(t) => t,
-                Err(LexError::Syntax(..)) if frame.resync => continue,
                 Err(e) => {
                     frame.resync = true;
                     return Err(lex_error(frame, e));
@@ -540,14 +539,13 @@ impl Parser<'_> {
     }
 
     fn too_many(&self, pos: Pos, tok: &Tok, nargs: usize) -> RibError {
+        let after = match nargs.checked_sub(1).and_then(|i| self.kind.signature().args.get(i)) {
+            Some(arg) => arg.name,
+            None => "the request name",
+        };
         self.error(
             pos,
-            format!(
-                "unexpected {} after {nargs} argument{} ({})",
-                tok.describe(),
-                if nargs == 1 { "" } else { "s" },
-                self.kind.synopsis()
-            ),
+            format!("too many arguments: {} after {after} ({})", tok.describe(), self.kind.synopsis()),
         )
     }
 

@@ -165,7 +165,7 @@ fn every_signature_rejects_a_missing_and_an_extra_argument() {
             let all: Vec<&str> = sig.args.iter().map(|a| sample(a.kind)).collect();
             let text = format!("{} {} 7", kind.name(), all.join(" "));
             let msg = first_error(&text);
-            assert!(msg.contains(&format!(": {}: unexpected the number 7 after", kind.name())), "{text:?}: {msg}");
+            assert!(msg.contains(&format!(": {}: too many arguments: the number 7 after", kind.name())), "{text:?}: {msg}");
         }
     }
 }
@@ -266,7 +266,7 @@ fn reading_goes_on_after_an_error() {
             "test.rib:1:1: expected a request name, got ']'",
             "test.rib:2:1: Translate: missing argument dz (a number) in Translate dx dy dz",
             "test.rib:3:13: Sphere: argument zmax: expected a number, got the string \"x\"",
-            "test.rib:5:10: Identity: unexpected ']' after 0 arguments (Identity)",
+            "test.rib:5:10: Identity: too many arguments: ']' after the request name (Identity)",
         ]
     );
     assert_eq!(requests.iter().map(|r| r.kind).collect::<Vec<_>>(), vec![RequestKind::Scale, RequestKind::Rotate]);
