@@ -114,6 +114,10 @@ impl From<io::Error> for ArrayError {
     }
 }
 
+/// The next item inside a number array: a number, or the position and first byte of whatever
+/// else stands there (`None` at the end of input).
+type ArrayItem = Result<(Pos, Num), (Pos, Option<u8>)>;
+
 /// The values of an array read without a declared type (Spec: an array with any float is all
 /// floats).
 #[derive(Debug, Clone, PartialEq)]
@@ -285,10 +289,8 @@ impl Lexer {
                 break;
             }
         }
-        if keep {
-            if let Some(list) = self.structure.as_mut() {
-                list.push((at, String::from_utf8_lossy(&text).into_owned()));
-            }
+        if keep && let Some(list) = self.structure.as_mut() {
+            list.push((at, String::from_utf8_lossy(&text).into_owned()));
         }
         Ok(())
     }
@@ -505,9 +507,10 @@ impl Lexer {
         }
     }
 
-    /// Skips blanks and, if the next token is a number, reads it.
+    /// Skips blanks and, if the next token is a number, reads it; else says where the next
+    /// token starts and its first byte.
     #[inline]
-    fn array_number(&mut self) -> Result<Result<(Pos, Num), (Pos, Option<u8>)>, LexError> {
+    fn array_number(&mut self) -> Result<ArrayItem, LexError> {
         self.skip_blank()?;
         let at = self.here();
         match self.peek()? {
@@ -539,12 +542,13 @@ impl Lexer {
                 self.bump();
                 Err(ArrayError::Lex(LexError::Binary(at, b)))
             }
-            Some(_) => match self.next()? {
-                (p, tok) => Err(ArrayError::Unexpected(
+            Some(_) => {
+                let (p, tok) = self.next()?;
+                Err(ArrayError::Unexpected(
                     p,
                     format!("expected {want} or ']', got {}", tok.describe()),
-                )),
-            },
+                ))
+            }
         }
     }
 

@@ -379,7 +379,7 @@ impl Reader {
     /// request at `at`; cycle detection applies when the source has a path.
     pub fn push_source(&mut self, source: Source, at: &Location) -> Result<(), RibError> {
         let canonical = source.path().and_then(|p| fs::canonicalize(p).ok());
-        self.check_push(canonical.as_ref(), &source.name.to_string(), at)?;
+        self.check_push(canonical.as_ref(), source.name.as_ref(), at)?;
         self.frames.push(Frame::new(source, self.options.keep_structure_comments));
         Ok(())
     }
@@ -392,12 +392,12 @@ impl Reader {
     ) -> Result<(), RibError> {
         let err =
             |message: String| RibError::Request { at: at.clone(), request: "ReadArchive", message };
-        if let Some(c) = canonical {
-            if let Some(first) = self.frames.iter().position(|f| f.canonical.as_ref() == Some(c)) {
-                let mut chain: Vec<&str> = self.frames[first..].iter().map(|f| &*f.name).collect();
-                chain.push(display);
-                return Err(err(format!("include cycle {}", chain.join(" -> "))));
-            }
+        if let Some(c) = canonical
+            && let Some(first) = self.frames.iter().position(|f| f.canonical.as_ref() == Some(c))
+        {
+            let mut chain: Vec<&str> = self.frames[first..].iter().map(|f| &*f.name).collect();
+            chain.push(display);
+            return Err(err(format!("include cycle {}", chain.join(" -> "))));
         }
         if self.frames.len() >= self.options.max_depth {
             return Err(err(format!("archives nested deeper than {}", self.options.max_depth)));
@@ -545,7 +545,11 @@ impl Parser<'_> {
         };
         self.error(
             pos,
-            format!("too many arguments: {} after {after} ({})", tok.describe(), self.kind.synopsis()),
+            format!(
+                "too many arguments: {} after {after} ({})",
+                tok.describe(),
+                self.kind.synopsis()
+            ),
         )
     }
 
@@ -755,8 +759,10 @@ impl Parser<'_> {
                     Data::Ints(v)
                 }
                 (p, other) => {
-                    return Err(self
-                        .error(p, format!("{label}: expected integers, got {}", other.describe())));
+                    return Err(self.error(
+                        p,
+                        format!("{label}: expected integers, got {}", other.describe()),
+                    ));
                 }
             },
             Some(Storage::Strings) => match self.next()? {

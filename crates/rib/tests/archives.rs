@@ -22,10 +22,10 @@ fn trace(root: &Path) -> (Vec<String>, Vec<String>) {
         match r.next_request() {
             Ok(Some(q)) => {
                 seen.push(format!("{} {}", q.at, q.name()));
-                if q.kind == RequestKind::ReadArchive {
-                    if let Err(e) = r.read_archive(&q) {
-                        errors.push(e.to_string());
-                    }
+                if q.kind == RequestKind::ReadArchive
+                    && let Err(e) = r.read_archive(&q)
+                {
+                    errors.push(e.to_string());
                 }
             }
             Ok(None) => return (seen, errors),
@@ -123,7 +123,12 @@ fn the_reader_can_follow_archives_itself() {
     let kinds: Vec<_> = (&mut r).map(|q| q.unwrap().kind).collect();
     assert_eq!(
         kinds,
-        vec![RequestKind::WorldBegin, RequestKind::Declare, RequestKind::Surface, RequestKind::WorldEnd]
+        vec![
+            RequestKind::WorldBegin,
+            RequestKind::Declare,
+            RequestKind::Surface,
+            RequestKind::WorldEnd
+        ]
     );
     // Declarations made in an archive stay (Declare is not scoped).
     assert!(r.declarations().get("q").is_some());

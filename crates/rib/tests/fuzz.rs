@@ -40,9 +40,35 @@ FrameEnd
 
 /// Snippets that upset a RIB reader.
 const SNIPPETS: &[&str] = &[
-    "[", "]", "\"", "\\", "#", "##", "\n", "-", ".", "e", "1e99", "1e", "+.", "\\777", "\\\n", "[[", "\u{80}",
-    "\u{1}", "\"uniform float[\"", "\"float[0] x\"", "Sphere", "ReadArchive \"x.rib\"", "Declare \"x\" \"y\"",
-    "ColorSamples [1] [1]", "99999999999999999999", "\"P\"", "Color", "MotionBegin", "\u{ff}",
+    "[",
+    "]",
+    "\"",
+    "\\",
+    "#",
+    "##",
+    "\n",
+    "-",
+    ".",
+    "e",
+    "1e99",
+    "1e",
+    "+.",
+    "\\777",
+    "\\\n",
+    "[[",
+    "\u{80}",
+    "\u{1}",
+    "\"uniform float[\"",
+    "\"float[0] x\"",
+    "Sphere",
+    "ReadArchive \"x.rib\"",
+    "Declare \"x\" \"y\"",
+    "ColorSamples [1] [1]",
+    "99999999999999999999",
+    "\"P\"",
+    "Color",
+    "MotionBegin",
+    "\u{ff}",
 ];
 
 /// Reads `bytes` to the end, reading on after errors; checks the one-line law.

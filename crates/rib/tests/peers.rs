@@ -52,7 +52,8 @@ fn peer_depth_of_field_and_camera() {
         eprintln!("SKIPPED: no peer scenes at ../shared/peers beside the repository");
         return;
     };
-    let all: Vec<_> = Reader::open(dir.join("c_balls_dof.rib")).unwrap().map(Result::unwrap).collect();
+    let all: Vec<_> =
+        Reader::open(dir.join("c_balls_dof.rib")).unwrap().map(Result::unwrap).collect();
     let dof = all.iter().find(|q| q.kind == RequestKind::DepthOfField).expect("DepthOfField");
     assert_eq!((dof.float(0), dof.float(1), dof.float(2)), (Some(2.8), Some(1.0), Some(8.0)));
     let proj = all.iter().find(|q| q.kind == RequestKind::Projection).unwrap();

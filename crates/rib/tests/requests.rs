@@ -14,8 +14,14 @@ fn bare_and_array_forms_normalise_alike() {
     for (a, b) in [
         ("Color [0.1 0.2 0.3]", "Color 0.1 0.2 0.3"),
         ("Opacity [1 1 1]", "Opacity 1 1 1"),
-        ("ConcatTransform [1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1]", "ConcatTransform 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1"),
-        ("Transform [2 0 0 0 0 2 0 0 0 0 2 0 0 0 0 1]", "Transform 2 0 0 0 0 2 0 0 0 0 2 0 0 0 0 1"),
+        (
+            "ConcatTransform [1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1]",
+            "ConcatTransform 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1",
+        ),
+        (
+            "Transform [2 0 0 0 0 2 0 0 0 0 2 0 0 0 0 1]",
+            "Transform 2 0 0 0 0 2 0 0 0 0 2 0 0 0 0 1",
+        ),
         ("Bound [-1 1 -1 1 -1 1]", "Bound -1 1 -1 1 -1 1"),
         ("Detail [-1 1 -1 1 -1 1]", "Detail -1 1 -1 1 -1 1"),
         ("MotionBegin [0 0.5 1]", "MotionBegin 0 0.5 1"),
@@ -25,7 +31,10 @@ fn bare_and_array_forms_normalise_alike() {
         ("DetailRange [0 0 10 20]", "DetailRange 0 0 10 20"),
         ("Skew [45 0 1 0 1 0 0]", "Skew 45 0 1 0 1 0 0"),
         ("Hyperboloid [1 0 -1] [0 1 1] 360", "Hyperboloid 1 0 -1 0 1 1 360"),
-        ("Basis [1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1] 3 \"bezier\" 3", "Basis 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1 3 \"bezier\" 3"),
+        (
+            "Basis [1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1] 3 \"bezier\" 3",
+            "Basis 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1 3 \"bezier\" 3",
+        ),
     ] {
         assert_eq!(one(a).args, one(b).args, "{a} / {b}");
     }
@@ -36,7 +45,10 @@ fn normalised_values() {
     assert_eq!(one("Color [0.1 0.2 0.3]").args, vec![Value::Floats(vec![0.1, 0.2, 0.3])]);
     assert_eq!(one("MotionBegin [0 1]").floats(0), Some(&[0.0, 1.0][..]));
     let sw = one("ScreenWindow [-1 1 -0.75 0.75]");
-    assert_eq!(sw.args, vec![Value::Float(-1.0), Value::Float(1.0), Value::Float(-0.75), Value::Float(0.75)]);
+    assert_eq!(
+        sw.args,
+        vec![Value::Float(-1.0), Value::Float(1.0), Value::Float(-0.75), Value::Float(0.75)]
+    );
     let h = one("Hyperboloid 1 0 -1 0 1 1 270");
     assert_eq!(h.floats(0), Some(&[1.0, 0.0, -1.0][..]));
     assert_eq!(h.floats(1), Some(&[0.0, 1.0, 1.0][..]));
@@ -49,7 +61,10 @@ fn normalised_values() {
     let f = one("Format 640 480 1");
     assert_eq!((f.int(0), f.int(1), f.float(2)), (Some(640), Some(480), Some(1.0)));
     assert_eq!(one("SolidBegin \"difference\"").string(0), Some("difference"));
-    assert_eq!(one("Translate -1.6 0 8").args, vec![Value::Float(-1.6), Value::Float(0.0), Value::Float(8.0)]);
+    assert_eq!(
+        one("Translate -1.6 0 8").args,
+        vec![Value::Float(-1.6), Value::Float(0.0), Value::Float(8.0)]
+    );
     assert_eq!(one("version 3.03").float(0), Some(3.03));
 }
 
@@ -85,7 +100,8 @@ fn geometry_arrays() {
     let pp = p.param("P").unwrap();
     assert_eq!(pp.decl, Some(Decl::new(Class::Vertex, Type::Point)));
     assert_eq!(pp.elements(3), Some(4));
-    let n = one("NuPatch 2 2 [0 0 1 1] 0 1 2 2 [0 0 1 1] 0 1 \"Pw\" [0 0 0 1 1 0 0 1 0 1 0 1 1 1 0 1]");
+    let n =
+        one("NuPatch 2 2 [0 0 1 1] 0 1 2 2 [0 0 1 1] 0 1 \"Pw\" [0 0 0 1 1 0 0 1 0 1 0 1 1 1 0 1]");
     assert_eq!(n.floats(2), Some(&[0.0, 0.0, 1.0, 1.0][..]));
     assert_eq!(n.int(5), Some(2));
     let t = one("TrimCurve [1] [2] [0 0 1 1] [0] [1] [2] [0 1] [0 1] [1 1]");
@@ -93,7 +109,9 @@ fn geometry_arrays() {
     let pr = one("Procedural \"DelayedReadArchive\" [\"tree.rib\"] [-1 1 -1 1 0 2]");
     assert_eq!(pr.strings(1), Some(&["tree.rib".to_string()][..]));
     assert_eq!(pr.floats(2).map(<[f32]>::len), Some(6));
-    let c = one("Curves \"cubic\" [4] \"nonperiodic\" \"P\" [0 0 0 1 1 0 2 0 0 3 1 0] \"constantwidth\" 0.1");
+    let c = one(
+        "Curves \"cubic\" [4] \"nonperiodic\" \"P\" [0 0 0 1 1 0 2 0 0 3 1 0] \"constantwidth\" 0.1",
+    );
     assert_eq!(c.param("constantwidth").and_then(|p| p.floats()), Some(&[0.1][..]));
     let b = one("Blobby 1 [1001 0] [1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1] [] ");
     assert_eq!(b.strings(3), Some(&[][..]));
@@ -152,12 +170,17 @@ fn every_signature_rejects_a_missing_and_an_extra_argument() {
             ArgKind::Color => "[1 1 1]",
         };
         if sig.required > 0 {
-            let present: Vec<&str> = sig.args[..sig.required - 1].iter().map(|a| sample(a.kind)).collect();
+            let present: Vec<&str> =
+                sig.args[..sig.required - 1].iter().map(|a| sample(a.kind)).collect();
             let text = format!("{} {}\nWorldBegin", kind.name(), present.join(" "));
             let last = &sig.args[sig.required - 1];
             let msg = first_error(&text);
             assert!(
-                msg.starts_with(&format!("{FILE}:1:1: {}: missing argument {}", kind.name(), last.name)),
+                msg.starts_with(&format!(
+                    "{FILE}:1:1: {}: missing argument {}",
+                    kind.name(),
+                    last.name
+                )),
                 "{text:?}: {msg}"
             );
         }
@@ -165,17 +188,25 @@ fn every_signature_rejects_a_missing_and_an_extra_argument() {
             let all: Vec<&str> = sig.args.iter().map(|a| sample(a.kind)).collect();
             let text = format!("{} {} 7", kind.name(), all.join(" "));
             let msg = first_error(&text);
-            assert!(msg.contains(&format!(": {}: too many arguments: the number 7 after", kind.name())), "{text:?}: {msg}");
+            assert!(
+                msg.contains(&format!(": {}: too many arguments: the number 7 after", kind.name())),
+                "{text:?}: {msg}"
+            );
         }
     }
 }
 
 #[test]
 fn parameters_are_typed_by_declarations() {
-    let s = one("Surface \"plastic\" \"Ka\" [1] \"Kd\" 0.7 \"specularcolor\" [1 0.5 0.25] \"texturename\" \"wood.tx\"");
+    let s = one(
+        "Surface \"plastic\" \"Ka\" [1] \"Kd\" 0.7 \"specularcolor\" [1 0.5 0.25] \"texturename\" \"wood.tx\"",
+    );
     assert_eq!(s.param("Ka").unwrap().data, Data::Floats(vec![1.0]));
     assert_eq!(s.param("Kd").unwrap().data, Data::Floats(vec![0.7]));
-    assert_eq!(s.param("specularcolor").unwrap().decl, Some(Decl::new(Class::Uniform, Type::Color)));
+    assert_eq!(
+        s.param("specularcolor").unwrap().decl,
+        Some(Decl::new(Class::Uniform, Type::Color))
+    );
     assert_eq!(s.param("texturename").unwrap().strings(), Some(&["wood.tx".to_string()][..]));
     // Inline declarations, each form.
     let s = one(concat!(
@@ -200,8 +231,13 @@ fn parameters_are_typed_by_declarations() {
 
 #[test]
 fn declare_feeds_later_parameters() {
-    let all = read("Declare \"direction\" \"point\"\nLightSource \"windowlight\" 0 \"direction\" [1 0 -0.1]\nDeclare \"n\" \"uniform integer\"\nAttribute \"x\" \"n\" 3");
-    assert_eq!(all[1].param("direction").unwrap().decl, Some(Decl::new(Class::Uniform, Type::Point)));
+    let all = read(
+        "Declare \"direction\" \"point\"\nLightSource \"windowlight\" 0 \"direction\" [1 0 -0.1]\nDeclare \"n\" \"uniform integer\"\nAttribute \"x\" \"n\" 3",
+    );
+    assert_eq!(
+        all[1].param("direction").unwrap().decl,
+        Some(Decl::new(Class::Uniform, Type::Point))
+    );
     assert_eq!(all[3].param("n").unwrap().ints(), Some(&[3][..]));
     // An inline declaration does not change the table.
     let all = read("Surface \"s\" \"string Kd\" \"x\"\nSurface \"s\" \"Kd\" 0.5");
@@ -240,7 +276,8 @@ fn color_samples_change_colour_sizes_until_frame_end() {
 
 #[test]
 fn positions_name_the_request_and_each_parameter() {
-    let all = read("# header\nWorldBegin\n  Sphere 1 -1 1 360\n\tSurface \"plastic\"\n    \"Kd\" 0.5\n");
+    let all =
+        read("# header\nWorldBegin\n  Sphere 1 -1 1 360\n\tSurface \"plastic\"\n    \"Kd\" 0.5\n");
     assert_eq!(all[0].at.pos, Pos { line: 2, col: 1 });
     assert_eq!(all[1].at.pos, Pos { line: 3, col: 3 });
     assert_eq!(all[2].at.pos, Pos { line: 4, col: 2 });
@@ -252,14 +289,21 @@ fn positions_name_the_request_and_each_parameter() {
 fn unknown_requests_are_skipped_with_a_warning() {
     let text = "WorldBegin\nFrobnicate 1 [2 3] \"x\" \"y\"\nSphere 1 -1 1 360";
     let all = read(text);
-    assert_eq!(all.iter().map(|r| r.kind).collect::<Vec<_>>(), vec![RequestKind::WorldBegin, RequestKind::Sphere]);
-    assert_eq!(warnings(text), vec!["test.rib:2:1: warning: unknown request \"Frobnicate\" skipped"]);
+    assert_eq!(
+        all.iter().map(|r| r.kind).collect::<Vec<_>>(),
+        vec![RequestKind::WorldBegin, RequestKind::Sphere]
+    );
+    assert_eq!(
+        warnings(text),
+        vec!["test.rib:2:1: warning: unknown request \"Frobnicate\" skipped"]
+    );
 }
 
 #[test]
 fn reading_goes_on_after_an_error() {
-    let (errors, requests) =
-        all_errors("] 5\nTranslate 1 2\nSphere 1 -1 \"x\" 360\nScale 1 2 3\nIdentity ] 5\nRotate 90 0 0 1");
+    let (errors, requests) = all_errors(
+        "] 5\nTranslate 1 2\nSphere 1 -1 \"x\" 360\nScale 1 2 3\nIdentity ] 5\nRotate 90 0 0 1",
+    );
     assert_eq!(
         errors,
         vec![
@@ -269,7 +313,10 @@ fn reading_goes_on_after_an_error() {
             "test.rib:5:10: Identity: too many arguments: ']' after the request name (Identity)",
         ]
     );
-    assert_eq!(requests.iter().map(|r| r.kind).collect::<Vec<_>>(), vec![RequestKind::Scale, RequestKind::Rotate]);
+    assert_eq!(
+        requests.iter().map(|r| r.kind).collect::<Vec<_>>(),
+        vec![RequestKind::Scale, RequestKind::Rotate]
+    );
 }
 
 #[test]
@@ -290,7 +337,10 @@ fn gzipped_input_is_read_transparently() {
 #[test]
 fn structure_comments_are_kept_on_request() {
     let options = ReaderOptions { keep_structure_comments: true, ..ReaderOptions::default() };
-    let mut r = Reader::with_options(Source::from_bytes("s.rib", "##RenderMan RIB-Structure 1.1\n# plain\nWorldBegin"), options);
+    let mut r = Reader::with_options(
+        Source::from_bytes("s.rib", "##RenderMan RIB-Structure 1.1\n# plain\nWorldBegin"),
+        options,
+    );
     while r.next_request().unwrap().is_some() {}
     let kept = r.take_structure_comments();
     assert_eq!(kept.len(), 1);

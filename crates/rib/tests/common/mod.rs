@@ -57,6 +57,6 @@ pub fn all_errors(text: &str) -> (Vec<String>, Vec<Request>) {
 /// The warnings of `text` (which must read without error), displayed.
 pub fn warnings(text: &str) -> Vec<String> {
     let mut r = Reader::new(Source::from_bytes(FILE, text));
-    while let Some(_) = r.next_request().unwrap_or_else(|e| panic!("{text:?}: {e}")) {}
+    while r.next_request().unwrap_or_else(|e| panic!("{text:?}: {e}")).is_some() {}
     r.warnings().iter().map(Warning::to_string).collect()
 }
