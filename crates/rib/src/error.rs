@@ -92,13 +92,15 @@ pub enum RibError {
         /// What is wrong, naming the argument or parameter.
         message: String,
     },
-    /// The binary encoding (Spec 3.2 Appendix C.2) is not supported: reported at its first byte,
-    /// and the stream ends there.
-    #[error("{at}: binary RIB is not supported (byte 0x{byte:02x})")]
+    /// A reserved code of the binary encoding (Spec 3.2 Appendix C.2: 0247-0307 and
+    /// 0321-0377); its length is unknown, so the source ends there.
+    #[error(
+        "{at}: reserved binary RIB code 0{byte:o} (byte 0x{byte:02x}); the rest of the source is not read"
+    )]
     Binary {
-        /// The first binary byte.
+        /// The byte.
         at: Location,
-        /// Its value (0x80..=0xff).
+        /// Its value.
         byte: u8,
     },
     /// The source could not be read (or decompressed); the stream ends.

@@ -15,13 +15,16 @@
 //! - a number is `[+-]? digits [. digits] [(e|E) [+-] digits]` with at least one mantissa digit
 //!   (`1`, `-2`, `1e-3`, `.5`, `-.5`, `5.`); integers are the forms without `.` or exponent;
 //! - anything else up to a delimiter (whitespace, `[`, `]`, `"`, `#`) is a name (a request);
-//! - a byte with the top bit set outside a string starts the binary encoding, which is not
-//!   supported: [`LexError::Binary`].
+//! - a byte with the top bit set outside a string starts an encoded token of the binary
+//!   encoding (decoded in `binary.rs`); a reserved code is [`LexError::Binary`].
 
+use std::collections::HashMap;
 use std::io::{self, Read};
 
 use crate::error::{Pos, quote};
 use crate::signature::RequestKind;
+
+mod binary;
 
 /// Longest name or number accepted, in bytes (strings are not limited).
 pub(crate) const MAX_TOKEN: usize = 1 << 16;
@@ -80,7 +83,7 @@ impl Tok {
 pub(crate) enum LexError {
     /// Malformed text at `pos`.
     Syntax(Pos, String),
-    /// A byte with the top bit set outside a string: the binary encoding.
+    /// A reserved binary code (Spec C.2 assigns no meaning to it): the source cannot go on.
     Binary(Pos, u8),
     /// The underlying reader failed.
     Io(io::Error),
@@ -114,9 +117,29 @@ impl From<io::Error> for ArrayError {
     }
 }
 
-/// The next item inside a number array: a number, or the position and first byte of whatever
-/// else stands there (`None` at the end of input).
-type ArrayItem = Result<(Pos, Num), (Pos, Option<u8>)>;
+/// One item inside an array.
+#[derive(Debug)]
+enum Item {
+    /// A number (ASCII or encoded).
+    Num(Pos, Num),
+    /// A string (ASCII or encoded).
+    Str(Pos, String),
+    /// `]`.
+    Close,
+    /// The end of input.
+    Eof,
+    /// Any other token.
+    Other(Pos, Tok),
+}
+
+/// A binary float array (0310) being handed out as `[`, numbers, `]` to a caller that reads
+/// token by token (the array readers take it whole).
+#[derive(Debug)]
+pub(crate) struct Pending {
+    at: Pos,
+    values: Vec<f32>,
+    next: usize,
+}
 
 /// The values of an array read without a declared type (Spec: an array with any float is all
 /// floats).
@@ -166,6 +189,12 @@ pub(crate) struct Lexer {
     pub(crate) warnings: Vec<(Pos, String)>,
     /// `##` comments (text after `##`), if they are kept.
     pub(crate) structure: Option<Vec<(Pos, String)>>,
+    /// A binary float array being handed out token by token.
+    pending: Option<Pending>,
+    /// Binary RIB: request names bound to codes (0314).
+    requests: Vec<Option<Tok>>,
+    /// Binary RIB: strings bound to tokens (0315, 0316).
+    strings: HashMap<u16, String>,
 }
 
 impl Lexer {
@@ -181,6 +210,9 @@ impl Lexer {
             col: 1,
             warnings: Vec::new(),
             structure: keep_structure.then(Vec::new),
+            pending: None,
+            requests: vec![None; 256],
+            strings: HashMap::new(),
         }
     }
 
@@ -321,47 +353,64 @@ impl Lexer {
 
     /// The next token and where it starts.
     pub(crate) fn next(&mut self) -> Result<(Pos, Tok), LexError> {
-        self.skip_blank()?;
-        let at = self.here();
-        let Some(b) = self.peek()? else { return Ok((at, Tok::Eof)) };
-        let tok = match b {
-            b'[' => {
-                self.bump();
-                Tok::Open
-            }
-            b']' => {
-                self.bump();
-                Tok::Close
-            }
-            b'"' => Tok::Str(self.string()?),
-            b if is_number_start(b) => Tok::Num(self.number()?),
-            b if b >= 0x80 => {
-                self.bump();
-                return Err(LexError::Binary(at, b));
-            }
-            b if DELIM[b as usize] => {
-                self.bump();
-                return Err(LexError::Syntax(at, format!("unexpected control byte 0x{b:02x}")));
-            }
-            _ => {
-                let len = self.run()?;
-                if len >= MAX_TOKEN {
-                    self.take(len);
-                    return Err(LexError::Syntax(
-                        at,
-                        format!("name longer than {MAX_TOKEN} bytes"),
-                    ));
+        if let Some(p) = self.pending.as_mut() {
+            let at = p.at;
+            let tok = match p.values.get(p.next) {
+                Some(&f) => {
+                    p.next += 1;
+                    Tok::Num(Num { f, i: None, int_form: false })
                 }
-                let name = &self.buf[self.pos..self.pos + len];
-                let tok = match RequestKind::from_name(name) {
-                    Some(k) => Tok::Request(k),
-                    None => Tok::Unknown(String::from_utf8_lossy(name).into_owned()),
-                };
-                self.take(len);
-                tok
-            }
-        };
-        Ok((at, tok))
+                None => {
+                    self.pending = None;
+                    Tok::Close
+                }
+            };
+            return Ok((at, tok));
+        }
+        loop {
+            self.skip_blank()?;
+            let at = self.here();
+            let Some(b) = self.peek()? else { return Ok((at, Tok::Eof)) };
+            let tok = match b {
+                b'[' => {
+                    self.bump();
+                    Tok::Open
+                }
+                b']' => {
+                    self.bump();
+                    Tok::Close
+                }
+                b'"' => Tok::Str(self.string()?),
+                b if is_number_start(b) => Tok::Num(self.number()?),
+                b if b >= 0x80 => match self.binary(at)? {
+                    Some(t) => t,
+                    // A definition: no token; go on to the next.
+                    None => continue,
+                },
+                b if DELIM[b as usize] => {
+                    self.bump();
+                    return Err(LexError::Syntax(at, format!("unexpected control byte 0x{b:02x}")));
+                }
+                _ => {
+                    let len = self.run()?;
+                    if len >= MAX_TOKEN {
+                        self.take(len);
+                        return Err(LexError::Syntax(
+                            at,
+                            format!("name longer than {MAX_TOKEN} bytes"),
+                        ));
+                    }
+                    let name = &self.buf[self.pos..self.pos + len];
+                    let tok = match RequestKind::from_name(name) {
+                        Some(k) => Tok::Request(k),
+                        None => Tok::Unknown(String::from_utf8_lossy(name).into_owned()),
+                    };
+                    self.take(len);
+                    tok
+                }
+            };
+            return Ok((at, tok));
+        }
     }
 
     /// Reads a number at `pos`.
@@ -495,100 +544,120 @@ impl Lexer {
         if let Some((pos, message)) = error {
             return Err(LexError::Syntax(pos, message));
         }
-        match String::from_utf8(out) {
-            Ok(s) => Ok(s),
+        Ok(self.utf8(at, out))
+    }
+
+    /// A string's bytes as UTF-8; invalid bytes are replaced, with a warning.
+    fn utf8(&mut self, at: Pos, bytes: Vec<u8>) -> String {
+        match String::from_utf8(bytes) {
+            Ok(s) => s,
             Err(e) => {
                 self.warnings.push((
                     at,
                     "string is not valid UTF-8; invalid bytes replaced by U+FFFD".into(),
                 ));
-                Ok(String::from_utf8_lossy(e.as_bytes()).into_owned())
+                String::from_utf8_lossy(e.as_bytes()).into_owned()
             }
         }
     }
 
-    /// Skips blanks and, if the next token is a number, reads it; else says where the next
-    /// token starts and its first byte.
+    /// The next item inside an array: a number, a string, `]`, the end of input, or any other
+    /// token (binary tokens included).
     #[inline]
-    fn array_number(&mut self) -> Result<ArrayItem, LexError> {
-        self.skip_blank()?;
-        let at = self.here();
-        match self.peek()? {
-            Some(b) if is_number_start(b) => Ok(Ok((at, self.number()?))),
-            other => Ok(Err((at, other))),
+    fn item(&mut self) -> Result<Item, LexError> {
+        loop {
+            self.skip_blank()?;
+            let at = self.here();
+            return Ok(match self.peek()? {
+                Some(b) if is_number_start(b) => Item::Num(at, self.number()?),
+                Some(b']') => {
+                    self.bump();
+                    Item::Close
+                }
+                Some(b'"') => Item::Str(at, self.string()?),
+                None => Item::Eof,
+                Some(b) if b >= 0x80 => match self.binary(at)? {
+                    Some(Tok::Num(n)) => Item::Num(at, n),
+                    Some(Tok::Str(s)) => Item::Str(at, s),
+                    Some(t) => Item::Other(at, t),
+                    None => continue,
+                },
+                Some(_) => {
+                    let (p, t) = self.next()?;
+                    Item::Other(p, t)
+                }
+            });
         }
     }
 
-    /// After an array's numbers: consumes `]` or describes what stands there instead.
-    fn array_end(
-        &mut self,
-        at: Pos,
-        next: Option<u8>,
-        open: Pos,
-        want: &str,
-    ) -> Result<(), ArrayError> {
-        match next {
-            Some(b']') => {
-                self.bump();
-                Ok(())
-            }
-            None => Err(ArrayError::Lex(LexError::Syntax(
+    /// The error for an array item that does not belong, or for the end of input.
+    fn bad_item(item: Item, open: Pos, want: &str) -> ArrayError {
+        match item {
+            Item::Eof => ArrayError::Lex(LexError::Syntax(
                 open,
                 "unterminated array: '[' without ']'".into(),
-            ))),
-            Some(b'"') => Err(ArrayError::Unexpected(at, format!("expected {want}, got a string"))),
-            Some(b'[') => Err(ArrayError::Unexpected(at, "arrays cannot nest".into())),
-            Some(b) if b >= 0x80 => {
-                self.bump();
-                Err(ArrayError::Lex(LexError::Binary(at, b)))
+            )),
+            Item::Str(at, _) => {
+                ArrayError::Unexpected(at, format!("expected {want}, got a string"))
             }
-            Some(_) => {
-                let (p, tok) = self.next()?;
-                Err(ArrayError::Unexpected(
-                    p,
-                    format!("expected {want} or ']', got {}", tok.describe()),
-                ))
+            Item::Num(at, n) => {
+                ArrayError::Unexpected(at, format!("expected {want}, got the number {}", n.f))
             }
+            Item::Other(at, Tok::Open) => ArrayError::Unexpected(at, "arrays cannot nest".into()),
+            Item::Other(at, t) => {
+                ArrayError::Unexpected(at, format!("expected {want} or ']', got {}", t.describe()))
+            }
+            Item::Close => ArrayError::Unexpected(open, format!("expected {want}")),
         }
     }
 
     /// Reads the floats of an array whose `[` (at `open`) was consumed, through its `]`,
     /// appending to `out`. Integers convert to floats.
     pub(crate) fn floats(&mut self, open: Pos, out: &mut Vec<f32>) -> Result<(), ArrayError> {
+        if let Some(p) = self.pending.take() {
+            out.extend_from_slice(&p.values[p.next..]);
+            return Ok(());
+        }
         loop {
-            match self.array_number()? {
-                Ok((_, n)) => out.push(n.f),
-                Err((at, next)) => return self.array_end(at, next, open, "numbers"),
+            match self.item()? {
+                Item::Num(_, n) => out.push(n.f),
+                Item::Close => return Ok(()),
+                other => return Err(Self::bad_item(other, open, "numbers")),
             }
         }
     }
 
     /// Reads the integers of an array whose `[` was consumed, through its `]`.
     pub(crate) fn ints(&mut self, open: Pos, out: &mut Vec<i32>) -> Result<(), ArrayError> {
+        if self.pending.take().is_some() {
+            return Err(ArrayError::Unexpected(
+                open,
+                "expected integers, got a binary float array".into(),
+            ));
+        }
         loop {
-            match self.array_number()? {
-                Ok((_, Num { i: Some(i), .. })) => out.push(i),
-                Ok((at, n)) => return Err(ArrayError::Unexpected(at, not_an_int(n))),
-                Err((at, next)) => return self.array_end(at, next, open, "integers"),
+            match self.item()? {
+                Item::Num(_, Num { i: Some(i), .. }) => out.push(i),
+                Item::Num(at, n) => return Err(ArrayError::Unexpected(at, not_an_int(n))),
+                Item::Close => return Ok(()),
+                other => return Err(Self::bad_item(other, open, "integers")),
             }
         }
     }
 
     /// Reads the strings of an array whose `[` was consumed, through its `]`.
     pub(crate) fn strings(&mut self, open: Pos, out: &mut Vec<String>) -> Result<(), ArrayError> {
+        if self.pending.take().is_some() {
+            return Err(ArrayError::Unexpected(
+                open,
+                "expected strings, got a binary float array".into(),
+            ));
+        }
         loop {
-            self.skip_blank()?;
-            let at = self.here();
-            match self.peek()? {
-                Some(b'"') => out.push(self.string()?),
-                Some(b) if is_number_start(b) => {
-                    let n = self.number()?;
-                    return Err(ArrayError::Unexpected(
-                        at,
-                        format!("expected strings, got the number {}", n.f),
-                    ));
-                }
-                next => return self.array_end(at, next, open, "strings"),
+            match self.item()? {
+                Item::Str(_, s) => out.push(s),
+                Item::Close => return Ok(()),
+                other => return Err(Self::bad_item(other, open, "strings")),
             }
         }
     }
@@ -596,36 +665,37 @@ impl Lexer {
     /// Reads an array whose `[` was consumed without knowing its type: all strings, or all
     /// numbers (integers if every one is an `i32` literal).
     pub(crate) fn any(&mut self, open: Pos) -> Result<AnyArray, ArrayError> {
-        self.skip_blank()?;
-        let at = self.here();
-        match self.peek()? {
-            Some(b'"') => {
-                let mut v = Vec::new();
+        if let Some(p) = self.pending.take() {
+            return Ok(AnyArray::Floats(p.values[p.next..].to_vec()));
+        }
+        match self.item()? {
+            Item::Close => Ok(AnyArray::Empty),
+            Item::Str(_, s) => {
+                let mut v = vec![s];
                 self.strings(open, &mut v)?;
                 Ok(AnyArray::Strings(v))
             }
-            Some(b) if is_number_start(b) => {
+            Item::Num(_, first) => {
                 let mut ints = Vec::new();
+                let mut n = first;
                 loop {
-                    match self.array_number()? {
-                        Ok((_, Num { i: Some(i), .. })) => ints.push(i),
-                        Ok((_, n)) => {
+                    match n.i {
+                        Some(i) => ints.push(i),
+                        None => {
                             let mut floats: Vec<f32> = ints.iter().map(|&i| i as f32).collect();
                             floats.push(n.f);
                             self.floats(open, &mut floats)?;
                             return Ok(AnyArray::Floats(floats));
                         }
-                        Err((at, next)) => {
-                            self.array_end(at, next, open, "numbers")?;
-                            return Ok(AnyArray::Ints(ints));
-                        }
+                    }
+                    match self.item()? {
+                        Item::Num(_, next) => n = next,
+                        Item::Close => return Ok(AnyArray::Ints(ints)),
+                        other => return Err(Self::bad_item(other, open, "numbers")),
                     }
                 }
             }
-            next => {
-                self.array_end(at, next, open, "numbers or strings")?;
-                Ok(AnyArray::Empty)
-            }
+            other => Err(Self::bad_item(other, open, "numbers or strings")),
         }
     }
 }
@@ -975,9 +1045,10 @@ mod tests {
 
     #[test]
     fn binary_byte_is_reported() {
-        let mut l = Lexer::new(Box::new(io::Cursor::new(b"Sphere \x81".to_vec())), false);
+        // A reserved binary code (0247) cannot be skipped over: the source ends there.
+        let mut l = Lexer::new(Box::new(io::Cursor::new(b"Sphere \xa7".to_vec())), false);
         l.next().unwrap();
-        assert!(matches!(l.next(), Err(LexError::Binary(Pos { line: 1, col: 8 }, 0x81))));
+        assert!(matches!(l.next(), Err(LexError::Binary(Pos { line: 1, col: 8 }, 0xa7))));
         // but not inside strings
         let mut l = Lexer::new(Box::new(io::Cursor::new(b"\"\xc3\xa9\"".to_vec())), false);
         assert_eq!(l.next().unwrap().1, Tok::Str("\u{e9}".into()));

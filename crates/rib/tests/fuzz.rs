@@ -71,6 +71,22 @@ const SNIPPETS: &[&str] = &[
     "\u{ff}",
 ];
 
+/// Binary-encoding snippets (raw bytes): lying lengths, definitions, references.
+const BINARY: &[&[u8]] = &[
+    b"\xcb\xff\xff\xff\xff",
+    b"\xa3\xff\xff\xff\xff",
+    b"\xcc\x01\x96Sphere",
+    b"\xa6\x01",
+    b"\xcd\x01\x91x",
+    b"\xcf\x01",
+    b"\x83\x7f",
+    b"\x8f\x01\x02\x03\x04",
+    b"\xa4\x7f\xc0\x00\x00",
+    b"\xc8\x02\x3f\x80\x00\x00",
+    b"\xa7",
+    b"\xff",
+];
+
 /// Reads `bytes` to the end, reading on after errors; checks the one-line law.
 fn read_all(bytes: Vec<u8>) {
     let mut r = Reader::new(Source::from_bytes("fuzz.rib", bytes));
@@ -108,6 +124,7 @@ fn the_valid_base_reads() {
 #[derive(Debug, Clone)]
 enum Edit {
     Insert(usize, usize),
+    InsertBinary(usize, usize),
     Delete(usize, usize),
     Byte(usize, u8),
 }
@@ -115,6 +132,7 @@ enum Edit {
 fn edit() -> impl Strategy<Value = Edit> {
     prop_oneof![
         (any::<usize>(), 0..SNIPPETS.len()).prop_map(|(at, s)| Edit::Insert(at, s)),
+        (any::<usize>(), 0..BINARY.len()).prop_map(|(at, s)| Edit::InsertBinary(at, s)),
         (any::<usize>(), 1usize..40).prop_map(|(at, n)| Edit::Delete(at, n)),
         (any::<usize>(), any::<u8>()).prop_map(|(at, b)| Edit::Byte(at, b)),
     ]
@@ -128,6 +146,10 @@ fn apply(edits: &[Edit]) -> Vec<u8> {
             Edit::Insert(at, s) => {
                 let at = at % len;
                 v.splice(at..at, SNIPPETS[s].bytes());
+            }
+            Edit::InsertBinary(at, s) => {
+                let at = at % len;
+                v.splice(at..at, BINARY[s].iter().copied());
             }
             Edit::Delete(at, n) => {
                 let at = at % len;

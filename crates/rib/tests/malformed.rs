@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{FILE, first_error};
+use common::{FILE, first_error, first_error_bytes};
 
 /// One bad input and its exact first error.
 struct Case {
@@ -26,7 +26,6 @@ const CASES: &[Case] = &[
     Case { name: "non-finite number in an array", rib: "Color [1 -1e40 0]", error: "test.rib:1:10: number -1e40 is out of range (not a finite 32-bit float)" },
     Case { name: "octal escape above 255", rib: "Display \"a\\400\" \"file\" \"rgb\"", error: "test.rib:1:11: octal escape \\400 is above \\377" },
     Case { name: "control byte", rib: "WorldBegin\n\u{1}", error: "test.rib:2:1: unexpected control byte 0x01" },
-    Case { name: "binary RIB", rib: "version 3.03\n\u{80}", error: "test.rib:2:1: binary RIB is not supported (byte 0xc2)" },
     Case { name: "stray closing bracket", rib: "]", error: "test.rib:1:1: expected a request name, got ']'" },
     Case { name: "number outside a request", rib: "# c\n 42 WorldBegin", error: "test.rib:2:2: expected a request name, got the number 42" },
     Case { name: "unterminated array", rib: "PointsPolygons [3 [0 1 2]", error: "test.rib:1:19: PointsPolygons: argument nvertices: arrays cannot nest" },
@@ -76,9 +75,35 @@ const CASES: &[Case] = &[
     Case { name: "string array in a float parameter", rib: "Attribute \"user\" \"float f\" [\"a\"]", error: "test.rib:1:29: Attribute: parameter \"f\" (uniform float): expected numbers, got a string" },
 ];
 
+/// Cases of the binary encoding, as bytes (each `\xNN` is one raw byte).
+#[rustfmt::skip]
+const BINARY: &[(&str, &[u8], &str)] = &[
+    ("binary: reserved code", b"version 3.03\n\xa7 WorldBegin", "test.rib:2:1: reserved binary RIB code 0247 (byte 0xa7); the rest of the source is not read"),
+    ("binary: undefined request code", b"WorldBegin \xa6\x07", "test.rib:1:12: binary request code 7 is not defined"),
+    ("binary: undefined string token", b"Surface \xcf\x01", "test.rib:1:9: binary string token 1 is not defined"),
+    ("binary: truncated integer", b"Sides \x81", "test.rib:1:7: truncated binary token"),
+    ("binary: truncated string", b"Surface \xa0\x20abc", "test.rib:1:9: truncated binary token"),
+    ("binary: float array for integers", b"PointsPolygons \xc8\x00 [] \"P\" []", "test.rib:1:16: PointsPolygons: argument nvertices: expected integers, got a binary float array"),
+    ("binary: non-finite float", b"Sphere \xa4\x7f\x80\x00\x00 -1 1 360", "test.rib:1:8: binary float is not a finite 32-bit float"),
+    ("binary: string for a number", b"Translate \x91x 0 0", "test.rib:1:11: Translate: argument dx: expected a number, got the string \"x\""),
+];
+
+#[test]
+fn each_binary_case_gives_its_exact_message() {
+    let mut wrong = Vec::new();
+    for &(name, rib, error) in BINARY {
+        let got = first_error_bytes(rib);
+        assert!(!got.contains('\n'), "{name}: not one line: {got}");
+        if got != error {
+            wrong.push(format!("{name}: expected\n  {error}\ngot\n  {got}"));
+        }
+    }
+    assert!(wrong.is_empty(), "{}", wrong.join("\n"));
+}
+
 #[test]
 fn each_case_gives_its_exact_message() {
-    assert!(CASES.len() >= 30);
+    assert!(CASES.len() + BINARY.len() >= 30);
     let mut wrong = Vec::new();
     for c in CASES {
         let got = first_error(c.rib);
@@ -96,6 +121,9 @@ fn catalogue_snapshot() {
     let text: String = CASES
         .iter()
         .map(|c| format!("{}\n  {:?}\n  {}\n", c.name, c.rib, first_error(c.rib)))
+        .chain(BINARY.iter().map(|&(name, rib, _)| {
+            format!("{name}\n  {:?}\n  {}\n", String::from_utf8_lossy(rib), first_error_bytes(rib))
+        }))
         .collect();
     insta::assert_snapshot!("catalogue", text);
 }

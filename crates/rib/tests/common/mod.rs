@@ -40,6 +40,18 @@ pub fn first_error(text: &str) -> String {
     }
 }
 
+/// The first error of raw bytes, displayed.
+pub fn first_error_bytes(bytes: &[u8]) -> String {
+    let mut r = Reader::new(Source::from_bytes(FILE, bytes.to_vec()));
+    loop {
+        match r.next_request() {
+            Ok(Some(_)) => {}
+            Ok(None) => panic!("{bytes:?}: no error"),
+            Err(e) => return e.to_string(),
+        }
+    }
+}
+
 /// Every error of `text`, displayed, reading on after each (recovery), with the requests read.
 pub fn all_errors(text: &str) -> (Vec<String>, Vec<Request>) {
     let mut r = Reader::new(Source::from_bytes(FILE, text));
