@@ -269,7 +269,7 @@ impl Lexer {
     #[inline]
     fn bump(&mut self) {
         self.pos += 1;
-        self.col += 1;
+        self.col = self.col.saturating_add(1);
     }
 
     /// Skips whitespace and comments.
@@ -279,10 +279,10 @@ impl Lexer {
             while self.pos < self.end {
                 match self.buf[self.pos] {
                     b'\n' => {
-                        self.line += 1;
+                        self.line = self.line.saturating_add(1);
                         self.col = 1;
                     }
-                    b' ' | b'\t' | b'\r' | 0x0b | 0x0c => self.col += 1,
+                    b' ' | b'\t' | b'\r' | 0x0b | 0x0c => self.col = self.col.saturating_add(1),
                     b'#' => {
                         self.comment()?;
                         continue;
@@ -313,7 +313,7 @@ impl Lexer {
             while self.pos < self.end && self.buf[self.pos] != b'\n' {
                 self.pos += 1;
             }
-            self.col += (self.pos - start) as u32;
+            self.col = self.col.saturating_add((self.pos - start) as u32);
             if keep && text.len() < MAX_TOKEN {
                 text.extend_from_slice(&self.buf[start..self.pos]);
             }
@@ -348,7 +348,7 @@ impl Lexer {
     /// Consumes `len` bytes of a run (no newlines in it).
     fn take(&mut self, len: usize) {
         self.pos += len;
-        self.col += len as u32;
+        self.col = self.col.saturating_add(len as u32);
     }
 
     /// The next token and where it starts.
@@ -453,7 +453,7 @@ impl Lexer {
                 self.pos += 1;
             }
             out.extend_from_slice(&self.buf[start..self.pos]);
-            self.col += (self.pos - start) as u32;
+            self.col = self.col.saturating_add((self.pos - start) as u32);
             let Some(b) = self.peek()? else {
                 return Err(LexError::Syntax(at, "unterminated string".into()));
             };
@@ -465,7 +465,7 @@ impl Lexer {
                 b'\n' => {
                     out.push(b'\n');
                     self.pos += 1;
-                    self.line += 1;
+                    self.line = self.line.saturating_add(1);
                     self.col = 1;
                 }
                 b'\\' => {
@@ -488,14 +488,14 @@ impl Lexer {
                         }
                         b'\n' => {
                             self.pos += 1;
-                            self.line += 1;
+                            self.line = self.line.saturating_add(1);
                             self.col = 1;
                         }
                         b'\r' => {
                             self.bump();
                             if self.peek()? == Some(b'\n') {
                                 self.pos += 1;
-                                self.line += 1;
+                                self.line = self.line.saturating_add(1);
                                 self.col = 1;
                             }
                         }

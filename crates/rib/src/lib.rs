@@ -8,7 +8,8 @@
 //!
 //! The pieces, in pipeline order:
 //! - [`Source`]: a file, stdin (`-`) or memory; gzip is decompressed transparently.
-//! - the lexer (private): ASCII RIB tokens with 1-based line:column positions.
+//! - the lexer (private): RIB tokens, ASCII and binary encodings mixed, with 1-based
+//!   line:column positions (columns count bytes).
 //! - [`Reader`]: requests from tokens, checked against the signature table
 //!   ([`RequestKind`], [`Signature`]) and the declaration table ([`Declarations`]); an include
 //!   stack for `ReadArchive` with cycle detection; [`Warning`]s for what is skipped or kept raw.
@@ -16,7 +17,8 @@
 //! The RI state machine (graphics state, transforms, scene mapping) is built on top: it loops
 //! over [`Reader::next_request`], matches on [`Request::kind`], reads arguments with the typed
 //! accessors ([`Request::float`], [`Request::floats`], ...) and parameters with
-//! [`Request::param`], and calls [`Reader::read_archive`] on `ReadArchive`.
+//! [`Request::param`], calls [`Reader::read_archive`] on `ReadArchive`, and reports its own
+//! findings with [`Request::error`] and [`Request::warning`] in the same one-line form.
 
 #![deny(missing_docs)]
 

@@ -7,7 +7,7 @@
 //! holds a whole number of elements of its declaration, and exactly one when `constant`.
 
 use crate::decl::Decl;
-use crate::error::{Location, Pos};
+use crate::error::{Location, Pos, RibError, Warning, quote};
 use crate::signature::RequestKind;
 
 /// A positional argument's value.
@@ -179,6 +179,27 @@ impl Request {
     pub fn param_location(&self, p: &Param) -> Location {
         self.at.at(p.at)
     }
+
+    /// An error about this request in the house form, `file:line:col: Request: message`: for
+    /// the state machine's own checks (scope, counts per primitive, handles).
+    pub fn error(&self, message: impl Into<String>) -> RibError {
+        RibError::Request { at: self.at.clone(), request: self.name(), message: message.into() }
+    }
+
+    /// An error about parameter `p` of this request, at the parameter's position:
+    /// `file:line:col: Request: parameter "name": message`.
+    pub fn param_error(&self, p: &Param, message: impl AsRef<str>) -> RibError {
+        RibError::Request {
+            at: self.param_location(p),
+            request: self.name(),
+            message: format!("parameter {}: {}", quote(&p.name), message.as_ref()),
+        }
+    }
+
+    /// A warning about this request: `file:line:col: warning: Request: message`.
+    pub fn warning(&self, message: impl AsRef<str>) -> Warning {
+        Warning { at: self.at.clone(), message: format!("{}: {}", self.name(), message.as_ref()) }
+    }
 }
 
 #[cfg(test)]
@@ -209,5 +230,14 @@ mod tests {
         assert_eq!(r.param("Kd").and_then(|p| p.elements(3)), Some(1));
         assert_eq!(r.param_location(&r.params[0]).to_string(), "a.rib:1:20");
         assert_eq!(r.name(), "Sphere");
+        assert_eq!(
+            r.error("outside WorldBegin").to_string(),
+            "a.rib:1:1: Sphere: outside WorldBegin"
+        );
+        assert_eq!(
+            r.param_error(&r.params[0], "expected 4 values (one per vertex), got 1").to_string(),
+            "a.rib:1:20: Sphere: parameter \"Kd\": expected 4 values (one per vertex), got 1"
+        );
+        assert_eq!(r.warning("ignored").to_string(), "a.rib:1:1: warning: Sphere: ignored");
     }
 }
