@@ -69,9 +69,11 @@ impl fmt::Display for Warning {
 
 /// Why the reader could not deliver a request.
 ///
-/// After a [`RibError::Syntax`] or [`RibError::Request`] error the reader resynchronises at the
-/// next request name, so a caller may keep reading to collect every error; after the other kinds
-/// the stream (or, for [`RibError::Archive`], the archive) is finished.
+/// Calling [`crate::Reader::next_request`] again after any error is safe and always ends:
+/// after a [`RibError::Syntax`] or [`RibError::Request`] error the same source goes on at the
+/// next request name; after [`RibError::Archive`] the including source goes on; after
+/// [`RibError::Io`] or [`RibError::Binary`] that source is finished (an archive's includer then
+/// goes on).
 #[derive(Debug, thiserror::Error)]
 pub enum RibError {
     /// Bad bytes at the lexical level: an unterminated string, a malformed number, a stray `]`.
@@ -135,7 +137,8 @@ impl RibError {
         }
     }
 
-    /// True if reading may go on after this error (it resynchronises at the next request).
+    /// True if the source that reported the error goes on (it resynchronises at the next
+    /// request name, or, for [`RibError::Archive`], the including source was never left).
     pub fn is_recoverable(&self) -> bool {
         matches!(
             self,
