@@ -182,6 +182,7 @@ impl Reader {
                         warnings: &mut self.warnings,
                         kind,
                         at: pos,
+                        context: String::new(),
                     };
                     let request = match parser.request() {
                         Ok(r) => r,
@@ -448,6 +449,9 @@ struct Parser<'a> {
     warnings: &'a mut Vec<Warning>,
     kind: RequestKind,
     at: Pos,
+    /// What is being read (`argument radius`, `parameter "Kd" (uniform float)`), prefixed to
+    /// lexical errors met meanwhile.
+    context: String,
 }
 
 impl Parser<'_> {
@@ -455,8 +459,15 @@ impl Parser<'_> {
         RibError::Request { at: self.frame.loc(pos), request: self.kind.name(), message }
     }
 
+    /// A lexical error met inside the request: given the request's name and the context. With
+    /// no context (the token may as well start the next request) it stays a lexical error.
     fn lex(&mut self, e: LexError) -> RibError {
-        lex_error(self.frame, e)
+        match e {
+            LexError::Syntax(pos, m) if !self.context.is_empty() => {
+                self.error(pos, format!("{}: {m}", self.context))
+            }
+            other => lex_error(self.frame, other),
+        }
     }
 
     fn peek(&mut self) -> Result<(Pos, Tok), RibError> {
@@ -475,12 +486,16 @@ impl Parser<'_> {
     }
 
     fn next(&mut self) -> Result<(Pos, Tok), RibError> {
-        self.frame.next().map_err(|e| lex_error(self.frame, e))
+        match self.frame.next() {
+            Ok(t) => Ok(t),
+            Err(e) => Err(self.lex(e)),
+        }
     }
 
     /// Converts an array error, naming what was being read.
     fn array(&mut self, what: &str, e: ArrayError) -> RibError {
         match e {
+            ArrayError::Lex(LexError::Syntax(pos, m)) => self.error(pos, format!("{what}: {m}")),
             ArrayError::Lex(e) => self.lex(e),
             ArrayError::Unexpected(pos, m) => self.error(pos, format!("{what}: {m}")),
         }
@@ -489,6 +504,7 @@ impl Parser<'_> {
     fn request(&mut self) -> Result<Request, RibError> {
         let sig = self.kind.signature();
         let mut args = Vec::with_capacity(sig.args.len());
+        self.context = sig.args.first().map(|a| format!("argument {}", a.name)).unwrap_or_default();
         let (open_at, first) = self.peek_kind()?;
         if sig.array_form && first == Peeked::Open {
             self.next()?;
@@ -508,6 +524,8 @@ impl Parser<'_> {
         } else {
             for (i, arg) in sig.args.iter().enumerate() {
                 if i == sig.required {
+                    // Optional arguments, or the next request: no context yet.
+                    self.context.clear();
                     let (_, next) = self.peek_kind()?;
                     if !next.starts(arg.kind) {
                         break;
@@ -523,6 +541,7 @@ impl Parser<'_> {
 
     /// Where a request without parameters ends: the next token must start another request.
     fn no_params(&mut self, nargs: usize) -> Result<Vec<Param>, RibError> {
+        self.context.clear();
         let (pos, tok) = self.peek()?;
         match tok {
             Tok::Request(_) | Tok::Unknown(_) | Tok::Eof => Ok(Vec::new()),
@@ -555,6 +574,7 @@ impl Parser<'_> {
 
     /// Reads one positional argument.
     fn arg(&mut self, arg: &Arg) -> Result<Value, RibError> {
+        self.context = format!("argument {}", arg.name);
         let (pos, tok) = self.peek()?;
         let wrong = |p: &Parser, got: &Tok| {
             p.error(
@@ -688,6 +708,8 @@ impl Parser<'_> {
     fn params(&mut self, nargs: usize) -> Result<Vec<Param>, RibError> {
         let mut params = Vec::new();
         loop {
+            // A parameter name, or the next request: no context.
+            self.context.clear();
             let (pos, tok) = self.peek()?;
             let token = match tok {
                 Tok::Request(_) | Tok::Unknown(_) | Tok::Eof => return Ok(params),
@@ -721,6 +743,7 @@ impl Parser<'_> {
             Some(d) => format!("parameter {} ({d})", quote(&name)),
             None => format!("parameter {}", quote(&name)),
         };
+        self.context = label.clone();
         let (vpos, next) = self.peek_kind()?;
         if !matches!(next, Peeked::Num | Peeked::Str | Peeked::Open) {
             let (_, tok) = self.peek()?;

@@ -56,7 +56,13 @@ fn shown_messages_are_real() {
         (
             "scene.rib",
             "\n\nSphere 1 -1 1 360f".as_bytes().to_vec(),
-            "scene.rib:3:15: malformed number \"360f\"",
+            "scene.rib:3:15: Sphere: argument thetamax: malformed number \"360f\"",
+        ),
+        ("scene.rib", "\n\n]".into(), "scene.rib:3:1: expected a request name, got ']'"),
+        (
+            "scene.rib",
+            "\n\n\nSurface \"plastic\" \"Kd\" 1e39".into(),
+            "scene.rib:4:24: Surface: parameter \"Kd\" (uniform float): number 1e39 is out of range (not a finite 32-bit float)",
         ),
         (
             "scene.rib",
