@@ -43,6 +43,36 @@ fn grid_rib() -> Vec<u8> {
     s.into_bytes()
 }
 
+/// Many small requests: 100,000 attribute blocks (800,003 requests) of the peers' shape (AttributeBegin, Color,
+/// MotionBegin with two Translates, Sphere with a parameter, AttributeEnd).
+fn spheres_rib() -> Vec<u8> {
+    let mut s = String::with_capacity(16 << 20);
+    s.push_str("WorldBegin\nSurface \"plastic\" \"Ka\" [1] \"Kd\" [0.7] \"Ks\" [0.5] \"roughness\" [0.1]\n");
+    for i in 0..100_000 {
+        let (x, y) = ((i % 400) as f32 * 0.25 - 50.0, (i / 400) as f32 * 0.25 - 30.0);
+        let _ = write!(
+            s,
+            "AttributeBegin\n Color [0.300 0.400 {:.3}]\n MotionBegin [0 1] Translate {x:.3} {y:.3} 60.235 Translate {:.3} {y:.3} 60.235 MotionEnd\n Sphere 1 -1 1 360 \"Cs\" [1 0 0]\nAttributeEnd\n",
+            (i % 1000) as f32 / 1000.0,
+            x + 1.0
+        );
+    }
+    s.push_str("WorldEnd\n");
+    s.into_bytes()
+}
+
+/// Parses many small requests; returns how many.
+fn parse_requests(bytes: Vec<u8>) -> usize {
+    let mut reader = Reader::new(Source::from_bytes("spheres.rib", bytes));
+    let mut n = 0;
+    while let Some(r) = reader.next_request().expect("the generated RIB is valid") {
+        black_box(&r);
+        n += 1;
+    }
+    assert_eq!(n, 3 + 100_000 * 8);
+    n
+}
+
 /// Parses the text and checks the polygon's arrays; returns the point count.
 fn parse(bytes: Vec<u8>) -> usize {
     let mut reader = Reader::new(Source::from_bytes("grid.rib", bytes));
@@ -104,6 +134,11 @@ fn main() {
     g.throughput(Throughput::Bytes(bytes.len() as u64));
     g.bench_function("points_polygons_1m_quads", |b| {
         b.iter_batched(|| bytes.clone(), parse, criterion::BatchSize::PerIteration)
+    });
+    let small = spheres_rib();
+    g.throughput(Throughput::Bytes(small.len() as u64));
+    g.bench_function("small_requests_800k", |b| {
+        b.iter_batched(|| small.clone(), parse_requests, criterion::BatchSize::PerIteration)
     });
     g.finish();
     c.final_summary();

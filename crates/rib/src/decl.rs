@@ -227,13 +227,14 @@ fn parse_words(words: &[String]) -> Result<(Decl, usize), String> {
 }
 
 /// Splits a parameter token into an inline declaration and the name, e.g.
-/// `"facevarying float[2] st"` gives `(Some(facevarying float[2]), "st")`; a token of one word
-/// gives `(None, word)` (look it up). A token of several words that is no declaration followed
-/// by one name is an error.
-pub(crate) fn parse_token(token: &str) -> Result<(Option<Decl>, String), String> {
+/// `"facevarying float[2] st"` gives `(Some(facevarying float[2]), Some("st"))`. A token of one
+/// word gives `(None, None)` when it is the name as it stands (look it up), or `(None,
+/// Some(word))` when blanks around it were trimmed. A token of several words that is no
+/// declaration followed by one name is an error.
+pub(crate) fn parse_token(token: &str) -> Result<(Option<Decl>, Option<String>), String> {
     let trimmed = token.trim_ascii();
     if !trimmed.contains(|c: char| c.is_ascii_whitespace() || c == '[' || c == ']') {
-        return Ok((None, trimmed.to_owned()));
+        return Ok((None, (trimmed.len() != token.len()).then(|| trimmed.to_owned())));
     }
     let words = words(trimmed);
     if words.len() < 2 {
@@ -241,7 +242,7 @@ pub(crate) fn parse_token(token: &str) -> Result<(Option<Decl>, String), String>
     }
     let (decl, used) = parse_words(&words)?;
     match &words[used..] {
-        [name] if !matches!(name.as_str(), "[" | "]") => Ok((Some(decl), name.clone())),
+        [name] if !matches!(name.as_str(), "[" | "]") => Ok((Some(decl), Some(name.clone()))),
         [] => Err("no name after the declaration".into()),
         [_, extra, ..] => Err(format!("unexpected {} after the name", quote(extra))),
         [bad] => Err(format!("unexpected {}", quote(bad))),
@@ -402,27 +403,34 @@ mod tests {
     fn inline_tokens() {
         use Class::*;
         use Type::*;
-        assert_eq!(parse_token("Kd"), Ok((None, "Kd".into())));
+        assert_eq!(parse_token("Kd"), Ok((None, None)));
+        assert_eq!(parse_token(" Kd "), Ok((None, Some("Kd".into()))));
         assert_eq!(
             parse_token("uniform float Kd"),
-            Ok((Some(d(Uniform, Float, None)), "Kd".into()))
+            Ok((Some(d(Uniform, Float, None)), Some("Kd".into())))
         );
         assert_eq!(
             parse_token("varying color Cs"),
-            Ok((Some(d(Varying, Color, None)), "Cs".into()))
+            Ok((Some(d(Varying, Color, None)), Some("Cs".into())))
         );
         assert_eq!(
             parse_token("constant string texturename"),
-            Ok((Some(d(Constant, String, None)), "texturename".into()))
+            Ok((Some(d(Constant, String, None)), Some("texturename".into())))
         );
-        assert_eq!(parse_token("vertex point P"), Ok((Some(d(Vertex, Point, None)), "P".into())));
+        assert_eq!(
+            parse_token("vertex point P"),
+            Ok((Some(d(Vertex, Point, None)), Some("P".into())))
+        );
         assert_eq!(
             parse_token("facevarying float[2] st"),
-            Ok((Some(d(FaceVarying, Float, Some(2))), "st".into()))
+            Ok((Some(d(FaceVarying, Float, Some(2))), Some("st".into())))
         );
-        assert_eq!(parse_token("float[3] v"), Ok((Some(d(Uniform, Float, Some(3))), "v".into())));
-        assert_eq!(parse_token("float Kd"), Ok((Some(d(Uniform, Float, None)), "Kd".into())));
-        assert_eq!(parse_token("user:foo"), Ok((None, "user:foo".into())));
+        assert_eq!(
+            parse_token("float[3] v"),
+            Ok((Some(d(Uniform, Float, Some(3))), Some("v".into())))
+        );
+        assert_eq!(parse_token("float Kd"), Ok((Some(d(Uniform, Float, None)), Some("Kd".into()))));
+        assert_eq!(parse_token("user:foo"), Ok((None, None)));
     }
 
     #[test]

@@ -182,7 +182,9 @@ impl Reader {
                         warnings: &mut self.warnings,
                         kind,
                         at: pos,
-                        context: String::new(),
+                        context: Context::None,
+                        param_name: String::new(),
+                        param_decl: None,
                     };
                     let request = match parser.request() {
                         Ok(r) => r,
@@ -441,6 +443,17 @@ fn lex_error(frame: &mut Frame, e: LexError) -> RibError {
     }
 }
 
+/// What a parser is reading, for the messages of lexical errors met meanwhile (no allocation
+/// for arguments: their names are static).
+enum Context {
+    /// Nothing that belongs to the request yet: the token may start the next one.
+    None,
+    /// A positional argument, by its name.
+    Arg(&'static str),
+    /// A parameter's value (the parser's `param_name` and `param_decl`).
+    Param,
+}
+
 /// Builds one request from the current source.
 struct Parser<'a> {
     frame: &'a mut Frame,
@@ -451,7 +464,11 @@ struct Parser<'a> {
     at: Pos,
     /// What is being read (`argument radius`, `parameter "Kd" (uniform float)`), prefixed to
     /// lexical errors met meanwhile.
-    context: String,
+    context: Context,
+    /// The parameter being read (moved into its [`Param`] at the end).
+    param_name: String,
+    /// Its declaration, if any.
+    param_decl: Option<Decl>,
 }
 
 impl Parser<'_> {
@@ -463,9 +480,11 @@ impl Parser<'_> {
     /// no context (the token may as well start the next request) it stays a lexical error.
     fn lex(&mut self, e: LexError) -> RibError {
         match e {
-            LexError::Syntax(pos, m) if !self.context.is_empty() => {
-                self.error(pos, format!("{}: {m}", self.context))
-            }
+            LexError::Syntax(pos, m) => match &self.context {
+                Context::None => lex_error(self.frame, LexError::Syntax(pos, m)),
+                Context::Arg(name) => self.error(pos, format!("argument {name}: {m}")),
+                Context::Param => self.error(pos, format!("{}: {m}", self.label())),
+            },
             other => lex_error(self.frame, other),
         }
     }
@@ -504,7 +523,7 @@ impl Parser<'_> {
     fn request(&mut self) -> Result<Request, RibError> {
         let sig = self.kind.signature();
         let mut args = Vec::with_capacity(sig.args.len());
-        self.context = sig.args.first().map(|a| format!("argument {}", a.name)).unwrap_or_default();
+        self.context = sig.args.first().map_or(Context::None, |a| Context::Arg(a.name));
         let (open_at, first) = self.peek_kind()?;
         if sig.array_form && first == Peeked::Open {
             self.next()?;
@@ -525,7 +544,7 @@ impl Parser<'_> {
             for (i, arg) in sig.args.iter().enumerate() {
                 if i == sig.required {
                     // Optional arguments, or the next request: no context yet.
-                    self.context.clear();
+                    self.context = Context::None;
                     let (_, next) = self.peek_kind()?;
                     if !next.starts(arg.kind) {
                         break;
@@ -541,7 +560,7 @@ impl Parser<'_> {
 
     /// Where a request without parameters ends: the next token must start another request.
     fn no_params(&mut self, nargs: usize) -> Result<Vec<Param>, RibError> {
-        self.context.clear();
+        self.context = Context::None;
         let (pos, tok) = self.peek()?;
         match tok {
             Tok::Request(_) | Tok::Unknown(_) | Tok::Eof => Ok(Vec::new()),
@@ -574,7 +593,7 @@ impl Parser<'_> {
 
     /// Reads one positional argument.
     fn arg(&mut self, arg: &Arg) -> Result<Value, RibError> {
-        self.context = format!("argument {}", arg.name);
+        self.context = Context::Arg(arg.name);
         let (pos, tok) = self.peek()?;
         let wrong = |p: &Parser, got: &Tok| {
             p.error(
@@ -709,7 +728,7 @@ impl Parser<'_> {
         let mut params = Vec::new();
         loop {
             // A parameter name, or the next request: no context.
-            self.context.clear();
+            self.context = Context::None;
             let (pos, tok) = self.peek()?;
             let token = match tok {
                 Tok::Request(_) | Tok::Unknown(_) | Tok::Eof => return Ok(params),
@@ -723,33 +742,33 @@ impl Parser<'_> {
                 }
             };
             self.next()?;
-            params.push(self.param(pos, &token)?);
+            params.push(self.param(pos, token)?);
         }
     }
 
     /// Reads the value of the parameter whose token string `token` was at `pos`.
-    fn param(&mut self, pos: Pos, token: &str) -> Result<Param, RibError> {
-        let (inline, name) = match decl::parse_token(token) {
-            Ok(t) => t,
+    fn param(&mut self, pos: Pos, token: String) -> Result<Param, RibError> {
+        let (inline, name) = match decl::parse_token(&token) {
+            Ok((inline, None)) => (inline, token),
+            Ok((inline, Some(name))) => (inline, name),
             Err(m) => {
                 return Err(self.error(
                     pos,
-                    format!("parameter {}: bad inline declaration: {m}", quote(token)),
+                    format!("parameter {}: bad inline declaration: {m}", quote(&token)),
                 ));
             }
         };
         let decl = inline.or_else(|| self.decls.get(&name).copied());
-        let label = match &decl {
-            Some(d) => format!("parameter {} ({d})", quote(&name)),
-            None => format!("parameter {}", quote(&name)),
-        };
-        self.context = label.clone();
+        self.param_name = name;
+        self.param_decl = decl;
+        self.context = Context::Param;
         let (vpos, next) = self.peek_kind()?;
         if !matches!(next, Peeked::Num | Peeked::Str | Peeked::Open) {
             let (_, tok) = self.peek()?;
-            return Err(
-                self.error(vpos, format!("{label}: expected a value, got {}", tok.describe()))
-            );
+            return Err(self.error(
+                vpos,
+                format!("{}: expected a value, got {}", self.label(), tok.describe()),
+            ));
         }
         let data = match decl.map(|d| d.ty.storage()) {
             Some(Storage::Floats) => match self.next()? {
@@ -761,30 +780,40 @@ impl Parser<'_> {
                         .lexer()
                         .map_err(ArrayError::Lex)
                         .and_then(|l| l.floats(p, &mut v));
-                    r.map_err(|e| self.array(&label, e))?;
+                    r.map_err(|e| {
+                        let l = self.label();
+                        self.array(&l, e)
+                    })?;
                     Data::Floats(v)
                 }
                 (p, other) => {
-                    return Err(self
-                        .error(p, format!("{label}: expected numbers, got {}", other.describe())));
+                    return Err(self.error(
+                        p,
+                        format!("{}: expected numbers, got {}", self.label(), other.describe()),
+                    ));
                 }
             },
             Some(Storage::Ints) => match self.next()? {
                 (p, Tok::Num(n)) => match n.i {
                     Some(i) => Data::Ints(vec![i]),
-                    None => return Err(self.error(p, format!("{label}: {}", not_an_int(n)))),
+                    None => {
+                        return Err(self.error(p, format!("{}: {}", self.label(), not_an_int(n))));
+                    }
                 },
                 (p, Tok::Open) => {
                     let mut v = Vec::new();
                     let r =
                         self.frame.lexer().map_err(ArrayError::Lex).and_then(|l| l.ints(p, &mut v));
-                    r.map_err(|e| self.array(&label, e))?;
+                    r.map_err(|e| {
+                        let l = self.label();
+                        self.array(&l, e)
+                    })?;
                     Data::Ints(v)
                 }
                 (p, other) => {
                     return Err(self.error(
                         p,
-                        format!("{label}: expected integers, got {}", other.describe()),
+                        format!("{}: expected integers, got {}", self.label(), other.describe()),
                     ));
                 }
             },
@@ -797,12 +826,17 @@ impl Parser<'_> {
                         .lexer()
                         .map_err(ArrayError::Lex)
                         .and_then(|l| l.strings(p, &mut v));
-                    r.map_err(|e| self.array(&label, e))?;
+                    r.map_err(|e| {
+                        let l = self.label();
+                        self.array(&l, e)
+                    })?;
                     Data::Strings(v)
                 }
                 (p, other) => {
-                    return Err(self
-                        .error(p, format!("{label}: expected strings, got {}", other.describe())));
+                    return Err(self.error(
+                        p,
+                        format!("{}: expected strings, got {}", self.label(), other.describe()),
+                    ));
                 }
             },
             None => {
@@ -812,7 +846,10 @@ impl Parser<'_> {
                     (_, Tok::Str(s)) => Data::Strings(vec![s]),
                     (p, _) => {
                         let r = self.frame.lexer().map_err(ArrayError::Lex).and_then(|l| l.any(p));
-                        match r.map_err(|e| self.array(&label, e))? {
+                        match r.map_err(|e| {
+                            let l = self.label();
+                            self.array(&l, e)
+                        })? {
                             AnyArray::Empty => Data::Floats(Vec::new()),
                             AnyArray::Ints(v) => Data::Ints(v),
                             AnyArray::Floats(v) => Data::Floats(v),
@@ -823,8 +860,9 @@ impl Parser<'_> {
                 self.warnings.push(Warning {
                     at: self.frame.loc(pos),
                     message: format!(
-                        "{}: {label} is not declared; kept as written",
-                        self.kind.name()
+                        "{}: {} is not declared; kept as written",
+                        self.kind.name(),
+                        self.label()
                     ),
                 });
                 data
@@ -836,17 +874,25 @@ impl Parser<'_> {
             if d.class == Class::Constant && n != size {
                 return Err(self.error(
                     vpos,
-                    format!("{label}: expected {size} value{}, got {n}", plural(size)),
+                    format!("{}: expected {size} value{}, got {n}", self.label(), plural(size)),
                 ));
             }
             if size > 0 && n % size != 0 {
                 return Err(self.error(
                     vpos,
-                    format!("{label}: expected a multiple of {size} values, got {n}"),
+                    format!("{}: expected a multiple of {size} values, got {n}", self.label()),
                 ));
             }
         }
-        Ok(Param { name, decl, data, at: pos })
+        Ok(Param { name: std::mem::take(&mut self.param_name), decl, data, at: pos })
+    }
+
+    /// The parameter being read, for messages: `parameter "Kd" (uniform float)`.
+    fn label(&self) -> String {
+        match self.param_decl {
+            Some(d) => format!("parameter {} ({d})", quote(&self.param_name)),
+            None => format!("parameter {}", quote(&self.param_name)),
+        }
     }
 }
 

@@ -143,6 +143,15 @@ macro_rules! requests {
             /// Every request, in the spec's order.
             pub const ALL: &'static [RequestKind] = &[$(RequestKind::$variant),*];
 
+            /// The request named `name` (case-sensitive, as RIB is).
+            pub fn from_name(name: &[u8]) -> Option<RequestKind> {
+                // A `match` on strings compiles to a switch on length, then comparisons.
+                match std::str::from_utf8(name).ok()? {
+                    $(requests!(@name $variant $($name)?) => Some(RequestKind::$variant),)*
+                    _ => None,
+                }
+            }
+
             /// The request's RIB name, e.g. `Sphere` (and `version`).
             pub fn name(self) -> &'static str {
                 match self {
@@ -299,11 +308,6 @@ requests! {
 }
 
 impl RequestKind {
-    /// The request named `name` (case-sensitive, as RIB is).
-    pub fn from_name(name: &[u8]) -> Option<RequestKind> {
-        RequestKind::ALL.iter().copied().find(|k| k.name().as_bytes() == name)
-    }
-
     /// True for the requests of later specifications than 3.2 ([`RequestKind::ArchiveBegin`]
     /// onwards).
     pub fn is_extension(self) -> bool {
