@@ -3,6 +3,7 @@
 //! both hiders against each other.
 
 mod csg;
+mod filters;
 mod lens;
 mod pipeline;
 mod raytrace;
