@@ -5,7 +5,7 @@
 //! rounding). Every interior output pixel therefore receives each entry exactly once from its
 //! neighbourhood: unit gain for full opaque coverage (Appendix A 3.16).
 
-use reyes_scene::{FilterKind, Original};
+use reyes_scene::{Filter, FilterKind, Original};
 
 use crate::FilmError;
 use crate::kernel;
@@ -27,6 +27,7 @@ pub fn border_for_width(width: f32) -> u32 {
 pub struct FilterTable {
     kind: FilterKind,
     width: f32,
+    height: f32,
     border: u32,
     footprint: u32,
     ns: usize,
@@ -35,21 +36,15 @@ pub struct FilterTable {
 }
 
 impl FilterTable {
-    /// Build the normalised table for kernel `kind` of full width `width`, an `nx x ny` stratum
-    /// grid, and `location[s]` = Appendix A's `Location[s]`: the lower-left corner of sample
-    /// `s`'s stratum in `[0,1)²` (`nx * ny` entries).
+    /// Build the normalised table for kernel `kind` of full width `width` (in x and y), an
+    /// `nx x ny` stratum grid, and `location[s]` = Appendix A's `Location[s]`: the lower-left
+    /// corner of sample `s`'s stratum in `[0,1)²` (`nx * ny` entries).
     ///
-    /// Port of `tablesinit` (Appendix A 2.11, "Create filter table" and "Normalize filter"):
-    /// `w[s][j][i] = kernel(dx, dy)` with `dx = location[s].x + 0.5/nx - (i - border + 0.5)`,
-    /// `dy = location[s].y + 0.5/ny - (j - border + 0.5)`, divided by the sum of all entries.
-    /// The offsets use the stratum centre, never the jittered sample position. The sum is
-    /// accumulated in `f64` (the C used `float`).
+    /// The same as [`FilterTable::for_filter`] with [`Filter::new`]`(kind, width)`.
     ///
     /// # Errors
     ///
-    /// [`FilmError::DegenerateFilter`] if `width` is not finite and positive, `nx` or `ny` is 0,
-    /// `location.len() != nx * ny`, the table would be unreasonably large, or the weights sum
-    /// to zero or a non-finite value.
+    /// As [`FilterTable::for_filter`].
     pub fn new(
         kind: FilterKind,
         width: f32,
@@ -58,9 +53,37 @@ impl FilterTable {
         location: &[[f32; 2]],
         original: &Original,
     ) -> Result<FilterTable, FilmError> {
-        let degenerate = |reason: String| FilmError::DegenerateFilter { kind, width, reason };
-        if !(width.is_finite() && width > 0.0) {
-            return Err(degenerate("the width must be finite and positive".into()));
+        FilterTable::for_filter(&Filter::new(kind, width), nx, ny, location, original)
+    }
+
+    /// Build the normalised table for `filter` (its kernel and full widths in x and y) over an
+    /// `nx x ny` stratum grid whose stratum `s` has lower-left corner `location[s]`.
+    ///
+    /// Port of `tablesinit` (Appendix A 2.11, "Create filter table" and "Normalize filter"):
+    /// `w[s][j][i] = kernel(dx, dy)` with `dx = location[s].x + 0.5/nx - (i - border + 0.5)`,
+    /// `dy = location[s].y + 0.5/ny - (j - border + 0.5)`, divided by the sum of all entries.
+    /// The offsets use the stratum centre, never the jittered sample position. The sum is
+    /// accumulated in `f64` (the C used `float`). The footprint is square, its `border` that of
+    /// the larger width ([`Filter::max_width`]); the kernel cuts itself to each width. Weights
+    /// may be negative (RenderMan's catmull-rom and sinc): only their sum must be positive.
+    ///
+    /// # Errors
+    ///
+    /// [`FilmError::DegenerateFilter`] if a width is not finite and positive, `nx` or `ny` is 0,
+    /// `location.len() != nx * ny`, the table would be unreasonably large, or the weights sum
+    /// to zero or less, or to a non-finite value.
+    pub fn for_filter(
+        filter: &Filter,
+        nx: u32,
+        ny: u32,
+        location: &[[f32; 2]],
+        original: &Original,
+    ) -> Result<FilterTable, FilmError> {
+        let (kind, width, height) = (filter.kind, filter.width, filter.y_width());
+        let degenerate =
+            |reason: String| FilmError::DegenerateFilter { kind, width, height, reason };
+        if !(width.is_finite() && width > 0.0 && height.is_finite() && height > 0.0) {
+            return Err(degenerate("the widths must be finite and positive".into()));
         }
         if nx == 0 || ny == 0 {
             return Err(degenerate(format!("empty {nx}x{ny} sample grid")));
@@ -74,7 +97,7 @@ impl FilterTable {
                 location.len()
             )));
         }
-        let border = border_for_width(width);
+        let border = border_for_width(filter.max_width());
         let footprint = 2 * border + 1;
         let fw = footprint as usize;
         let entries = fw
@@ -99,26 +122,30 @@ impl FilterTable {
                 let dy = (cy - (j as f64 - b + 0.5)) as f32;
                 for i in 0..fw {
                     let dx = (cx - (i as f64 - b + 0.5)) as f32;
-                    let w = kernel::weight(kind, width, dx, dy, original);
+                    let w = kernel::weight(kind, width, height, dx, dy, original);
                     sum += f64::from(w);
                     weights.push(w);
                 }
             }
         }
-        if !sum.is_finite() || sum == 0.0 {
+        if !sum.is_finite() || sum <= 0.0 {
             return Err(degenerate(format!("the filter weights sum to {sum}")));
         }
         for w in &mut weights {
             *w = (f64::from(*w) / sum) as f32;
         }
+        // Both boxes of width 1 weigh every stratum of the own pixel alike (RenderMan's cut is
+        // inclusive, stratum centres lie strictly inside the pixel).
+        let unit_box = matches!(kind, FilterKind::Box | FilterKind::RiBox);
         Ok(FilterTable {
             kind,
             width,
+            height,
             border,
             footprint,
             ns,
             weights,
-            box_fast: kind == FilterKind::Box && width == 1.0,
+            box_fast: unit_box && width == 1.0 && height == 1.0,
         })
     }
 
@@ -127,9 +154,14 @@ impl FilterTable {
         self.kind
     }
 
-    /// The full filter width in pixels.
+    /// The full filter width in x, in pixels.
     pub fn width(&self) -> f32 {
         self.width
+    }
+
+    /// The full filter width in y, in pixels (the x width unless the filter gave a height).
+    pub fn height(&self) -> f32 {
+        self.height
     }
 
     /// Appendix A's `Border`: how far (pixels) a sample's weights reach beyond its own pixel.
@@ -163,7 +195,8 @@ impl FilterTable {
         &self.weights[s * n..(s + 1) * n]
     }
 
-    /// Appendix A's `BoxFilterFlag`: box of width exactly 1 (border 0), where the splat adds
+    /// Appendix A's `BoxFilterFlag`: box (Appendix A's or RenderMan's) of width exactly 1 in x
+    /// and y (border 0), where the splat adds
     /// `1/NS` of each sample to its own pixel (`applyboxfilter`).
     pub fn box_fast(&self) -> bool {
         self.box_fast
