@@ -206,3 +206,268 @@ pub fn blackman_harris(x: f64, y: f64, xw: f64, yw: f64) -> f64 {
     let s = 0.5 - (x / xw).hypot(y / yw);
     a0 - a1 * (2.0 * PI * s).cos() + a2 * (4.0 * PI * s).cos() - a3 * (6.0 * PI * s).cos()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// The nine RenderMan kinds.
+    pub(crate) const RI: [FilterKind; 9] = [
+        FilterKind::RiBox,
+        FilterKind::RiTriangle,
+        FilterKind::RiCatmullRom,
+        FilterKind::RiGaussian,
+        FilterKind::RiSinc,
+        FilterKind::RiDisk,
+        FilterKind::RiBessel,
+        FilterKind::RiMitchell,
+        FilterKind::RiBlackmanHarris,
+    ];
+
+    fn w(kind: FilterKind, xw: f32, yw: f32, x: f32, y: f32) -> f64 {
+        f64::from(weight(kind, xw, yw, x, y).unwrap_or_else(|| panic!("{kind:?} is not Ri")))
+    }
+
+    fn assert_close(got: f64, want: f64, what: &str) {
+        assert!((got - want).abs() <= 1e-6 * want.abs().max(1.0), "{what}: {got} vs {want}");
+    }
+
+    #[test]
+    fn only_the_ri_kinds_are_renderman_kernels() {
+        for kind in FilterKind::ALL {
+            assert_eq!(weight(kind, 2.0, 2.0, 0.0, 0.0).is_some(), RI.contains(&kind), "{kind:?}");
+            assert_eq!(kind.is_renderman(), RI.contains(&kind), "{kind:?}");
+        }
+    }
+
+    #[test]
+    fn box_and_triangle_closed_forms() {
+        use FilterKind::{RiBox, RiTriangle};
+        assert_eq!(w(RiBox, 2.0, 2.0, 0.0, 0.0), 1.0);
+        assert_eq!(w(RiBox, 2.0, 2.0, 1.0, -1.0), 1.0, "the cut is inclusive, as Aqsis's");
+        assert_eq!(w(RiBox, 2.0, 2.0, 1.01, 0.0), 0.0);
+        assert_eq!(w(RiBox, 4.0, 1.0, 1.9, 0.0), 1.0);
+        assert_eq!(w(RiBox, 4.0, 1.0, 0.0, 0.6), 0.0);
+        // The pyramid min(1 - 2|x|/xw, 1 - 2|y|/yw).
+        assert_close(w(RiTriangle, 2.0, 2.0, 0.5, 0.0), 0.5, "triangle (0.5, 0)");
+        assert_close(w(RiTriangle, 2.0, 2.0, 0.5, 0.25), 0.5, "triangle (0.5, 0.25)");
+        assert_close(w(RiTriangle, 2.0, 2.0, -0.25, 0.75), 0.25, "triangle (-0.25, 0.75)");
+        assert_close(w(RiTriangle, 4.0, 1.0, 1.0, 0.25), 0.5, "triangle 4x1 (1, 0.25)");
+        assert_close(w(RiTriangle, 4.0, 1.0, 1.0, 0.4), 0.2, "triangle 4x1 (1, 0.4)");
+        assert_eq!(w(RiTriangle, 4.0, 1.0, 0.3, 0.5), 0.0, "zero on the whole edge");
+    }
+
+    #[test]
+    fn catmull_rom_closed_forms() {
+        use FilterKind::RiCatmullRom as Cr;
+        assert_close(w(Cr, 4.0, 4.0, 0.0, 0.0), 2.0, "centre");
+        assert_close(w(Cr, 4.0, 4.0, 0.5, 0.0), 1.125, "3/8 - 5/4 + 2");
+        assert_close(w(Cr, 4.0, 4.0, 1.0, 0.0), 0.0, "zero at r = 1");
+        assert_close(w(Cr, 4.0, 4.0, 1.5, 0.0), -0.125, "negative lobe");
+        assert_close(w(Cr, 4.0, 4.0, 0.9, 1.2), -0.125, "radial: r = 1.5");
+        assert_close(w(Cr, 4.0, 4.0, 0.6, 0.8), 0.0, "radial: r = 1");
+        assert_eq!(w(Cr, 4.0, 4.0, 1.2, 1.6), 0.0, "r = 2");
+        assert_eq!(w(Cr, 4.0, 4.0, 2.0, 2.0), 0.0, "corner, r > 2");
+        // The widths only cut: the same cubic for any widths that include the point.
+        assert_eq!(w(Cr, 3.0, 8.0, 0.5, 0.7), w(Cr, 4.0, 4.0, 0.5, 0.7));
+        assert_eq!(w(Cr, 2.0, 2.0, 1.5, 0.0), 0.0, "cut at xw/2 = 1");
+        // Continuity of the two pieces.
+        for r in [1.0, 2.0] {
+            let (a, b) = (catmull_rom_cubic(r - 1e-9), catmull_rom_cubic(r + 1e-9));
+            assert!((a - b).abs() < 1e-7, "cubic jumps at {r}: {a} {b}");
+        }
+    }
+
+    #[test]
+    fn gaussian_closed_forms() {
+        use FilterKind::RiGaussian as G;
+        assert_close(w(G, 2.0, 2.0, 0.0, 0.0), 1.0, "centre");
+        assert_close(w(G, 2.0, 2.0, 0.5, 0.0), (-0.5_f64).exp(), "(0.5, 0)");
+        assert_close(w(G, 2.0, 2.0, 0.5, -0.5), (-1.0_f64).exp(), "(0.5, -0.5)");
+        assert_close(w(G, 2.0, 2.0, 1.0, 1.0), (-4.0_f64).exp(), "corner: cut only by the box");
+        // exp(-2 ((2x/xw)^2 + (2y/yw)^2)) at xw 4, yw 1: (1, 0.25) -> exp(-2 (1/4 + 1/4)).
+        assert_close(w(G, 4.0, 1.0, 1.0, 0.25), (-1.0_f64).exp(), "anisotropic");
+        assert_eq!(w(G, 4.0, 1.0, 0.0, 0.51), 0.0);
+    }
+
+    #[test]
+    fn sinc_closed_forms() {
+        use FilterKind::RiSinc as S;
+        let pi = std::f64::consts::PI;
+        // s(x, w) = cos(pi x / (2w)) sin(pi x) / (pi x).
+        let s = |x: f64, w: f64| (pi * x / (2.0 * w)).cos() * (pi * x).sin() / (pi * x);
+        assert_close(w(S, 4.0, 4.0, 0.0, 0.0), 1.0, "centre");
+        assert_close(w(S, 4.0, 4.0, 0.5, 0.0), s(0.5, 4.0), "(0.5, 0)");
+        assert_close(w(S, 4.0, 4.0, 0.5, 0.0), 0.624_387_3, "(0.5, 0) numerically");
+        assert!(w(S, 4.0, 4.0, 1.0, 0.0).abs() < 1e-7, "zero at a whole pixel");
+        assert_close(w(S, 4.0, 4.0, 1.5, 0.0), -0.176_443_3, "negative lobe");
+        assert_close(w(S, 4.0, 2.0, 1.5, 0.5), s(1.5, 4.0) * s(0.5, 2.0), "separable");
+        assert_close(w(S, 4.0, 4.0, 2.0, 0.0), s(2.0, 4.0), "kept at the inclusive cut");
+    }
+
+    #[test]
+    fn disk_and_bessel_closed_forms() {
+        use FilterKind::{RiBessel as B, RiDisk as D};
+        let pi = std::f64::consts::PI;
+        assert_eq!(w(D, 2.0, 2.0, 0.5, 0.5), 1.0);
+        assert_eq!(w(D, 2.0, 2.0, 0.8, 0.8), 0.0, "outside the circle, inside the box");
+        assert_eq!(w(D, 4.0, 1.0, 1.9, 0.0), 1.0);
+        assert_eq!(w(D, 4.0, 1.0, 0.0, 0.5), 0.0, "on the ellipse");
+        assert_eq!(w(D, 4.0, 1.0, 1.5, 0.4), 0.0, "(3/4)^2 + (4/5)^2 > 1");
+        assert_close(w(B, 2.0, 2.0, 0.0, 0.0), pi, "centre: the limit of 2 J1(pi r)/r");
+        let jinc = |r: f64, e: f64| (0.5 * pi * e.sqrt()).cos() * 2.0 * bessel_j1(pi * r) / r;
+        assert_close(w(B, 2.0, 2.0, 0.5, 0.0), jinc(0.5, 0.25), "(0.5, 0)");
+        assert_close(w(B, 2.0, 2.0, 0.3, -0.4), jinc(0.5, 0.25), "radial");
+        assert_close(w(B, 2.0, 2.0, 0.5, 0.0), 1.603_220_6, "(0.5, 0) numerically");
+        assert_close(w(B, 4.0, 2.0, 1.0, 0.5), jinc(1.25_f64.sqrt(), 0.5), "anisotropic");
+        assert_eq!(w(B, 2.0, 2.0, 0.8, 0.8), 0.0, "outside the circle");
+        assert!(w(B, 2.0, 2.0, 0.999_9, 0.0).abs() < 1e-3, "the window closes at the ellipse");
+    }
+
+    #[test]
+    fn mitchell_closed_forms() {
+        use FilterKind::RiMitchell as M;
+        // The cubic with B = C = 1/3: m(0) = 8/9, m(1/2) = 77/144, m(1) = 1/18, m(3/2) = -5/144.
+        assert_close(mitchell_cubic(0.0), 8.0 / 9.0, "m(0)");
+        assert_close(mitchell_cubic(0.5), 77.0 / 144.0, "m(1/2)");
+        assert_close(mitchell_cubic(1.0), 1.0 / 18.0, "m(1)");
+        assert_close(mitchell_cubic(1.5), -5.0 / 144.0, "m(3/2)");
+        assert_eq!(mitchell_cubic(2.0), 0.0);
+        assert!((mitchell_cubic(1.0 - 1e-9) - mitchell_cubic(1.0 + 1e-9)).abs() < 1e-7);
+        // Separable, argument 2|x|/xw: at xw 4, x = 1 is t = 1/2; the cut keeps t <= 1.
+        assert_close(w(M, 4.0, 4.0, 1.0, 0.0), 77.0 / 144.0 * 8.0 / 9.0, "(1, 0)");
+        assert_close(w(M, 4.0, 2.0, 1.0, 0.5), (77.0_f64 / 144.0).powi(2), "(1, 0.5) at 4x2");
+        assert_close(w(M, 4.0, 4.0, 2.0, 2.0), 1.0 / 324.0, "corner: m(1)^2");
+        assert!(w(M, 4.0, 4.0, 2.0, 0.0) > 0.0, "no negative lobe inside the widths");
+    }
+
+    #[test]
+    fn blackman_harris_closed_forms() {
+        use FilterKind::RiBlackmanHarris as Bh;
+        let [a0, a1, a2, a3] = BLACKMAN_HARRIS;
+        assert_close(w(Bh, 2.0, 2.0, 0.0, 0.0), a0 + a1 + a2 + a3, "centre");
+        assert_close(w(Bh, 2.0, 2.0, 0.0, 0.0), 1.0, "centre is 1");
+        assert_close(w(Bh, 2.0, 2.0, 0.5, 0.0), a0 - a2, "q = 1/4");
+        assert_close(w(Bh, 2.0, 2.0, 1.0, 0.0), a0 - a1 + a2 - a3, "q = 1/2: the window's end");
+        assert_close(w(Bh, 4.0, 1.0, 1.0, 0.0), w(Bh, 2.0, 2.0, 0.0, 0.5), "elliptical q");
+        // Pixie's corners: q = sqrt(2)/2, the window's periodic continuation.
+        let q = std::f64::consts::FRAC_1_SQRT_2;
+        let tau = std::f64::consts::TAU;
+        let corner =
+            a0 + a1 * (tau * q).cos() + a2 * (2.0 * tau * q).cos() + a3 * (3.0 * tau * q).cos();
+        assert_close(w(Bh, 2.0, 2.0, 1.0, 1.0), corner, "corner");
+        assert!(corner > 0.1 && corner < 0.12, "corner {corner}");
+    }
+
+    fn kinds() -> impl Strategy<Value = FilterKind> {
+        prop::sample::select(RI.to_vec())
+    }
+
+    proptest! {
+        #[test]
+        fn zero_beyond_the_widths(
+            kind in kinds(),
+            xw in 0.25_f32..8.0,
+            yw in 0.25_f32..8.0,
+            excess in 1e-3_f32..4.0,
+            other in -1.0_f32..1.0,
+            swap in any::<bool>(),
+            neg in any::<bool>(),
+        ) {
+            // One offset past its half-width, the other anywhere within twice its own.
+            let (far_w, near_w) = if swap { (yw, xw) } else { (xw, yw) };
+            let far = (0.5 * far_w + excess) * if neg { -1.0 } else { 1.0 };
+            let near = other * near_w;
+            let (x, y) = if swap { (near, far) } else { (far, near) };
+            prop_assert_eq!(w(kind, xw, yw, x, y), 0.0, "{:?} at ({}, {})", kind, x, y);
+        }
+
+        #[test]
+        fn zero_at_and_beyond_their_own_edges(
+            xw in 0.25_f32..8.0,
+            yw in 0.25_f32..8.0,
+            u in -1.0_f32..1.0,
+            angle in 0.0_f32..std::f32::consts::TAU,
+            grow in 1.0_f32..1.5,
+        ) {
+            // Triangle: zero on the edge |x| = xw/2 whatever y.
+            prop_assert_eq!(w(FilterKind::RiTriangle, xw, yw, 0.5 * xw, u * 0.5 * yw), 0.0);
+            prop_assert_eq!(w(FilterKind::RiTriangle, xw, yw, u * 0.5 * xw, -0.5 * yw), 0.0);
+            // Disk and Bessel: zero on and outside the inscribed ellipse (a hair outside, so
+            // that rounding cannot put the point back in).
+            let s = grow * (1.0 + 1e-5);
+            let (x, y) = (s * 0.5 * xw * angle.cos(), s * 0.5 * yw * angle.sin());
+            prop_assert_eq!(w(FilterKind::RiDisk, xw, yw, x, y), 0.0);
+            prop_assert_eq!(w(FilterKind::RiBessel, xw, yw, x, y), 0.0);
+            // Catmull-Rom: zero from radius 2 on, whatever the widths.
+            let r = 2.0 * grow;
+            let (cx, cy) = (r * angle.cos(), r * angle.sin());
+            prop_assert_eq!(w(FilterKind::RiCatmullRom, 8.0, 8.0, cx, cy), 0.0);
+        }
+
+        #[test]
+        fn even_in_x_and_y_and_finite(
+            kind in kinds(),
+            xw in 0.25_f32..8.0,
+            yw in 0.25_f32..8.0,
+            x in -4.0_f32..4.0,
+            y in -4.0_f32..4.0,
+        ) {
+            let v = w(kind, xw, yw, x, y);
+            prop_assert!(v.is_finite());
+            prop_assert_eq!(v, w(kind, xw, yw, -x, y), "{:?}", kind);
+            prop_assert_eq!(v, w(kind, xw, yw, x, -y), "{:?}", kind);
+        }
+
+        #[test]
+        fn separable_where_the_spec_and_peers_say_so(
+            xw in 0.25_f32..8.0,
+            yw in 0.25_f32..8.0,
+            u in -1.0_f32..1.0,
+            v in -1.0_f32..1.0,
+        ) {
+            let (x, y) = (u * 0.5 * xw, v * 0.5 * yw);
+            for kind in [
+                FilterKind::RiBox,
+                FilterKind::RiGaussian,
+                FilterKind::RiSinc,
+                FilterKind::RiMitchell,
+            ] {
+                let whole = w(kind, xw, yw, x, y) * w(kind, xw, yw, 0.0, 0.0);
+                let parts = w(kind, xw, yw, x, 0.0) * w(kind, xw, yw, 0.0, y);
+                prop_assert!((whole - parts).abs() <= 1e-6, "{:?}: {} vs {}", kind, whole, parts);
+            }
+            // The triangle is the peers' pyramid, not the spec's separable product.
+            let tri = w(FilterKind::RiTriangle, xw, yw, x, y);
+            let tents = (1.0 - f64::from(u.abs())).min(1.0 - f64::from(v.abs()));
+            prop_assert!((tri - tents).abs() <= 1e-6, "triangle {} vs {}", tri, tents);
+        }
+
+        #[test]
+        fn radial_where_the_spec_and_peers_say_so(
+            xw in 0.25_f32..8.0,
+            yw in 0.25_f32..8.0,
+            u in 0.0_f32..1.0,
+            angle in 0.0_f32..std::f32::consts::TAU,
+        ) {
+            let (c, s) = (angle.cos(), angle.sin());
+            // Catmull-Rom: a function of the distance alone (inside both widths).
+            let r = u * 0.5 * xw.min(yw);
+            let on_axis = w(FilterKind::RiCatmullRom, xw, yw, r, 0.0);
+            let turned = w(FilterKind::RiCatmullRom, xw, yw, r * c, r * s);
+            prop_assert!((on_axis - turned).abs() <= 1e-5, "catmull-rom {} vs {}", on_axis, turned);
+            // Disk and Blackman-Harris: functions of the elliptical radius.
+            let (ex, ey) = (u * 0.5 * xw * c, u * 0.5 * yw * s);
+            for kind in [FilterKind::RiDisk, FilterKind::RiBlackmanHarris] {
+                let a = w(kind, xw, yw, u * 0.5 * xw, 0.0);
+                let b = w(kind, xw, yw, ex, ey);
+                prop_assert!(u > 0.999 || (a - b).abs() <= 1e-5, "{:?}: {} vs {}", kind, a, b);
+            }
+            // Bessel: radial for a round filter (its jinc is in the true distance).
+            let a = w(FilterKind::RiBessel, xw, xw, r, 0.0);
+            let b = w(FilterKind::RiBessel, xw, xw, r * c, r * s);
+            prop_assert!(u > 0.999 || (a - b).abs() <= 1e-4, "bessel {} vs {}", a, b);
+        }
+    }
+}

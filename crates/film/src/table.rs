@@ -390,4 +390,151 @@ pub(crate) mod tests {
             .unwrap_or_default();
         assert!(msg.contains("Box") && !msg.contains('\n'), "{msg}");
     }
+
+    /// The nine RenderMan kinds.
+    const RI: [FilterKind; 9] = [
+        FilterKind::RiBox,
+        FilterKind::RiTriangle,
+        FilterKind::RiCatmullRom,
+        FilterKind::RiGaussian,
+        FilterKind::RiSinc,
+        FilterKind::RiDisk,
+        FilterKind::RiBessel,
+        FilterKind::RiMitchell,
+        FilterKind::RiBlackmanHarris,
+    ];
+
+    fn table(kind: FilterKind, width: f32, height: Option<f32>, n: u32) -> FilterTable {
+        let filter = Filter { kind, width, height };
+        FilterTable::for_filter(&filter, n, n, &grid_locations(n, n), &Original::default())
+            .unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    /// The stratum-centre offset `(dx, dy)` of entry `k` of sample `s`'s weights.
+    fn offset(t: &FilterTable, loc: &[[f32; 2]], n: u32, s: usize, k: usize) -> (f32, f32) {
+        let fw = t.footprint() as usize;
+        let b = t.border() as f32;
+        let half = 0.5 / n as f32;
+        let (i, j) = ((k % fw) as f32, (k / fw) as f32);
+        (loc[s][0] + half - (i - b + 0.5), loc[s][1] + half - (j - b + 0.5))
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn renderman_tables_sum_to_one(
+            kind in proptest::sample::select(RI.to_vec()),
+            width in 0.5_f32..6.0,
+            height in 0.5_f32..6.0,
+            n in 1_u32..6,
+        ) {
+            let t = table(kind, width, Some(height), n);
+            let fw = t.footprint() as usize;
+            proptest::prop_assert_eq!(t.border(), border_for_width(width.max(height)));
+            proptest::prop_assert_eq!(t.weights().len(), t.ns() * fw * fw);
+            proptest::prop_assert!(t.weights().iter().all(|w| w.is_finite()));
+            let sum: f64 = t.weights().iter().map(|&w| f64::from(w)).sum();
+            proptest::prop_assert!((sum - 1.0).abs() < 1e-5, "{:?} {}x{} {}: sum {}", kind, width, height, n, sum);
+        }
+    }
+
+    #[test]
+    fn renderman_tables_are_symmetric() {
+        for kind in RI {
+            for (width, height) in [(2.0, 2.0), (4.0, 1.0), (1.5, 3.0)] {
+                for n in GRIDS {
+                    let loc = grid_locations(n, n);
+                    let t = table(kind, width, Some(height), n);
+                    assert!(point_symmetric(&t, &loc, n, n), "{kind:?} {width}x{height} {n}x{n}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_footprint_reaches_the_larger_width_and_the_kernel_cuts_each() {
+        let n = 4;
+        let loc = grid_locations(n, n);
+        for (width, height) in [(4.0_f32, 1.0_f32), (1.0, 4.0)] {
+            let t = table(FilterKind::RiBox, width, Some(height), n);
+            assert_eq!((t.border(), t.footprint()), (2, 5), "{width}x{height}");
+            assert_eq!((t.width(), t.height()), (width, height));
+            for s in 0..t.ns() {
+                for (k, &w) in t.sample_weights(s).iter().enumerate() {
+                    let (dx, dy) = offset(&t, &loc, n, s, k);
+                    let inside = dx.abs() <= 0.5 * width && dy.abs() <= 0.5 * height;
+                    assert_eq!(w != 0.0, inside, "{width}x{height} s={s} k={k} ({dx}, {dy})");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn appendix_a_kernels_stretch_to_a_height() {
+        // Appendix A's box of width 2 and height 1 is RenderMan's 2 x 1 box; without a height,
+        // or with the height equal to the width, it is exactly the width-only table.
+        let o = Original::default();
+        let loc = grid_locations(4, 4);
+        let stretched = table(FilterKind::Box, 2.0, Some(1.0), 4);
+        assert_eq!(stretched.weights(), table(FilterKind::RiBox, 2.0, Some(1.0), 4).weights());
+        let plain = FilterTable::new(FilterKind::Box, 2.0, 4, 4, &loc, &o).unwrap();
+        assert_ne!(stretched.weights(), plain.weights());
+        for kind in KINDS {
+            for width in WIDTHS {
+                let plain = FilterTable::new(kind, width, 4, 4, &loc, &o).unwrap();
+                assert_eq!(table(kind, width, None, 4), plain, "{kind:?} {width}");
+                assert_eq!(table(kind, width, Some(width), 4), plain, "{kind:?} {width}");
+            }
+        }
+        // A height taller than the width widens the footprint.
+        assert_eq!(table(FilterKind::Gaussian, 2.0, Some(4.0), 4).border(), 2);
+    }
+
+    #[test]
+    fn the_renderman_gaussian_is_not_appendix_as() {
+        // RenderMan's gaussian 2 x 2, exp(-2 ((x)^2 + (y)^2)) cut to the square, against
+        // Appendix A's gaussian 2, exp(-r^2) - exp(-1) cut to the unit circle: the same
+        // footprint, different weights (in the corners Appendix A's is 0, RenderMan's not).
+        let ri = table(FilterKind::RiGaussian, 2.0, None, 4);
+        let aa = table(FilterKind::Gaussian, 2.0, None, 4);
+        assert_eq!((ri.border(), ri.footprint()), (aa.border(), aa.footprint()));
+        let largest = ri
+            .weights()
+            .iter()
+            .zip(aa.weights())
+            .map(|(a, b)| (a - b).abs() / a.abs().max(b.abs()))
+            .fold(0.0_f32, f32::max);
+        assert!(largest > 0.5, "largest relative difference {largest}");
+        let zeros = |t: &FilterTable| t.weights().iter().filter(|&&w| w == 0.0).count();
+        assert!(zeros(&aa) > zeros(&ri), "{} vs {}", zeros(&aa), zeros(&ri));
+    }
+
+    #[test]
+    fn a_unit_renderman_box_is_the_fast_box() {
+        let loc = grid_locations(4, 4);
+        let ri = table(FilterKind::RiBox, 1.0, None, 4);
+        let aa = FilterTable::new(FilterKind::Box, 1.0, 4, 4, &loc, &Original::default()).unwrap();
+        assert!(ri.box_fast());
+        assert_eq!(ri.weights(), aa.weights());
+        assert!(!table(FilterKind::RiBox, 1.0, Some(2.0), 4).box_fast());
+        assert!(!table(FilterKind::Box, 1.0, Some(2.0), 4).box_fast());
+    }
+
+    #[test]
+    fn degenerate_heights_are_errors() {
+        let o = Original::default();
+        let loc = grid_locations(2, 2);
+        for height in [0.0, -1.0, f32::NAN, f32::INFINITY] {
+            let f = Filter { kind: FilterKind::RiGaussian, width: 2.0, height: Some(height) };
+            let e = FilterTable::for_filter(&f, 2, 2, &loc, &o);
+            assert!(matches!(e, Err(FilmError::DegenerateFilter { .. })), "height {height}");
+        }
+        // Every weight cut (locations far outside the pixel): the sum is 0.
+        let far = [[5.0_f32, 5.0]; 4];
+        let f = Filter { kind: FilterKind::RiSinc, width: 4.0, height: Some(1.0) };
+        let msg = FilterTable::for_filter(&f, 2, 2, &far, &o)
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default();
+        assert!(msg.contains("RiSinc filter of width 4 x 1"), "{msg}");
+    }
 }
