@@ -72,3 +72,73 @@ fn appendix_a_kernels_render_bit_for_bit_as_before() {
         assert_eq!(*got, want, "{kind}: 3x3 renders changed (hash {got:#x})");
     }
 }
+
+/// A white quadrant x >= 0.1, y <= 0.1 at depth 1 facing a 90 degree camera on a 64 x 64
+/// image (32 pixels per unit): its vertical edge on raster column 35.2, its horizontal edge
+/// on raster row 28.8 (the quadrant covers the rows below it).
+fn quadrant(filter: &str) -> Film {
+    let text = format!(
+        "Scene(image: (width: 64, height: 64),
+           camera: (eye: (0.0, 0.0, 0.0), look_at: (0.0, 0.0, 1.0), fov: 90.0),
+           hider: (pixel_samples: (4, 4), filter: {filter}, seed: 3),
+           objects: [(shape: BilinearPatch(points: ((0.1, -3.0, 1.0), (3.0, -3.0, 1.0),
+                                                    (0.1, 0.1, 1.0), (3.0, 0.1, 1.0))),
+                      material: Constant(color: (1.0, 1.0, 1.0)))])"
+    );
+    let scene = reyes_scene::parse(&text, std::path::Path::new("quadrant.ron")).unwrap();
+    render(&scene, &RenderOptions::default()).unwrap().film
+}
+
+fn alpha(film: &Film, x: u32, y: u32) -> f32 {
+    film.pixel(x, y).unwrap()[3]
+}
+
+/// How many pixels of row `y` (`across_x`) or column `x` are partly covered.
+fn partial(film: &Film, line: u32, across_x: bool) -> usize {
+    let is_partial = |a: f32| a > 1e-3 && a < 1.0 - 1e-3;
+    (0..64)
+        .filter(|&i| is_partial(if across_x { alpha(film, i, line) } else { alpha(film, line, i) }))
+        .count()
+}
+
+#[test]
+fn an_anisotropic_filter_blurs_along_its_wide_axis_only() {
+    // RenderMan's gaussian 4 wide and 1 tall: across the vertical edge (along row 50) a
+    // sample reaches 2 pixels, so the columns whose centres lie within 2 of 35.2 (33..=36)
+    // are partly covered; across the horizontal edge (along column 55) it reaches half a
+    // pixel, so only row 28, which holds the edge, is.
+    let wide = quadrant("(kind: RiGaussian, width: 4.0, height: Some(1.0))");
+    assert_eq!(partial(&wide, 50, true), 4, "horizontal blur across the vertical edge");
+    assert_eq!(partial(&wide, 55, false), 1, "no vertical blur across the horizontal edge");
+    assert!(alpha(&wide, 33, 50) > 0.0 && alpha(&wide, 33, 50) < 0.1);
+    // Row 28 is a fifth covered, by its bottom stratum row, whose gaussian weight is low.
+    let row28 = alpha(&wide, 55, 28);
+    assert!(row28 > 0.0 && row28 < 0.25, "row 28: {row28}");
+    // Far from both edges the gain is 1 and outside it is 0.
+    assert!((alpha(&wide, 50, 50) - 1.0).abs() < 1e-5);
+    assert_eq!(alpha(&wide, 10, 50), 0.0);
+    // Transposed, the blur moves to the other edge; the frame's border reaches the height.
+    let tall = quadrant("(kind: RiGaussian, width: 1.0, height: Some(4.0))");
+    assert_eq!(partial(&tall, 50, true), 1, "no horizontal blur");
+    assert_eq!(partial(&tall, 55, false), 4, "vertical blur");
+}
+
+#[test]
+fn renderman_gaussian_2x2_is_not_appendix_a_gaussian_2() {
+    let ri = quadrant("(kind: RiGaussian, width: 2.0, height: Some(2.0))");
+    let aa = quadrant("(kind: Gaussian, width: 2.0)");
+    let differ = (0..64)
+        .flat_map(|y| (0..64).map(move |x| (x, y)))
+        .filter(|&(x, y)| (alpha(&ri, x, y) - alpha(&aa, x, y)).abs() > 0.01)
+        .count();
+    assert!(differ > 50, "only {differ} edge pixels differ by more than 0.01");
+    // Both have unit gain away from the edges.
+    assert!((alpha(&ri, 50, 50) - 1.0).abs() < 1e-5 && (alpha(&aa, 50, 50) - 1.0).abs() < 1e-5);
+}
+
+#[test]
+fn a_renderman_box_of_width_1_renders_as_appendix_as() {
+    let ri = quadrant("(kind: RiBox, width: 1.0)");
+    let aa = quadrant("(kind: Box, width: 1.0)");
+    assert_eq!(ri.rgba(), aa.rgba());
+}
