@@ -136,9 +136,10 @@ fn ellipse(x: f64, y: f64, xw: f64, yw: f64) -> f64 {
     u * u + v * v
 }
 
-/// `"disk"`: `RiDiskFilter` as Aqsis draws it (declared in PRMan's `ri.h`; not in the spec):
-/// 1 strictly inside the ellipse inscribed in the widths, `(2x/xw)^2 + (2y/yw)^2 < 1`, else
-/// 0. Pixie does not offer it.
+/// `"disk"`: `RiDiskFilter` of Aqsis and Pixie (declared in PRMan's `ri.h`; not in the spec):
+/// 1 inside the ellipse inscribed in the widths, `(2x/xw)^2 + (2y/yw)^2 < 1`, else 0. Aqsis
+/// excludes the ellipse itself, Pixie (`(x/xw)^2 + (y/yw)^2 <= 1/4`) includes it; they differ
+/// only on the curve, and we follow Aqsis.
 pub fn disk(x: f64, y: f64, xw: f64, yw: f64) -> f64 {
     if ellipse(x, y, xw, yw) < 1.0 { 1.0 } else { 0.0 }
 }
@@ -148,8 +149,11 @@ pub fn disk(x: f64, y: f64, xw: f64, yw: f64) -> f64 {
 /// pixels; first zero at 1.22) under the half-cosine window `cos(pi sqrt(e) / 2)`, `pi` (its
 /// limit) at `r = 0`; 0 outside the ellipse.
 ///
-/// Pixie's RIB reader does not accept `"bessel"`; its C function `RiBesselFilter` is Appendix
-/// A's unwindowed `J1(2r)/r` ([`FilterKind::Bessel`]), reachable only through the C API.
+/// The peers disagree here. Pixie's `RiBesselFilter` is Appendix A's unwindowed `J1(2r)/r`
+/// ([`FilterKind::Bessel`]: first zero at 1.92 pixels, the widths only cut it to the box), and
+/// older Pixie RIB readers do not accept `"bessel"` at all. We follow Aqsis, whose filter
+/// scales with the widths like every other RenderMan filter; for Pixie's picture use
+/// Appendix A's `Bessel`, whose footprint is the table's square border rather than the box.
 pub fn bessel(x: f64, y: f64, xw: f64, yw: f64) -> f64 {
     let e = ellipse(x, y, xw, yw);
     if e >= 1.0 {

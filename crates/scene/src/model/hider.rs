@@ -169,7 +169,8 @@ pub enum FilterKind {
     /// RenderMan `"sinc"` (`RiSincFilter`, E.5), windowed as Aqsis and Pixie do:
     /// `cos(pi x / (2 xw)) sin(pi x) / (pi x)` times the same in y.
     RiSinc,
-    /// `"disk"` (`RiDiskFilter` of Aqsis and PRMan's ri.h): 1 inside the ellipse of the widths.
+    /// `"disk"` (`RiDiskFilter` of Aqsis and Pixie, PRMan's ri.h): 1 inside the ellipse of the
+    /// widths.
     RiDisk,
     /// `"bessel"` (`RiBesselFilter` as Aqsis draws it): the jinc `2 J1(pi r) / r` under a
     /// half-cosine window, inside the ellipse of the widths.
@@ -223,7 +224,8 @@ impl FilterKind {
     }
 
     /// The `Ri` kind of a RenderMan filter name (RIB's `PixelFilter "name"`), compared
-    /// without regard to ASCII case as Aqsis and Pixie do; `None` for a name we do not know.
+    /// without regard to ASCII case (Pixie lower-cases the name first); `None` for a name we do
+    /// not know.
     pub fn from_renderman_name(name: &str) -> Option<FilterKind> {
         FilterKind::ALL
             .into_iter()
