@@ -423,10 +423,12 @@ pub(crate) mod tests {
         #[test]
         fn renderman_tables_sum_to_one(
             kind in proptest::sample::select(RI.to_vec()),
-            width in 0.5_f32..6.0,
-            height in 0.5_f32..6.0,
+            width in 1.0_f32..6.0,
+            height in 1.0_f32..6.0,
             n in 1_u32..6,
         ) {
+            // From a pixel wide up: a narrower filter can miss every stratum centre (see
+            // `a_filter_between_the_stratum_centres_is_degenerate`).
             let t = table(kind, width, Some(height), n);
             let fw = t.footprint() as usize;
             proptest::prop_assert_eq!(t.border(), border_for_width(width.max(height)));
@@ -435,6 +437,17 @@ pub(crate) mod tests {
             let sum: f64 = t.weights().iter().map(|&w| f64::from(w)).sum();
             proptest::prop_assert!((sum - 1.0).abs() < 1e-5, "{:?} {}x{} {}: sum {}", kind, width, height, n, sum);
         }
+    }
+
+    #[test]
+    fn a_filter_between_the_stratum_centres_is_degenerate() {
+        // A disk 0.6 wide on a 2x2 grid: the stratum centres lie 0.25 from the pixel centre
+        // in x and y, outside the disk, and every other pixel's are further: nothing to weigh.
+        let f = Filter { kind: FilterKind::RiDisk, width: 0.6, height: None };
+        let e = FilterTable::for_filter(&f, 2, 2, &grid_locations(2, 2), &Original::default());
+        assert!(matches!(e, Err(FilmError::DegenerateFilter { .. })));
+        // On a 3x3 grid the centre stratum lies on the pixel centre.
+        assert_eq!(table(FilterKind::RiDisk, 0.6, None, 3).ns(), 9);
     }
 
     #[test]
