@@ -54,13 +54,20 @@ pub enum FilmError {
     /// The filter table cannot be built: its weights sum to zero or a non-finite value, or the
     /// table parameters are invalid (width not finite and positive, empty sample grid, wrong
     /// number of stratum locations).
-    #[error("degenerate {kind:?} filter of width {width}: {reason}")]
+    #[error("degenerate {kind:?} filter of width {}: {reason}", widths(*width, *height))]
     DegenerateFilter {
         /// The kernel.
         kind: FilterKind,
-        /// Its full width in pixels.
+        /// Its full width in x, in pixels.
         width: f32,
+        /// Its full width in y, in pixels.
+        height: f32,
         /// Why the table is unusable.
         reason: String,
     },
+}
+
+/// `2` for a filter as tall as it is wide, `4 x 1` otherwise.
+fn widths(width: f32, height: f32) -> String {
+    if height == width { format!("{width}") } else { format!("{width} x {height}") }
 }

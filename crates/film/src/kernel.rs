@@ -1,10 +1,12 @@
-//! Reconstruction filter kernels (stage: film, table construction only).
+//! Reconstruction filter kernels (stage: film, table construction only): Appendix A's five
+//! here, RenderMan's in [`crate::renderman`], one entry point [`weight`] for both.
 //!
 //! Invariants: every kernel is a pure function of the offset `(dx, dy)` (sample minus pixel
-//! centre, in pixels) and the full filter width; the result is finite for finite inputs. The
-//! filter table normalises the weights afterwards, so only the shape of a kernel matters, never
-//! its scale. Our fixed versions are the default; the original 1985 shapes are selected by the
-//! [`Original`] switches.
+//! centre, in pixels) and the full filter widths in x and y; the result is finite for finite
+//! inputs. The filter table normalises the weights afterwards, so only the shape of a kernel
+//! matters, never its scale. Our fixed versions of Appendix A's kernels are the default; the
+//! original 1985 shapes are selected by the [`Original`] switches. A filter as tall as it is
+//! wide computes exactly what the width-only kernels always did.
 
 use reyes_scene::{FilterKind, Original};
 
@@ -13,8 +15,15 @@ use reyes_scene::{FilterKind, Original};
 const CENTRE_EPS: f64 = 0.001;
 
 /// Weight of a sample at offset `(dx, dy)` from an output pixel centre, for the kernel `kind`
-/// of full width `width` (pixels).
+/// of full width `width` in x and `height` in y (pixels).
 ///
+/// The RenderMan kernels (the `Ri` kinds) are [`crate::renderman::weight`]. Appendix A's five
+/// are defined for one width: for `height != width` the y offset is scaled by
+/// `width / height` first, so the kernel keeps its shape and reaches `height / 2` in y (the
+/// radial ones become elliptical); for `height == width` nothing is scaled and the weight is
+/// bit for bit the width-only one.
+///
+/// Appendix A's kernels:
 /// Port of `FilterRoutine[FilterType](x, y)` (Appendix A 2.3: `boxfilter`, `gaussianfilter`,
 /// `sincfilter`, `bartlettfilter`, `besselfilter`), with these deliberate differences unless
 /// the matching `original` switch is set (Appendix A 3.16, 3.21 item 9):
@@ -25,13 +34,33 @@ const CENTRE_EPS: f64 = 0.001;
 /// * Bartlett: half-width `W/2` (`original.bartlett_filter`: half-width `W`).
 ///
 /// Gaussian and Bessel are as printed.
-pub fn weight(kind: FilterKind, width: f32, dx: f32, dy: f32, original: &Original) -> f32 {
+pub fn weight(
+    kind: FilterKind,
+    width: f32,
+    height: f32,
+    dx: f32,
+    dy: f32,
+    original: &Original,
+) -> f32 {
+    // Appendix A's y offset, stretched to the y width (untouched when the widths agree).
+    let ay = if height == width { dy } else { dy * (width / height) };
     match kind {
-        FilterKind::Box => box_filter(width, dx, dy, original.box_filter),
-        FilterKind::Gaussian => gaussian_filter(width, dx, dy),
-        FilterKind::Sinc => sinc_filter(dx, dy, original.sinc_filter),
-        FilterKind::Bartlett => bartlett_filter(width, dx, dy, original.bartlett_filter),
-        FilterKind::Bessel => bessel_filter(dx, dy),
+        FilterKind::Box => box_filter(width, dx, ay, original.box_filter),
+        FilterKind::Gaussian => gaussian_filter(width, dx, ay),
+        FilterKind::Sinc => sinc_filter(dx, ay, original.sinc_filter),
+        FilterKind::Bartlett => bartlett_filter(width, dx, ay, original.bartlett_filter),
+        FilterKind::Bessel => bessel_filter(dx, ay),
+        FilterKind::RiBox
+        | FilterKind::RiTriangle
+        | FilterKind::RiCatmullRom
+        | FilterKind::RiGaussian
+        | FilterKind::RiSinc
+        | FilterKind::RiDisk
+        | FilterKind::RiBessel
+        | FilterKind::RiMitchell
+        | FilterKind::RiBlackmanHarris => {
+            crate::renderman::weight(kind, width, height, dx, dy).unwrap_or(0.0)
+        }
     }
 }
 
@@ -221,31 +250,31 @@ mod tests {
 
     #[test]
     fn sinc_centre_is_two_fixed_one_original() {
-        let fixed = weight(FilterKind::Sinc, 2.0, 0.0, 0.0, &Original::default());
-        let orig = weight(FilterKind::Sinc, 2.0, 0.0, 0.0, &all_original());
+        let fixed = weight(FilterKind::Sinc, 2.0, 2.0, 0.0, 0.0, &Original::default());
+        let orig = weight(FilterKind::Sinc, 2.0, 2.0, 0.0, 0.0, &all_original());
         assert_eq!(fixed, 4.0, "2 x 2 at the centre");
         assert_eq!(orig, 1.0, "1 x 1 at the centre");
         // Off-centre on one axis only: the centre factor alone differs.
         let x = 0.3_f32;
         let s = (2.0 * f64::from(x)).sin() / f64::from(x);
-        let fixed = weight(FilterKind::Sinc, 2.0, x, 0.0, &Original::default());
-        let orig = weight(FilterKind::Sinc, 2.0, x, 0.0, &all_original());
+        let fixed = weight(FilterKind::Sinc, 2.0, 2.0, x, 0.0, &Original::default());
+        let orig = weight(FilterKind::Sinc, 2.0, 2.0, x, 0.0, &all_original());
         assert!((f64::from(fixed) - 2.0 * s).abs() < 1e-6);
         assert!((f64::from(orig) - s).abs() < 1e-6);
         // The fixed centre is continuous with its neighbourhood; the original is not.
-        let near = weight(FilterKind::Sinc, 2.0, 0.002, 0.0, &Original::default());
+        let near = weight(FilterKind::Sinc, 2.0, 2.0, 0.002, 0.0, &Original::default());
         assert!((near - 4.0).abs() < 1e-4);
     }
 
     #[test]
     fn bessel_centre_is_one_and_continuous() {
         let o = Original::default();
-        assert_eq!(weight(FilterKind::Bessel, 2.0, 0.0, 0.0, &o), 1.0);
-        let near = weight(FilterKind::Bessel, 2.0, 0.002, 0.0, &o);
+        assert_eq!(weight(FilterKind::Bessel, 2.0, 2.0, 0.0, 0.0, &o), 1.0);
+        let near = weight(FilterKind::Bessel, 2.0, 2.0, 0.002, 0.0, &o);
         assert!((near - 1.0).abs() < 1e-5);
         // Radial: depends on hypot(dx, dy) only.
-        let a = weight(FilterKind::Bessel, 2.0, 0.6, 0.8, &o);
-        let b = weight(FilterKind::Bessel, 2.0, 1.0, 0.0, &o);
+        let a = weight(FilterKind::Bessel, 2.0, 2.0, 0.6, 0.8, &o);
+        let b = weight(FilterKind::Bessel, 2.0, 2.0, 1.0, 0.0, &o);
         assert!((a - b).abs() < 1e-6);
         assert!((f64::from(b) - bessel_j1(2.0)).abs() < 1e-6);
     }
@@ -255,17 +284,17 @@ mod tests {
         // Appendix A 3.16: W = 1.2, nx = 4, largest offset 1.375.
         let fixed = Original::default();
         let orig = all_original();
-        assert_eq!(weight(FilterKind::Box, 1.2, 1.375, 0.0, &orig), 0.0);
-        assert_eq!(weight(FilterKind::Box, 1.2, -1.375, 0.0, &orig), 1.0);
-        assert_eq!(weight(FilterKind::Box, 1.2, 0.0, 1.375, &orig), 0.0);
-        assert_eq!(weight(FilterKind::Box, 1.2, 0.0, -1.375, &orig), 1.0);
+        assert_eq!(weight(FilterKind::Box, 1.2, 1.2, 1.375, 0.0, &orig), 0.0);
+        assert_eq!(weight(FilterKind::Box, 1.2, 1.2, -1.375, 0.0, &orig), 1.0);
+        assert_eq!(weight(FilterKind::Box, 1.2, 1.2, 0.0, 1.375, &orig), 0.0);
+        assert_eq!(weight(FilterKind::Box, 1.2, 1.2, 0.0, -1.375, &orig), 1.0);
         for d in [0.375_f32, 0.625, 1.375] {
-            let pos = weight(FilterKind::Box, 1.2, d, 0.0, &fixed);
-            let neg = weight(FilterKind::Box, 1.2, -d, 0.0, &fixed);
+            let pos = weight(FilterKind::Box, 1.2, 1.2, d, 0.0, &fixed);
+            let neg = weight(FilterKind::Box, 1.2, 1.2, -d, 0.0, &fixed);
             assert_eq!(pos, neg, "fixed box symmetric at {d}");
         }
-        assert_eq!(weight(FilterKind::Box, 1.2, 0.6, -0.6, &fixed), 1.0);
-        assert_eq!(weight(FilterKind::Box, 1.2, 0.625, 0.0, &fixed), 0.0);
+        assert_eq!(weight(FilterKind::Box, 1.2, 1.2, 0.6, -0.6, &fixed), 1.0);
+        assert_eq!(weight(FilterKind::Box, 1.2, 1.2, 0.625, 0.0, &fixed), 0.0);
     }
 
     #[test]
@@ -273,23 +302,23 @@ mod tests {
         let fixed = Original::default();
         let orig = all_original();
         // Fixed: support |d| <= W/2 = 1, peak (W/2)^2.
-        assert_eq!(weight(FilterKind::Bartlett, 2.0, 0.0, 0.0, &fixed), 1.0);
-        assert_eq!(weight(FilterKind::Bartlett, 2.0, 0.5, 0.0, &fixed), 0.5);
-        assert_eq!(weight(FilterKind::Bartlett, 2.0, 1.5, 0.0, &fixed), 0.0);
+        assert_eq!(weight(FilterKind::Bartlett, 2.0, 2.0, 0.0, 0.0, &fixed), 1.0);
+        assert_eq!(weight(FilterKind::Bartlett, 2.0, 2.0, 0.5, 0.0, &fixed), 0.5);
+        assert_eq!(weight(FilterKind::Bartlett, 2.0, 2.0, 1.5, 0.0, &fixed), 0.0);
         // Original: support |d| <= W = 2, peak W^2.
-        assert_eq!(weight(FilterKind::Bartlett, 2.0, 0.0, 0.0, &orig), 4.0);
-        assert_eq!(weight(FilterKind::Bartlett, 2.0, 1.5, 0.0, &orig), 1.0);
-        assert_eq!(weight(FilterKind::Bartlett, 2.0, 2.5, 0.0, &orig), 0.0);
+        assert_eq!(weight(FilterKind::Bartlett, 2.0, 2.0, 0.0, 0.0, &orig), 4.0);
+        assert_eq!(weight(FilterKind::Bartlett, 2.0, 2.0, 1.5, 0.0, &orig), 1.0);
+        assert_eq!(weight(FilterKind::Bartlett, 2.0, 2.0, 2.5, 0.0, &orig), 0.0);
     }
 
     #[test]
     fn gaussian_as_printed() {
         let o = Original::default();
-        let w = weight(FilterKind::Gaussian, 2.0, 0.5, 0.0, &o);
+        let w = weight(FilterKind::Gaussian, 2.0, 2.0, 0.5, 0.0, &o);
         let expected = (-0.25_f64).exp() - (-1.0_f64).exp();
         assert!((f64::from(w) - expected).abs() < 1e-7);
-        assert_eq!(weight(FilterKind::Gaussian, 2.0, 1.0, 0.0, &o), 0.0, "zero at r = W/2");
-        assert_eq!(weight(FilterKind::Gaussian, 2.0, 0.8, 0.8, &o), 0.0, "radial cut");
+        assert_eq!(weight(FilterKind::Gaussian, 2.0, 2.0, 1.0, 0.0, &o), 0.0, "zero at r = W/2");
+        assert_eq!(weight(FilterKind::Gaussian, 2.0, 2.0, 0.8, 0.8, &o), 0.0, "radial cut");
     }
 
     proptest! {
@@ -308,13 +337,13 @@ mod tests {
             let far = if neg { -(half + excess) } else { half + excess };
             let near = other * half * 3.0;
             let (dx, dy) = if swap { (near, far) } else { (far, near) };
-            prop_assert_eq!(weight(FilterKind::Box, width, dx, dy, &o), 0.0);
-            prop_assert_eq!(weight(FilterKind::Bartlett, width, dx, dy, &o), 0.0);
+            prop_assert_eq!(weight(FilterKind::Box, width, width, dx, dy, &o), 0.0);
+            prop_assert_eq!(weight(FilterKind::Bartlett, width, width, dx, dy, &o), 0.0);
             // Radial kernel (Gaussian): distance past W/2 in any direction.
             let r = half + excess;
             let (gx, gy) = (r * angle.cos(), r * angle.sin());
             if gx.hypot(gy) > half * (1.0 + 1e-5) {
-                prop_assert_eq!(weight(FilterKind::Gaussian, width, gx, gy, &o), 0.0);
+                prop_assert_eq!(weight(FilterKind::Gaussian, width, width, gx, gy, &o), 0.0);
             }
         }
 
@@ -326,10 +355,10 @@ mod tests {
         ) {
             let o = Original::default();
             for kind in KINDS {
-                let w = weight(kind, width, dx, dy, &o);
+                let w = weight(kind, width, width, dx, dy, &o);
                 prop_assert!(w.is_finite());
-                prop_assert_eq!(w, weight(kind, width, -dx, dy, &o), "{:?}", kind);
-                prop_assert_eq!(w, weight(kind, width, dx, -dy, &o), "{:?}", kind);
+                prop_assert_eq!(w, weight(kind, width, width, -dx, dy, &o), "{:?}", kind);
+                prop_assert_eq!(w, weight(kind, width, width, dx, -dy, &o), "{:?}", kind);
             }
         }
     }

@@ -15,6 +15,7 @@ pub mod error;
 pub mod image;
 pub mod kernel;
 pub mod output;
+pub mod renderman;
 pub mod table;
 pub mod window;
 

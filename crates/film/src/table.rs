@@ -5,7 +5,7 @@
 //! rounding). Every interior output pixel therefore receives each entry exactly once from its
 //! neighbourhood: unit gain for full opaque coverage (Appendix A 3.16).
 
-use reyes_scene::{FilterKind, Original};
+use reyes_scene::{Filter, FilterKind, Original};
 
 use crate::FilmError;
 use crate::kernel;
@@ -27,6 +27,7 @@ pub fn border_for_width(width: f32) -> u32 {
 pub struct FilterTable {
     kind: FilterKind,
     width: f32,
+    height: f32,
     border: u32,
     footprint: u32,
     ns: usize,
@@ -35,21 +36,15 @@ pub struct FilterTable {
 }
 
 impl FilterTable {
-    /// Build the normalised table for kernel `kind` of full width `width`, an `nx x ny` stratum
-    /// grid, and `location[s]` = Appendix A's `Location[s]`: the lower-left corner of sample
-    /// `s`'s stratum in `[0,1)²` (`nx * ny` entries).
+    /// Build the normalised table for kernel `kind` of full width `width` (in x and y), an
+    /// `nx x ny` stratum grid, and `location[s]` = Appendix A's `Location[s]`: the lower-left
+    /// corner of sample `s`'s stratum in `[0,1)²` (`nx * ny` entries).
     ///
-    /// Port of `tablesinit` (Appendix A 2.11, "Create filter table" and "Normalize filter"):
-    /// `w[s][j][i] = kernel(dx, dy)` with `dx = location[s].x + 0.5/nx - (i - border + 0.5)`,
-    /// `dy = location[s].y + 0.5/ny - (j - border + 0.5)`, divided by the sum of all entries.
-    /// The offsets use the stratum centre, never the jittered sample position. The sum is
-    /// accumulated in `f64` (the C used `float`).
+    /// The same as [`FilterTable::for_filter`] with [`Filter::new`]`(kind, width)`.
     ///
     /// # Errors
     ///
-    /// [`FilmError::DegenerateFilter`] if `width` is not finite and positive, `nx` or `ny` is 0,
-    /// `location.len() != nx * ny`, the table would be unreasonably large, or the weights sum
-    /// to zero or a non-finite value.
+    /// As [`FilterTable::for_filter`].
     pub fn new(
         kind: FilterKind,
         width: f32,
@@ -58,9 +53,37 @@ impl FilterTable {
         location: &[[f32; 2]],
         original: &Original,
     ) -> Result<FilterTable, FilmError> {
-        let degenerate = |reason: String| FilmError::DegenerateFilter { kind, width, reason };
-        if !(width.is_finite() && width > 0.0) {
-            return Err(degenerate("the width must be finite and positive".into()));
+        FilterTable::for_filter(&Filter::new(kind, width), nx, ny, location, original)
+    }
+
+    /// Build the normalised table for `filter` (its kernel and full widths in x and y) over an
+    /// `nx x ny` stratum grid whose stratum `s` has lower-left corner `location[s]`.
+    ///
+    /// Port of `tablesinit` (Appendix A 2.11, "Create filter table" and "Normalize filter"):
+    /// `w[s][j][i] = kernel(dx, dy)` with `dx = location[s].x + 0.5/nx - (i - border + 0.5)`,
+    /// `dy = location[s].y + 0.5/ny - (j - border + 0.5)`, divided by the sum of all entries.
+    /// The offsets use the stratum centre, never the jittered sample position. The sum is
+    /// accumulated in `f64` (the C used `float`). The footprint is square, its `border` that of
+    /// the larger width ([`Filter::max_width`]); the kernel cuts itself to each width. Weights
+    /// may be negative (RenderMan's catmull-rom and sinc): only their sum must be positive.
+    ///
+    /// # Errors
+    ///
+    /// [`FilmError::DegenerateFilter`] if a width is not finite and positive, `nx` or `ny` is 0,
+    /// `location.len() != nx * ny`, the table would be unreasonably large, or the weights sum
+    /// to zero or less, or to a non-finite value.
+    pub fn for_filter(
+        filter: &Filter,
+        nx: u32,
+        ny: u32,
+        location: &[[f32; 2]],
+        original: &Original,
+    ) -> Result<FilterTable, FilmError> {
+        let (kind, width, height) = (filter.kind, filter.width, filter.y_width());
+        let degenerate =
+            |reason: String| FilmError::DegenerateFilter { kind, width, height, reason };
+        if !(width.is_finite() && width > 0.0 && height.is_finite() && height > 0.0) {
+            return Err(degenerate("the widths must be finite and positive".into()));
         }
         if nx == 0 || ny == 0 {
             return Err(degenerate(format!("empty {nx}x{ny} sample grid")));
@@ -74,7 +97,7 @@ impl FilterTable {
                 location.len()
             )));
         }
-        let border = border_for_width(width);
+        let border = border_for_width(filter.max_width());
         let footprint = 2 * border + 1;
         let fw = footprint as usize;
         let entries = fw
@@ -99,26 +122,30 @@ impl FilterTable {
                 let dy = (cy - (j as f64 - b + 0.5)) as f32;
                 for i in 0..fw {
                     let dx = (cx - (i as f64 - b + 0.5)) as f32;
-                    let w = kernel::weight(kind, width, dx, dy, original);
+                    let w = kernel::weight(kind, width, height, dx, dy, original);
                     sum += f64::from(w);
                     weights.push(w);
                 }
             }
         }
-        if !sum.is_finite() || sum == 0.0 {
+        if !sum.is_finite() || sum <= 0.0 {
             return Err(degenerate(format!("the filter weights sum to {sum}")));
         }
         for w in &mut weights {
             *w = (f64::from(*w) / sum) as f32;
         }
+        // Both boxes of width 1 weigh every stratum of the own pixel alike (RenderMan's cut is
+        // inclusive, stratum centres lie strictly inside the pixel).
+        let unit_box = matches!(kind, FilterKind::Box | FilterKind::RiBox);
         Ok(FilterTable {
             kind,
             width,
+            height,
             border,
             footprint,
             ns,
             weights,
-            box_fast: kind == FilterKind::Box && width == 1.0,
+            box_fast: unit_box && width == 1.0 && height == 1.0,
         })
     }
 
@@ -127,9 +154,14 @@ impl FilterTable {
         self.kind
     }
 
-    /// The full filter width in pixels.
+    /// The full filter width in x, in pixels.
     pub fn width(&self) -> f32 {
         self.width
+    }
+
+    /// The full filter width in y, in pixels (the x width unless the filter gave a height).
+    pub fn height(&self) -> f32 {
+        self.height
     }
 
     /// Appendix A's `Border`: how far (pixels) a sample's weights reach beyond its own pixel.
@@ -163,7 +195,8 @@ impl FilterTable {
         &self.weights[s * n..(s + 1) * n]
     }
 
-    /// Appendix A's `BoxFilterFlag`: box of width exactly 1 (border 0), where the splat adds
+    /// Appendix A's `BoxFilterFlag`: box (Appendix A's or RenderMan's) of width exactly 1 in x
+    /// and y (border 0), where the splat adds
     /// `1/NS` of each sample to its own pixel (`applyboxfilter`).
     pub fn box_fast(&self) -> bool {
         self.box_fast
@@ -356,5 +389,165 @@ pub(crate) mod tests {
             .map(|e| e.to_string())
             .unwrap_or_default();
         assert!(msg.contains("Box") && !msg.contains('\n'), "{msg}");
+    }
+
+    /// The nine RenderMan kinds.
+    const RI: [FilterKind; 9] = [
+        FilterKind::RiBox,
+        FilterKind::RiTriangle,
+        FilterKind::RiCatmullRom,
+        FilterKind::RiGaussian,
+        FilterKind::RiSinc,
+        FilterKind::RiDisk,
+        FilterKind::RiBessel,
+        FilterKind::RiMitchell,
+        FilterKind::RiBlackmanHarris,
+    ];
+
+    fn table(kind: FilterKind, width: f32, height: Option<f32>, n: u32) -> FilterTable {
+        let filter = Filter { kind, width, height };
+        FilterTable::for_filter(&filter, n, n, &grid_locations(n, n), &Original::default())
+            .unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    /// The stratum-centre offset `(dx, dy)` of entry `k` of sample `s`'s weights.
+    fn offset(t: &FilterTable, loc: &[[f32; 2]], n: u32, s: usize, k: usize) -> (f32, f32) {
+        let fw = t.footprint() as usize;
+        let b = t.border() as f32;
+        let half = 0.5 / n as f32;
+        let (i, j) = ((k % fw) as f32, (k / fw) as f32);
+        (loc[s][0] + half - (i - b + 0.5), loc[s][1] + half - (j - b + 0.5))
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn renderman_tables_sum_to_one(
+            kind in proptest::sample::select(RI.to_vec()),
+            width in 1.0_f32..6.0,
+            height in 1.0_f32..6.0,
+            n in 1_u32..6,
+        ) {
+            // From a pixel wide up: a narrower filter can miss every stratum centre (see
+            // `a_filter_between_the_stratum_centres_is_degenerate`).
+            let t = table(kind, width, Some(height), n);
+            let fw = t.footprint() as usize;
+            proptest::prop_assert_eq!(t.border(), border_for_width(width.max(height)));
+            proptest::prop_assert_eq!(t.weights().len(), t.ns() * fw * fw);
+            proptest::prop_assert!(t.weights().iter().all(|w| w.is_finite()));
+            let sum: f64 = t.weights().iter().map(|&w| f64::from(w)).sum();
+            proptest::prop_assert!((sum - 1.0).abs() < 1e-5, "{:?} {}x{} {}: sum {}", kind, width, height, n, sum);
+        }
+    }
+
+    #[test]
+    fn a_filter_between_the_stratum_centres_is_degenerate() {
+        // A disk 0.6 wide on a 2x2 grid: the stratum centres lie 0.25 from the pixel centre
+        // in x and y, outside the disk, and every other pixel's are further: nothing to weigh.
+        let f = Filter { kind: FilterKind::RiDisk, width: 0.6, height: None };
+        let e = FilterTable::for_filter(&f, 2, 2, &grid_locations(2, 2), &Original::default());
+        assert!(matches!(e, Err(FilmError::DegenerateFilter { .. })));
+        // On a 3x3 grid the centre stratum lies on the pixel centre.
+        assert_eq!(table(FilterKind::RiDisk, 0.6, None, 3).ns(), 9);
+    }
+
+    #[test]
+    fn renderman_tables_are_symmetric() {
+        for kind in RI {
+            for (width, height) in [(2.0, 2.0), (4.0, 1.0), (1.5, 3.0)] {
+                for n in GRIDS {
+                    let loc = grid_locations(n, n);
+                    let t = table(kind, width, Some(height), n);
+                    assert!(point_symmetric(&t, &loc, n, n), "{kind:?} {width}x{height} {n}x{n}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_footprint_reaches_the_larger_width_and_the_kernel_cuts_each() {
+        let n = 4;
+        let loc = grid_locations(n, n);
+        for (width, height) in [(4.0_f32, 1.0_f32), (1.0, 4.0)] {
+            let t = table(FilterKind::RiBox, width, Some(height), n);
+            assert_eq!((t.border(), t.footprint()), (2, 5), "{width}x{height}");
+            assert_eq!((t.width(), t.height()), (width, height));
+            for s in 0..t.ns() {
+                for (k, &w) in t.sample_weights(s).iter().enumerate() {
+                    let (dx, dy) = offset(&t, &loc, n, s, k);
+                    let inside = dx.abs() <= 0.5 * width && dy.abs() <= 0.5 * height;
+                    assert_eq!(w != 0.0, inside, "{width}x{height} s={s} k={k} ({dx}, {dy})");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn appendix_a_kernels_stretch_to_a_height() {
+        // Appendix A's box of width 2 and height 1 is RenderMan's 2 x 1 box; without a height,
+        // or with the height equal to the width, it is exactly the width-only table.
+        let o = Original::default();
+        let loc = grid_locations(4, 4);
+        let stretched = table(FilterKind::Box, 2.0, Some(1.0), 4);
+        assert_eq!(stretched.weights(), table(FilterKind::RiBox, 2.0, Some(1.0), 4).weights());
+        let plain = FilterTable::new(FilterKind::Box, 2.0, 4, 4, &loc, &o).unwrap();
+        assert_ne!(stretched.weights(), plain.weights());
+        for kind in KINDS {
+            for width in WIDTHS {
+                let plain = FilterTable::new(kind, width, 4, 4, &loc, &o).unwrap();
+                assert_eq!(table(kind, width, None, 4), plain, "{kind:?} {width}");
+                assert_eq!(table(kind, width, Some(width), 4), plain, "{kind:?} {width}");
+            }
+        }
+        // A height taller than the width widens the footprint.
+        assert_eq!(table(FilterKind::Gaussian, 2.0, Some(4.0), 4).border(), 2);
+    }
+
+    #[test]
+    fn the_renderman_gaussian_is_not_appendix_as() {
+        // RenderMan's gaussian 2 x 2, exp(-2 ((x)^2 + (y)^2)) cut to the square, against
+        // Appendix A's gaussian 2, exp(-r^2) - exp(-1) cut to the unit circle: the same
+        // footprint, different weights (in the corners Appendix A's is 0, RenderMan's not).
+        let ri = table(FilterKind::RiGaussian, 2.0, None, 4);
+        let aa = table(FilterKind::Gaussian, 2.0, None, 4);
+        assert_eq!((ri.border(), ri.footprint()), (aa.border(), aa.footprint()));
+        let largest = ri
+            .weights()
+            .iter()
+            .zip(aa.weights())
+            .map(|(a, b)| (a - b).abs() / a.abs().max(b.abs()))
+            .fold(0.0_f32, f32::max);
+        assert!(largest > 0.5, "largest relative difference {largest}");
+        let zeros = |t: &FilterTable| t.weights().iter().filter(|&&w| w == 0.0).count();
+        assert!(zeros(&aa) > zeros(&ri), "{} vs {}", zeros(&aa), zeros(&ri));
+    }
+
+    #[test]
+    fn a_unit_renderman_box_is_the_fast_box() {
+        let loc = grid_locations(4, 4);
+        let ri = table(FilterKind::RiBox, 1.0, None, 4);
+        let aa = FilterTable::new(FilterKind::Box, 1.0, 4, 4, &loc, &Original::default()).unwrap();
+        assert!(ri.box_fast());
+        assert_eq!(ri.weights(), aa.weights());
+        assert!(!table(FilterKind::RiBox, 1.0, Some(2.0), 4).box_fast());
+        assert!(!table(FilterKind::Box, 1.0, Some(2.0), 4).box_fast());
+    }
+
+    #[test]
+    fn degenerate_heights_are_errors() {
+        let o = Original::default();
+        let loc = grid_locations(2, 2);
+        for height in [0.0, -1.0, f32::NAN, f32::INFINITY] {
+            let f = Filter { kind: FilterKind::RiGaussian, width: 2.0, height: Some(height) };
+            let e = FilterTable::for_filter(&f, 2, 2, &loc, &o);
+            assert!(matches!(e, Err(FilmError::DegenerateFilter { .. })), "height {height}");
+        }
+        // Every weight cut (locations far outside the pixel): the sum is 0.
+        let far = [[5.0_f32, 5.0]; 4];
+        let f = Filter { kind: FilterKind::RiSinc, width: 4.0, height: Some(1.0) };
+        let msg = FilterTable::for_filter(&f, 2, 2, &far, &o)
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default();
+        assert!(msg.contains("RiSinc filter of width 4 x 1"), "{msg}");
     }
 }

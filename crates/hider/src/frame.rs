@@ -25,7 +25,8 @@ pub struct Frame {
     pub buckets_y: u32,
 }
 
-/// Appendix A's `Border` for a filter of full width `width`: `(int)(width/2 + 0.499)`.
+/// Appendix A's `Border` for a filter of full width `width`: `(int)(width/2 + 0.499)`. For a
+/// filter with different x and y widths, pass the larger.
 pub fn border_for_filter_width(width: f32) -> u32 {
     (width / 2.0 + 0.499).max(0.0) as u32
 }

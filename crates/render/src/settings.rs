@@ -58,11 +58,9 @@ pub fn hider_config(scene: &Scene, camera: &CameraSetup) -> HiderConfig {
 /// The filter table of a scene's `hider.filter` over `hider`'s sample locations (shared by
 /// both hiders and the golden tolerance).
 pub fn filter_table(scene: &Scene, hider: &Hider) -> Result<FilterTable, FilmError> {
-    let f = &scene.hider.filter;
     let config = hider.config();
-    FilterTable::new(
-        f.kind,
-        f.width,
+    FilterTable::for_filter(
+        &scene.hider.filter,
         config.nx,
         config.ny,
         &hider.tables().location,
@@ -78,12 +76,13 @@ pub fn shutter_shape(shape: reyes_scene::ShutterShape) -> ShutterShape {
     }
 }
 
-/// The bucket layout a scene asks for.
+/// The bucket layout a scene asks for: its border reaches the larger of the filter's x and y
+/// widths, as the filter table's footprint does.
 pub fn frame_for(scene: &Scene) -> Frame {
     Frame::new(
         scene.image.width,
         scene.image.height,
-        border_for_filter_width(scene.hider.filter.width),
+        border_for_filter_width(scene.hider.filter.max_width()),
         scene.hider.bucket_size.0,
         scene.hider.bucket_size.1,
     )

@@ -149,7 +149,10 @@ impl RenderStats {
             self.samples.0,
             self.samples.1,
             self.filter.kind,
-            self.filter.width
+            match self.filter.height {
+                Some(h) if h != self.filter.width => format!("{} x {h}", self.filter.width),
+                _ => format!("{}", self.filter.width),
+            }
         );
         if let Some(r) = self.rays.as_ref().filter(|r| r.ray_hider) {
             let _ = writeln!(

@@ -129,6 +129,8 @@ fn the_document_covers_every_variant() {
         "striped: true",
         "roll: Some(",
         "steps:",
+        "height: Some(",
+        "kind: RiGaussian",
     ] {
         assert!(ron_blocks().iter().any(|b| b.contains(name)), "no ```ron example uses {name}");
     }

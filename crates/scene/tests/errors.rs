@@ -75,6 +75,13 @@ const CASES: &[Case] = &[
     Case { name: "filter width 0", from: "width: 2.0", to: "width: 0.0", field: "hider.filter.width", at: Some((4, 66)) },
     Case { name: "filter width negative", from: "width: 2.0", to: "width: -2.0", field: "hider.filter.width", at: Some((4, 66)) },
     Case { name: "filter width too wide", from: "width: 2.0", to: "width: 17.0", field: "hider.filter.width", at: Some((4, 66)) },
+    Case { name: "filter height 0", from: "width: 2.0)", to: "width: 2.0, height: Some(0.0))", field: "hider.filter.height", at: Some((4, 79)) },
+    Case { name: "filter height negative", from: "width: 2.0)", to: "width: 2.0, height: Some(-1.0))", field: "hider.filter.height", at: Some((4, 79)) },
+    Case { name: "filter height too tall", from: "width: 2.0)", to: "width: 2.0, height: Some(17.0))", field: "hider.filter.height", at: Some((4, 79)) },
+    Case { name: "filter height NaN", from: "width: 2.0)", to: "width: 2.0, height: Some(NaN))", field: "hider.filter.height", at: Some((4, 79)) },
+    Case { name: "filter height without Some", from: "width: 2.0)", to: "width: 2.0, height: 1.0)", field: "hider.filter.height", at: Some((4, 79)) },
+    Case { name: "RenderMan filter width negative", from: "kind: Gaussian, width: 2.0", to: "kind: RiGaussian, width: -2.0", field: "hider.filter.width", at: Some((4, 68)) },
+    Case { name: "unknown RenderMan filter", from: "Gaussian", to: "RiLanczos", field: "hider.filter.kind", at: Some((4, 49)) },
     Case { name: "bucket size 0", from: "(4, 4),", to: "(4, 4), bucket_size: (0, 16),", field: "hider.bucket_size[0]", at: Some((4, 48)) },
     Case { name: "shading rate 0", from: "(4, 4),", to: "(4, 4), shading_rate: 0.0,", field: "hider.shading_rate", at: Some((4, 48)) },
     Case { name: "max grid size 0", from: "(4, 4),", to: "(4, 4), max_grid_size: 0,", field: "hider.max_grid_size", at: Some((4, 49)) },
@@ -246,6 +253,9 @@ fn the_catalogue_covers_the_required_inputs() {
         "hither equal to yon",
         "filter width 0",
         "filter width negative",
+        "filter height 0",
+        "filter height negative",
+        "filter height NaN",
         "negative radius",
         "NaN fov",
         "inf yon",
@@ -310,6 +320,14 @@ fn exact_messages() {
             CASES.iter().find(|c| c.name == name).unwrap_or_else(|| panic!("no case {name}"));
         run(case).to_string()
     };
+    assert_eq!(
+        shown("filter height negative"),
+        "scenes/bad.ron:4:79: hider.filter.height: must be in (0, 16] pixels, got -1"
+    );
+    assert_eq!(
+        shown("filter height NaN"),
+        "scenes/bad.ron:4:79: hider.filter.height: must be finite, got NaN"
+    );
     assert_eq!(
         shown("negative radius"),
         "scenes/bad.ron:7:42: objects[0].shape.radius: must be > 0, got -1"

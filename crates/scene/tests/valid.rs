@@ -66,7 +66,7 @@ fn the_full_example_parses_with_the_expected_values() {
             jitter: true,
             pattern: SpatialPattern::Fig6,
             time_pattern: reyes_scene::TimePattern::Fig14,
-            filter: Filter { kind: FilterKind::Gaussian, width: 2.0 },
+            filter: Filter { kind: FilterKind::Gaussian, width: 2.0, height: None },
             bucket_size: (16, 16),
             shading_rate: 1.0,
             seed: 0,
@@ -126,7 +126,7 @@ fn defaults_apply_when_sections_are_omitted() {
     assert_eq!(scene.hider.pixel_samples, (4, 4));
     assert!(scene.hider.jitter);
     assert_eq!(scene.hider.pattern, SpatialPattern::Fig6);
-    assert_eq!(scene.hider.filter, Filter { kind: FilterKind::Gaussian, width: 2.0 });
+    assert_eq!(scene.hider.filter, Filter { kind: FilterKind::Gaussian, width: 2.0, height: None });
     assert_eq!(scene.hider.bucket_size, (16, 16));
     assert_eq!(scene.hider.shading_rate, 1.0);
     assert_eq!(scene.hider.max_grid_size, 256);
