@@ -2,88 +2,31 @@
 //!
 //! Exit codes: 0 success; 2 usage or scene errors (including bad overrides and an unknown
 //! output format); 1 render or I/O errors. Every error is one line on stderr, and no partial
-//! output file is ever left behind (the film stage writes atomically).
+//! output file is ever left behind (the film stage writes atomically). Scene warnings (RIB
+//! requests or features not supported) go to stderr, one line each, before rendering.
 //!
 //! `reyes-render measure SCENE --object NAME [--samples N] [--seed N]` (the first argument
 //! `measure`; a scene file of that name is `./measure`) measures the volume and centre of mass
 //! of a closed object or CSG solid instead of rendering (patent FIG. 23; see
 //! `reyes_measure`), with the same exit codes.
 
+mod args;
+mod output;
+
 use std::ffi::OsStr;
 use std::io::IsTerminal;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
 use clap::Parser;
 use indicatif::{ProgressBar, ProgressStyle};
-use reyes_measure::{DEFAULT_SAMPLES, MeasureOptions, measure};
+use reyes_measure::{MeasureOptions, measure};
 use reyes_render::{RenderOptions, render};
+use reyes_rib::RiOptions;
+use reyes_scene::Scene;
 
-/// Render a RON scene with a REYES micropolygon renderer and the stochastic hider of
-/// US patent 4,897,806 (Appendix A).
-#[derive(Parser, Debug)]
-#[command(
-    name = "reyes-render",
-    version,
-    after_help = "Mass properties (patent FIG. 23): reyes-render measure SCENE --object NAME \
-                  [--samples N] [--seed N]\n  prints the volume and centre of mass of a closed \
-                  object or CSG solid; see reyes-render measure --help"
-)]
-struct Args {
-    /// Scene file (RON); see docs/scene-format.md.
-    scene: PathBuf,
-    /// Output image: .exr (32-bit float RGBA plus Z) or .png (8-bit sRGB with alpha).
-    #[arg(short, long, value_name = "FILE")]
-    output: PathBuf,
-    /// Worker threads (default: one per core).
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=1024))]
-    threads: Option<u16>,
-    /// Override the scene's seed.
-    #[arg(long, value_name = "N")]
-    seed: Option<u64>,
-    /// Override the scene's pixel samples, as NxM (each 1 to 64).
-    #[arg(long, value_name = "NxM", value_parser = parse_samples)]
-    samples: Option<(u32, u32)>,
-    /// Print statistics (hits, misses, lerps, visible points, micropolygons, time per stage).
-    #[arg(long)]
-    stats: bool,
-    /// No progress bar.
-    #[arg(short, long)]
-    quiet: bool,
-}
-
-/// Volume and centre of mass of a closed object or CSG solid (patent FIG. 23), by stratified
-/// pseudo-random point sampling of its bounding box at shutter open: one jittered point in each
-/// of about N equal cells, each tested for being inside. Prints each estimate with one standard
-/// error, estimated from neighbouring cells paired (an overestimate).
-#[derive(Parser, Debug)]
-#[command(name = "reyes-render measure", bin_name = "reyes-render measure", version)]
-struct MeasureArgs {
-    /// Scene file (RON); see docs/scene-format.md.
-    scene: PathBuf,
-    /// The object (`objects[].name`) or CSG solid (`solids[].name`) to measure. Cylinders,
-    /// cones and paraboloids count as closed by their end caps.
-    #[arg(long, value_name = "NAME")]
-    object: String,
-    /// About how many sample points (one per cell).
-    #[arg(long, value_name = "N", default_value_t = DEFAULT_SAMPLES)]
-    samples: u64,
-    /// Seed of the jitter (default: the scene's seed).
-    #[arg(long, value_name = "N")]
-    seed: Option<u64>,
-}
-
-fn parse_samples(s: &str) -> Result<(u32, u32), String> {
-    let bad = || format!("expected NxM with N and M from 1 to 64, got '{s}'");
-    let (a, b) = s.split_once(['x', 'X']).ok_or_else(bad)?;
-    let n: u32 = a.trim().parse().map_err(|_| bad())?;
-    let m: u32 = b.trim().parse().map_err(|_| bad())?;
-    if !(1..=64).contains(&n) || !(1..=64).contains(&m) {
-        return Err(bad());
-    }
-    Ok((n, m))
-}
+use args::{Args, MeasureArgs};
 
 fn fail(code: u8, msg: impl std::fmt::Display) -> ExitCode {
     eprintln!("reyes-render: error: {msg}");
@@ -145,19 +88,58 @@ fn main() -> ExitCode {
         return fail(1, format_args!("{}: output directory does not exist", args.output.display()));
     }
 
-    let mut scene = match reyes_scene::load(&args.scene) {
-        Ok(s) => s,
+    let options = RiOptions { strict: args.strict, frames: args.frames.clone().map(|f| f.0) };
+    let loaded = match reyes_rib::load_scene_file(&args.scene, &options) {
+        Ok(l) => l,
         Err(e) => return fail(e.exit_code(), e),
     };
-    if let Some(seed) = args.seed {
-        scene.hider.seed = seed;
+    for w in &loaded.warnings {
+        eprintln!("reyes-render: {w}");
     }
-    if let Some(s) = args.samples {
-        scene.hider.pixel_samples = s;
+    if loaded.frames.is_empty() {
+        return fail(2, format_args!("{}: no frame to render", args.scene.display()));
     }
+    let numbered = loaded.frames.len() > 1 || loaded.frames.iter().any(|f| f.number.is_some());
+    for frame in loaded.frames {
+        let mut scene = frame.scene;
+        if let Some(seed) = args.seed {
+            scene.hider.seed = seed;
+        }
+        if let Some(s) = args.samples {
+            scene.hider.pixel_samples = s;
+        }
+        let main = output::frame_path(&args.output, frame.number, numbered);
+        let extras: Vec<PathBuf> = frame
+            .displays
+            .iter()
+            .filter(|d| d.extra)
+            .filter_map(|d| {
+                let path = output::extra_path(&args.output, &d.name, frame.number, numbered);
+                if path.is_none() {
+                    eprintln!(
+                        "reyes-render: {}: warning: Display: \"{}\" is not written: only .exr and .png outputs are",
+                        d.at, d.name
+                    );
+                }
+                path
+            })
+            .collect();
+        if let Err(code) = render_frame(&args, &scene, &main, &extras) {
+            return code;
+        }
+    }
+    ExitCode::SUCCESS
+}
 
+/// Renders one frame to `main` (and the same image to each of `extras`).
+fn render_frame(
+    args: &Args,
+    scene: &Scene,
+    main: &Path,
+    extras: &[PathBuf],
+) -> Result<(), ExitCode> {
     let progress = if !args.quiet && std::io::stderr().is_terminal() {
-        let frame = reyes_render::frame_for(&scene);
+        let frame = reyes_render::frame_for(scene);
         let bar = ProgressBar::new(frame.bucket_count() as u64);
         if let Ok(style) = ProgressStyle::with_template("{bar:40} {pos}/{len} buckets {elapsed}") {
             bar.set_style(style);
@@ -172,21 +154,18 @@ fn main() -> ExitCode {
         }
     };
     let opts = RenderOptions { threads: args.threads.map(usize::from), on_bucket: Some(&tick) };
-    let mut rendered = match render(&scene, &opts) {
-        Ok(r) => r,
-        Err(e) => return fail(1, e),
-    };
+    let mut rendered = render(scene, &opts).map_err(|e| fail(1, e))?;
     if let Some(b) = &progress {
         b.finish_and_clear();
     }
     let t = Instant::now();
-    if let Err(e) = reyes_film::write(&args.output, &rendered.film) {
-        return fail(1, e);
+    for path in std::iter::once(main).chain(extras.iter().map(PathBuf::as_path)) {
+        reyes_film::write(path, &rendered.film).map_err(|e| fail(1, e))?;
     }
     rendered.stats.t_write = t.elapsed();
     rendered.stats.peak_memory = reyes_render::peak_memory();
     if args.stats {
         print!("{}", rendered.stats);
     }
-    ExitCode::SUCCESS
+    Ok(())
 }

@@ -24,16 +24,20 @@
 
 mod decl;
 mod error;
+pub mod input;
 mod lexer;
 mod reader;
 mod request;
+pub mod ri;
 mod signature;
 mod source;
 
 pub use decl::{Class, Decl, Declarations, STANDARD, Storage, Type};
 pub use error::{Location, Pos, RibError, Warning};
+pub use input::{Format, InputError, detect, load_scene_file};
 pub use reader::{Reader, ReaderOptions};
 pub use request::{Data, Param, Request, Value};
+pub use ri::{Display, Frame, Loaded, RiOptions, load};
 pub use signature::{Arg, ArgKind, RequestKind, Signature};
 pub use source::Source;
 

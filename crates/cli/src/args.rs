@@ -1,0 +1,101 @@
+//! The command line: the arguments of `reyes-render` and `reyes-render measure`.
+
+use std::path::PathBuf;
+
+use clap::Parser;
+use reyes_measure::DEFAULT_SAMPLES;
+
+/// Render a scene (RON or RenderMan RIB) with a REYES micropolygon renderer and the stochastic
+/// hider of US patent 4,897,806 (Appendix A).
+#[derive(Parser, Debug)]
+#[command(
+    name = "reyes-render",
+    version,
+    after_help = "Mass properties (patent FIG. 23): reyes-render measure SCENE --object NAME \
+                  [--samples N] [--seed N]\n  prints the volume and centre of mass of a closed \
+                  object or CSG solid; see reyes-render measure --help"
+)]
+pub(crate) struct Args {
+    /// Scene file: RON (docs/scene-format.md) or RIB, plain or gzipped (docs/rib.md), by its
+    /// extension or else its content; - reads standard input.
+    pub scene: PathBuf,
+    /// Output image: .exr (32-bit float RGBA plus Z) or .png (8-bit sRGB with alpha). Several
+    /// frames (RIB FrameBegin) go to numbered files: a run of # or a %0Nd in the name takes
+    /// the frame number, else it is inserted before the extension (out.0001.exr).
+    #[arg(short, long, value_name = "FILE")]
+    pub output: PathBuf,
+    /// Worker threads (default: one per core).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=1024))]
+    pub threads: Option<u16>,
+    /// Override the scene's seed.
+    #[arg(long, value_name = "N")]
+    pub seed: Option<u64>,
+    /// Override the scene's pixel samples, as NxM (each 1 to 64).
+    #[arg(long, value_name = "NxM", value_parser = parse_samples)]
+    pub samples: Option<(u32, u32)>,
+    /// Print statistics (hits, misses, lerps, visible points, micropolygons, time per stage).
+    #[arg(long)]
+    pub stats: bool,
+    /// No progress bar.
+    #[arg(short, long)]
+    pub quiet: bool,
+    /// RIB frames to render, e.g. 1-100 or 1,3,5-9 (default: every frame).
+    #[arg(long, value_name = "LIST", value_parser = parse_frames)]
+    pub frames: Option<FrameList>,
+    /// Unknown RIB shaders are errors instead of warnings.
+    #[arg(long)]
+    pub strict: bool,
+}
+
+/// Volume and centre of mass of a closed object or CSG solid (patent FIG. 23), by stratified
+/// pseudo-random point sampling of its bounding box at shutter open: one jittered point in each
+/// of about N equal cells, each tested for being inside. Prints each estimate with one standard
+/// error, estimated from neighbouring cells paired (an overestimate).
+#[derive(Parser, Debug)]
+#[command(name = "reyes-render measure", bin_name = "reyes-render measure", version)]
+pub(crate) struct MeasureArgs {
+    /// Scene file (RON); see docs/scene-format.md.
+    pub scene: PathBuf,
+    /// The object (`objects[].name`) or CSG solid (`solids[].name`) to measure. Cylinders,
+    /// cones and paraboloids count as closed by their end caps.
+    #[arg(long, value_name = "NAME")]
+    pub object: String,
+    /// About how many sample points (one per cell).
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_SAMPLES)]
+    pub samples: u64,
+    /// Seed of the jitter (default: the scene's seed).
+    #[arg(long, value_name = "N")]
+    pub seed: Option<u64>,
+}
+
+pub(crate) fn parse_samples(s: &str) -> Result<(u32, u32), String> {
+    let bad = || format!("expected NxM with N and M from 1 to 64, got '{s}'");
+    let (a, b) = s.split_once(['x', 'X']).ok_or_else(bad)?;
+    let n: u32 = a.trim().parse().map_err(|_| bad())?;
+    let m: u32 = b.trim().parse().map_err(|_| bad())?;
+    if !(1..=64).contains(&n) || !(1..=64).contains(&m) {
+        return Err(bad());
+    }
+    Ok((n, m))
+}
+
+/// Frame numbers to render: inclusive ranges.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct FrameList(pub Vec<(i32, i32)>);
+
+/// A frame list: numbers and inclusive ranges separated by commas (`1-100`, `1,3,5-9`).
+pub(crate) fn parse_frames(s: &str) -> Result<FrameList, String> {
+    let bad = || format!("expected frame numbers and ranges like 1-100 or 1,3,5-9, got '{s}'");
+    s.split(',')
+        .map(|part| {
+            let part = part.trim();
+            let (a, b) = match part.split_once('-').filter(|(a, _)| !a.is_empty()) {
+                Some((a, b)) => (a.trim(), b.trim()),
+                None => (part, part),
+            };
+            let (a, b): (i32, i32) = (a.parse().map_err(|_| bad())?, b.parse().map_err(|_| bad())?);
+            if a > b { Err(bad()) } else { Ok((a, b)) }
+        })
+        .collect::<Result<_, _>>()
+        .map(FrameList)
+}

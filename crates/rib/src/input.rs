@@ -1,0 +1,126 @@
+//! One entry for every scene file: RON or RIB, chosen by the file's extension, or by its
+//! content when the extension says nothing (or the scene comes from standard input, `-`).
+//! Both front-ends end in the same validated [`reyes_scene::Scene`]s.
+//!
+//! Invariant: the format decision depends only on the name and the first bytes; errors keep
+//! their front-end's one-line form and exit code (2 for a bad scene, 1 for I/O).
+
+use std::io::Read;
+use std::path::Path;
+
+use crate::{Frame, Loaded, RiOptions, RibError, Source};
+
+/// The two scene formats.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    /// The project's own RON scene format (docs/scene-format.md).
+    Ron,
+    /// RenderMan RIB, ASCII or binary, possibly gzipped (docs/rib.md).
+    Rib,
+}
+
+/// Why a scene file could not be loaded.
+#[derive(Debug, thiserror::Error)]
+pub enum InputError {
+    /// A RON scene failed.
+    #[error(transparent)]
+    Ron(#[from] reyes_scene::LoadError),
+    /// A RIB scene failed.
+    #[error(transparent)]
+    Rib(#[from] RibError),
+    /// Standard input could not be read.
+    #[error("<stdin>: cannot read: {0}")]
+    Stdin(std::io::Error),
+}
+
+impl InputError {
+    /// Exit code: 1 for I/O failures, 2 for bad scenes.
+    pub fn exit_code(&self) -> u8 {
+        match self {
+            InputError::Ron(e) => e.exit_code(),
+            InputError::Rib(RibError::Io { .. } | RibError::Archive { .. }) => 1,
+            InputError::Rib(_) => 2,
+            InputError::Stdin(_) => 1,
+        }
+    }
+}
+
+/// The format of the file `path` whose first bytes are `head`: `.ron` is RON; `.rib` and
+/// `.rib.gz` (and any gzip data) are RIB; otherwise RON when the text starts (after white
+/// space) with a `//` or `/*` comment or with `Scene`, else RIB.
+pub fn detect(path: &Path, head: &[u8]) -> Format {
+    let name =
+        path.file_name().map(|n| n.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
+    if name.ends_with(".ron") {
+        return Format::Ron;
+    }
+    if name.ends_with(".rib") || name.ends_with(".rib.gz") || head.starts_with(&[0x1f, 0x8b]) {
+        return Format::Rib;
+    }
+    let text = head.strip_prefix(b"\xef\xbb\xbf").unwrap_or(head);
+    let start = text.iter().position(|b| !b.is_ascii_whitespace()).unwrap_or(text.len());
+    let rest = &text[start..];
+    if rest.starts_with(b"//")
+        || rest.starts_with(b"/*")
+        || rest.starts_with(b"Scene")
+        || rest.starts_with(b"(")
+    {
+        Format::Ron
+    } else {
+        Format::Rib
+    }
+}
+
+/// Loads the scene file `path` (`-`: standard input) in whichever format it is, into its
+/// frames (a RON scene is one frame without a number) and the warnings to show.
+pub fn load_scene_file(path: &Path, options: &RiOptions) -> Result<Loaded, InputError> {
+    let ron = |scene| Loaded {
+        frames: vec![Frame { number: None, scene, displays: Vec::new() }],
+        warnings: Vec::new(),
+    };
+    if path == Path::new("-") {
+        let mut bytes = Vec::new();
+        std::io::stdin().read_to_end(&mut bytes).map_err(InputError::Stdin)?;
+        return match detect(path, &bytes) {
+            Format::Ron => {
+                let text = String::from_utf8_lossy(&bytes);
+                let scene = reyes_scene::parse(&text, Path::new("<stdin>"))
+                    .map_err(reyes_scene::LoadError::from)?;
+                Ok(ron(scene))
+            }
+            Format::Rib => Ok(crate::load(Source::from_bytes("<stdin>", bytes), options)?),
+        };
+    }
+    let mut head = [0u8; 256];
+    let n = std::fs::File::open(path)
+        .and_then(|mut f| f.read(&mut head))
+        .map_err(|source| reyes_scene::LoadError::Io { path: path.to_path_buf(), source })?;
+    match detect(path, &head[..n]) {
+        Format::Ron => Ok(ron(reyes_scene::load(path)?)),
+        Format::Rib => {
+            let source = Source::open(path).map_err(|source| RibError::Io {
+                file: path.display().to_string().into(),
+                source,
+            })?;
+            Ok(crate::load(source, options)?)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn formats_by_name_then_content() {
+        let p = Path::new;
+        assert_eq!(detect(p("a.ron"), b"Display"), Format::Ron);
+        assert_eq!(detect(p("a.RIB"), b"Scene("), Format::Rib);
+        assert_eq!(detect(p("a.rib.gz"), b""), Format::Rib);
+        assert_eq!(detect(p("scene"), &[0x1f, 0x8b, 8]), Format::Rib);
+        assert_eq!(detect(p("scene"), b"  // a RON scene\nScene("), Format::Ron);
+        assert_eq!(detect(p("-"), b"\nScene(image: (width: 1, height: 1))"), Format::Ron);
+        assert_eq!(detect(p("-"), b"##RenderMan RIB\nFormat 64 64 1"), Format::Rib);
+        assert_eq!(detect(p("scene.txt"), b"WorldBegin"), Format::Rib);
+    }
+}

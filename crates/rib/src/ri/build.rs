@@ -1,0 +1,417 @@
+//! Assembling one frame's scene: the lights, objects and solids of a world block with the
+//! frame's options, validated by the scene crate, with every validation failure reported at
+//! the RIB request that produced the offending value.
+//!
+//! Invariants: object names are unique where CSG needs them (leaves get generated names);
+//! motion keys are fitted to the shutter (interpolated at its ends, dropped outside), so a
+//! RIB motion block longer than the shutter renders what the shutter sees.
+
+use std::collections::HashMap;
+
+use glam::{DMat4, DVec3};
+use reyes_scene::{
+    Camera, CameraKey, Csg, Hider, Image, Lens, Light, Object, PointsKey, Scene, Shutter, Solid,
+    TransformKey,
+};
+
+use super::state::{Display, FrameOptions, Projection};
+use super::xform::{self, Xform};
+use crate::{Location, Request, RibError, Warning};
+
+/// An open `SolidBegin` block.
+struct SolidNode {
+    op: String,
+    name: Option<String>,
+    at: Location,
+    children: Vec<Csg>,
+}
+
+/// Where a value of the scene came from.
+#[derive(Debug, Clone)]
+pub(super) struct Origin {
+    pub at: Location,
+    pub request: &'static str,
+}
+
+/// The attributes of an object that the model keeps per scene or not yet at all.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct ObjectAttributes {
+    /// `ShadingRate`.
+    pub shading_rate: f32,
+    /// The lights on for it (indices into the frame's lights).
+    pub lights: Vec<usize>,
+}
+
+/// Points of a deforming shape at the times of its motion block.
+type PointKeys = Vec<(f32, Vec<[f32; 3]>)>;
+
+/// One frame's world block being built.
+pub(super) struct FrameBuild {
+    pub options: FrameOptions,
+    /// `WorldBegin`.
+    at: Location,
+    /// The frame is one of those asked for (else it is read and dropped).
+    pub wanted: bool,
+    lights: Vec<Light>,
+    light_origins: Vec<Location>,
+    light_handles: HashMap<String, usize>,
+    objects: Vec<Object>,
+    object_origins: Vec<Origin>,
+    /// Per object: its transformation keys (before fitting to the shutter) and point keys.
+    object_motion: Vec<(Xform, PointKeys)>,
+    object_attributes: Vec<ObjectAttributes>,
+    solids: Vec<Solid>,
+    solid_origins: Vec<Location>,
+    solid_stack: Vec<SolidNode>,
+    leaves: usize,
+}
+
+impl FrameBuild {
+    pub fn new(options: FrameOptions, at: Location, wanted: bool) -> FrameBuild {
+        FrameBuild {
+            options,
+            at,
+            wanted,
+            lights: Vec::new(),
+            light_origins: Vec::new(),
+            light_handles: HashMap::new(),
+            objects: Vec::new(),
+            object_origins: Vec::new(),
+            object_motion: Vec::new(),
+            object_attributes: Vec::new(),
+            solids: Vec::new(),
+            solid_origins: Vec::new(),
+            solid_stack: Vec::new(),
+            leaves: 0,
+        }
+    }
+
+    /// Adds a light under `handle` (a handle used again names the new light) and returns its
+    /// index.
+    pub fn add_light(&mut self, handle: String, light: Light, at: Location) -> usize {
+        self.lights.push(light);
+        self.light_origins.push(at);
+        let index = self.lights.len() - 1;
+        self.light_handles.insert(handle, index);
+        index
+    }
+
+    /// The index of the light with `handle`.
+    pub fn light_index(&self, handle: &str) -> Option<usize> {
+        self.light_handles.get(handle).copied()
+    }
+
+    /// Adds an object placed by `to_world` (with its motion) and, for a deforming shape, its
+    /// points at the motion block's times.
+    pub fn add_object(
+        &mut self,
+        mut object: Object,
+        to_world: &Xform,
+        deform: PointKeys,
+        attributes: ObjectAttributes,
+        origin: Origin,
+    ) {
+        if let Some(node) = self.solid_stack.last_mut() {
+            // A CSG leaf: a name of its own.
+            self.leaves += 1;
+            let base = if object.name.is_empty() { "solid" } else { object.name.as_str() };
+            object.name = format!("{base}#{}", self.leaves);
+            node.children.push(Csg::Object(object.name.clone()));
+        }
+        object.transform = xform::to_model(&to_world.keys[0].1);
+        self.objects.push(object);
+        self.object_origins.push(origin);
+        self.object_motion.push((to_world.clone(), deform));
+        self.object_attributes.push(attributes);
+    }
+
+    pub fn solid_begin(&mut self, op: String, name: Option<String>, at: Location) {
+        self.solid_stack.push(SolidNode { op, name, at, children: Vec::new() });
+    }
+
+    pub fn solid_end(&mut self, r: &Request) -> Result<(), RibError> {
+        let node = self.solid_stack.pop().ok_or_else(|| r.error("no SolidBegin is open"))?;
+        let mut children = node.children;
+        let tree = match node.op.as_str() {
+            "primitive" | "union" if children.len() == 1 => children.pop(),
+            "primitive" | "union" if children.is_empty() => None,
+            "primitive" | "union" => Some(Csg::Union(children)),
+            "intersection" if children.len() == 1 => children.pop(),
+            "intersection" if children.is_empty() => None,
+            "intersection" => Some(Csg::Intersection(children)),
+            _ => {
+                // Difference: the first minus the rest.
+                if children.is_empty() {
+                    None
+                } else {
+                    let first = children.remove(0);
+                    match children.len() {
+                        0 => Some(first),
+                        1 => Some(Csg::Difference(Box::new(first), Box::new(children.remove(0)))),
+                        _ => Some(Csg::Difference(Box::new(first), Box::new(Csg::Union(children)))),
+                    }
+                }
+            }
+        };
+        let Some(tree) = tree else {
+            return Err(RibError::Request {
+                at: node.at,
+                request: "SolidBegin",
+                message: "the solid has no geometry".into(),
+            });
+        };
+        match self.solid_stack.last_mut() {
+            Some(parent) => parent.children.push(tree),
+            None => {
+                // A lone primitive at the top is just its objects.
+                if let Csg::Object(_) = tree {
+                    return Ok(());
+                }
+                let name = node.name.unwrap_or_else(|| format!("solid{}", self.solids.len()));
+                self.solids.push(Solid { name, tree });
+                self.solid_origins.push(node.at);
+            }
+        }
+        Ok(())
+    }
+
+    /// The frame's scene, validated, and its displays.
+    pub fn finish(
+        mut self,
+        warnings: &mut Vec<Warning>,
+    ) -> Result<(Scene, Vec<Display>), RibError> {
+        let o = &self.options;
+        let (open, close) = o.shutter;
+        let camera = self.camera(warnings)?;
+        // Objects: motion fitted to the shutter.
+        for (object, (to_world, deform)) in self.objects.iter_mut().zip(&self.object_motion) {
+            let keys = fit_keys(&to_world.keys, open, close);
+            if keys.len() > 1 {
+                object.motion = keys
+                    .iter()
+                    .map(|(t, m)| TransformKey { time: *t, transform: xform::to_model(m) })
+                    .collect();
+            } else {
+                object.transform = xform::to_model(&keys[0].1);
+            }
+            if !deform.is_empty() {
+                object.deform = fit_points(deform, open, close)
+                    .into_iter()
+                    .map(|(time, points)| PointsKey { time, points })
+                    .collect();
+                if object.deform.len() == 1 {
+                    // A closed shutter: the points at shutter open are the shape's.
+                    let points = object.deform.remove(0).points;
+                    set_points(&mut object.shape, points);
+                }
+            }
+        }
+        let shading_rate = self.shared_attributes(warnings);
+        let hider = Hider {
+            shading_rate,
+            pixel_samples: o.pixel_samples,
+            filter: o.filter,
+            jitter: o.jitter,
+            method: o.method,
+            bucket_size: o.bucket_size.unwrap_or(Hider::default().bucket_size),
+            ..Hider::default()
+        };
+        let scene = Scene {
+            image: Image { width: o.width, height: o.height },
+            camera,
+            hider,
+            lights: std::mem::take(&mut self.lights),
+            objects: std::mem::take(&mut self.objects),
+            solids: std::mem::take(&mut self.solids),
+            raytrace: Default::default(),
+        };
+        let displays = self.options.displays.clone();
+        match reyes_scene::validate(scene) {
+            Ok(scene) => Ok((scene, displays)),
+            Err(issue) => Err(self.locate(&issue.path, &issue.message)),
+        }
+    }
+
+    /// The model camera: RenderMan's camera space at shutter open is the world, so the camera
+    /// sits at the origin looking down +z; a moving camera gets keys relative to that pose.
+    fn camera(&self, warnings: &mut Vec<Warning>) -> Result<Camera, RibError> {
+        let o = &self.options;
+        let fov = match o.projection {
+            Projection::Perspective { fov } => fov,
+            Projection::Orthographic => {
+                return Err(self.option_error(
+                    "camera.projection",
+                    "the orthographic projection is not supported yet: use Projection \"perspective\"",
+                ));
+            }
+        };
+        if o.screen_window.is_some() || o.frame_aspect.is_some() {
+            warnings.push(Warning {
+                at: self.at.clone(),
+                message: "ScreenWindow and FrameAspectRatio are not supported yet: the default screen window is used".into(),
+            });
+        }
+        let (open, close) = o.shutter;
+        let lens = o.depth_of_field.map(|(f_stop, focal_length, focal_distance)| Lens {
+            focal_length,
+            f_stop,
+            focal_distance,
+        });
+        let mut camera = Camera {
+            eye: [0.0; 3],
+            look_at: [0.0, 0.0, 1.0],
+            up: [0.0, 1.0, 0.0],
+            fov,
+            hither: o.hither,
+            yon: o.yon,
+            shutter: Shutter { open, close, ..Shutter::default() },
+            lens,
+            motion: Vec::new(),
+        };
+        let keys = fit_keys(&o.camera.keys, open, close);
+        if keys.len() > 1 {
+            let c0 = keys[0].1;
+            camera.motion = keys
+                .iter()
+                .map(|(t, c)| {
+                    // The camera's pose at time t in the world of shutter open.
+                    let pose: DMat4 = c0 * c.inverse();
+                    let eye = pose.transform_point3(DVec3::ZERO);
+                    let look = pose.transform_point3(DVec3::Z);
+                    let up = pose.transform_vector3(DVec3::Y);
+                    let f = |v: DVec3| [v.x as f32, v.y as f32, v.z as f32];
+                    CameraKey { time: *t, eye: f(eye), look_at: f(look), up: f(up) }
+                })
+                .collect();
+        }
+        Ok(camera)
+    }
+
+    /// The shading rate of the scene: the objects' own when they share one. Objects with
+    /// another rate, or lit by a subset of the lights, are named in a warning (the model
+    /// has one rate and one light set per scene).
+    fn shared_attributes(&self, warnings: &mut Vec<Warning>) -> f32 {
+        let first = self.object_attributes.first().map_or(1.0, |a| a.shading_rate);
+        if let Some(i) = self.object_attributes.iter().position(|a| a.shading_rate != first) {
+            warnings.push(Warning {
+                at: self.object_origins[i].at.clone(),
+                message: format!(
+                    "{}: ShadingRate {} differs from the first object's {first}: one rate per scene is used",
+                    self.object_origins[i].request, self.object_attributes[i].shading_rate
+                ),
+            });
+        }
+        let all: Vec<usize> = (0..self.lights.len()).collect();
+        if let Some(i) = self.object_attributes.iter().position(|a| {
+            let mut l = a.lights.clone();
+            l.sort_unstable();
+            l != all
+        }) {
+            warnings.push(Warning {
+                at: self.object_origins[i].at.clone(),
+                message: format!(
+                    "{}: lit by {} of the {} lights, but per-object light sets are not supported yet: every light shines on it",
+                    self.object_origins[i].request,
+                    self.object_attributes[i].lights.len(),
+                    self.lights.len()
+                ),
+            });
+        }
+        first
+    }
+
+    fn option_error(&self, field: &str, message: &str) -> RibError {
+        let origin = self.options.origins.iter().find(|(f, _, _)| field.starts_with(f));
+        match origin {
+            Some((_, at, request)) => {
+                RibError::Request { at: at.clone(), request, message: message.to_string() }
+            }
+            None => RibError::Request {
+                at: self.at.clone(),
+                request: "WorldBegin",
+                message: message.to_string(),
+            },
+        }
+    }
+
+    /// A validation failure at `path`, reported at the request that made the value.
+    fn locate(&self, path: &str, message: &str) -> RibError {
+        let index = |prefix: &str| -> Option<usize> {
+            let rest = path.strip_prefix(prefix)?;
+            rest[..rest.find(']')?].parse().ok()
+        };
+        let what = format!("{path}: {message}");
+        if let Some(i) = index("objects[")
+            && let Some(o) = self.object_origins.get(i)
+        {
+            return RibError::Request { at: o.at.clone(), request: o.request, message: what };
+        }
+        if let Some(i) = index("lights[")
+            && let Some(at) = self.light_origins.get(i)
+        {
+            return RibError::Request { at: at.clone(), request: "LightSource", message: what };
+        }
+        if let Some(i) = index("solids[")
+            && let Some(at) = self.solid_origins.get(i)
+        {
+            return RibError::Request { at: at.clone(), request: "SolidBegin", message: what };
+        }
+        self.option_error(path, &what)
+    }
+}
+
+/// The keys of a transformation seen through the shutter `[open, close]`: interpolated at the
+/// shutter's ends where the keys reach past them, keys outside dropped; one key when the
+/// shutter is closed or the transformation still.
+fn fit_keys(keys: &[(f32, DMat4)], open: f32, close: f32) -> Vec<(f32, DMat4)> {
+    let x = Xform { keys: keys.to_vec() };
+    if keys.len() == 1 {
+        return keys.to_vec();
+    }
+    if close <= open {
+        return vec![(open, x.at(open))];
+    }
+    let mut out = vec![(open, x.at(open))];
+    out.extend(keys.iter().filter(|(t, _)| *t > open && *t < close).copied());
+    out.push((close, x.at(close)));
+    out
+}
+
+/// Point keys seen through the shutter, as [`fit_keys`] does for transformations.
+fn fit_points(keys: &[(f32, Vec<[f32; 3]>)], open: f32, close: f32) -> PointKeys {
+    let at = |time: f32| -> Vec<[f32; 3]> {
+        if time <= keys[0].0 {
+            return keys[0].1.clone();
+        }
+        for w in keys.windows(2) {
+            let ((t0, p0), (t1, p1)) = (&w[0], &w[1]);
+            if time <= *t1 {
+                let f = if t1 > t0 { (time - t0) / (t1 - t0) } else { 1.0 };
+                return p0
+                    .iter()
+                    .zip(p1)
+                    .map(|(a, b)| std::array::from_fn(|k| a[k] + (b[k] - a[k]) * f))
+                    .collect();
+            }
+        }
+        keys[keys.len() - 1].1.clone()
+    };
+    if close <= open {
+        return vec![(open, at(open))];
+    }
+    let mut out = vec![(open, at(open))];
+    out.extend(keys.iter().filter(|(t, _)| *t > open && *t < close).cloned());
+    out.push((close, at(close)));
+    out
+}
+
+/// Replaces the control points of a shape that has them.
+fn set_points(shape: &mut reyes_scene::Shape, new: Vec<[f32; 3]>) {
+    match shape {
+        reyes_scene::Shape::Mesh { points, .. } => *points = new,
+        reyes_scene::Shape::BilinearPatch { points } if new.len() == 4 => {
+            *points = [new[0], new[1], new[2], new[3]];
+        }
+        _ => {}
+    }
+}

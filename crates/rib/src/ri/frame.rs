@@ -1,0 +1,756 @@
+//! The request loop of the RI state machine: blocks, options, attributes and transformations;
+//! geometry is handed to [`super::primitives`], and each `WorldEnd` to [`super::build`].
+//!
+//! Invariants: every request is handled in the block structure the Specification allows
+//! (options before `WorldBegin`, geometry inside it); the block stack is checked at every
+//! `...End` and at the end of input; the machine never holds more than the current frame.
+
+use std::collections::HashMap;
+
+use glam::DMat4;
+use reyes_scene::Light;
+
+use super::build::FrameBuild;
+use super::state::{Attributes, FrameOptions, SurfaceShader};
+use super::xform::{self, Xform};
+use super::{Frame, Loaded, RiOptions};
+use crate::{Location, Reader, Request, RequestKind as K, RibError, Value, Warning};
+
+/// An open block.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) enum Block {
+    Frame,
+    World,
+    Attribute,
+    Transform,
+    Solid,
+}
+
+impl Block {
+    fn begin(&self) -> &'static str {
+        match self {
+            Block::Frame => "FrameBegin",
+            Block::World => "WorldBegin",
+            Block::Attribute => "AttributeBegin",
+            Block::Transform => "TransformBegin",
+            Block::Solid => "SolidBegin",
+        }
+    }
+}
+
+/// An open `MotionBegin` block: its times and the requests gathered so far.
+pub(super) struct Motion {
+    pub times: Vec<f32>,
+    pub at: Location,
+    pub requests: Vec<Request>,
+}
+
+/// The RI state machine over one reader.
+pub(crate) struct Machine {
+    reader: Reader,
+    pub(super) options: RiOptions,
+    /// The options in force (restored at `FrameEnd`).
+    pub(super) frame_options: FrameOptions,
+    saved_options: Vec<FrameOptions>,
+    pub(super) attributes: Attributes,
+    attribute_stack: Vec<Attributes>,
+    /// Current transformation: current space to camera space before `WorldBegin`, to world
+    /// space inside it.
+    pub(super) ctm: Xform,
+    ctm_stack: Vec<Xform>,
+    pub(super) blocks: Vec<Block>,
+    pub(super) motion: Option<Motion>,
+    /// Named coordinate systems (`CoordinateSystem`), as current-to-camera (before the world)
+    /// or current-to-world transformations, with whether they were named inside the world.
+    coordinate_systems: HashMap<String, (Xform, bool)>,
+    /// Lights declared before `WorldBegin`, added to each world block.
+    pending_lights: Vec<(String, Light, Location)>,
+    /// The frame being built (from `WorldBegin` to `WorldEnd`).
+    pub(super) build: Option<FrameBuild>,
+    frame_number: Option<i32>,
+    /// Object definitions: handle -> requests to replay.
+    objects: HashMap<String, Vec<Request>>,
+    /// The object definition being recorded.
+    recording: Option<(String, Vec<Request>, usize)>,
+    pub(super) warnings: Vec<Warning>,
+    /// Warnings given once per key (unknown shaders, unsupported features).
+    pub(super) warned: std::collections::HashSet<String>,
+    frames: Vec<Frame>,
+}
+
+/// A handle argument as a string key (RIB handles are integers or strings).
+fn handle(r: &Request, i: usize) -> Option<String> {
+    match r.args.get(i)? {
+        Value::Int(n) => Some(format!("#{n}")),
+        Value::Float(f) => Some(format!("#{f}")),
+        Value::String(s) => Some(s.clone()),
+        _ => None,
+    }
+}
+
+fn f3(v: &[f32]) -> [f32; 3] {
+    [v[0], v[1], v[2]]
+}
+
+impl Machine {
+    pub(super) fn new(reader: Reader, options: RiOptions) -> Machine {
+        Machine {
+            reader,
+            options,
+            frame_options: FrameOptions::default(),
+            saved_options: Vec::new(),
+            attributes: Attributes::default(),
+            attribute_stack: Vec::new(),
+            ctm: Xform::default(),
+            ctm_stack: Vec::new(),
+            blocks: Vec::new(),
+            motion: None,
+            coordinate_systems: HashMap::new(),
+            pending_lights: Vec::new(),
+            build: None,
+            frame_number: None,
+            objects: HashMap::new(),
+            recording: None,
+            warnings: Vec::new(),
+            warned: Default::default(),
+            frames: Vec::new(),
+        }
+    }
+
+    /// A warning, once per `key`.
+    pub(super) fn warn_once(&mut self, key: impl Into<String>, w: Warning) {
+        if self.warned.insert(key.into()) {
+            self.warnings.push(w);
+        }
+    }
+
+    /// Reads every request and returns the frames.
+    pub(super) fn run(mut self) -> Result<Loaded, RibError> {
+        while let Some(r) = self.reader.next_request()? {
+            self.warnings.extend(self.reader.take_warnings());
+            self.request(r)?;
+        }
+        self.warnings.extend(self.reader.take_warnings());
+        if let Some(b) = self.blocks.last() {
+            return Err(RibError::Request {
+                at: self.end_location(),
+                request: b.begin(),
+                message: "block not closed at the end of the input".into(),
+            });
+        }
+        if let Some(m) = &self.motion {
+            return Err(RibError::Request {
+                at: m.at.clone(),
+                request: "MotionBegin",
+                message: "no MotionEnd before the end of the input".into(),
+            });
+        }
+        Ok(Loaded { frames: self.frames, warnings: self.warnings })
+    }
+
+    fn end_location(&self) -> Location {
+        Location {
+            file: self.reader.current_file().unwrap_or("<input>").into(),
+            pos: crate::Pos { line: 0, col: 0 },
+        }
+    }
+
+    pub(super) fn in_world(&self) -> bool {
+        self.build.is_some()
+    }
+
+    /// One request, in or out of a motion block or an object definition.
+    pub(super) fn request(&mut self, r: Request) -> Result<(), RibError> {
+        if let Some((_, recorded, depth)) = &mut self.recording {
+            match r.kind {
+                K::ObjectBegin => *depth += 1,
+                K::ObjectEnd if *depth == 0 => return self.object_end(&r),
+                K::ObjectEnd => *depth -= 1,
+                _ => {}
+            }
+            recorded.push(r);
+            return Ok(());
+        }
+        if self.motion.is_some() && r.kind != K::MotionEnd {
+            if r.kind == K::MotionBegin {
+                return Err(r.error("motion blocks do not nest"));
+            }
+            if let Some(m) = &mut self.motion {
+                m.requests.push(r);
+            }
+            return Ok(());
+        }
+        self.dispatch(r)
+    }
+
+    fn dispatch(&mut self, r: Request) -> Result<(), RibError> {
+        match r.kind {
+            // Blocks.
+            K::FrameBegin => self.frame_begin(&r),
+            K::FrameEnd => self.frame_end(&r),
+            K::WorldBegin => self.world_begin(&r),
+            K::WorldEnd => self.world_end(&r),
+            K::AttributeBegin => {
+                self.push(Block::Attribute);
+                Ok(())
+            }
+            K::AttributeEnd => self.pop(&r, Block::Attribute),
+            K::TransformBegin => {
+                self.blocks.push(Block::Transform);
+                self.ctm_stack.push(self.ctm.clone());
+                Ok(())
+            }
+            K::TransformEnd => self.pop(&r, Block::Transform),
+            K::MotionBegin => {
+                let times = r.floats(0).unwrap_or(&[]).to_vec();
+                if times.is_empty() || times.windows(2).any(|w| w[0] >= w[1] || w[1].is_nan()) {
+                    return Err(r.error("times must be one or more increasing numbers"));
+                }
+                self.motion = Some(Motion { times, at: r.at.clone(), requests: Vec::new() });
+                Ok(())
+            }
+            K::MotionEnd => self.motion_end(&r),
+            K::SolidBegin => self.solid_begin(&r),
+            K::SolidEnd => self.solid_end(&r),
+            K::ObjectBegin => {
+                let h = handle(&r, 0).ok_or_else(|| r.error("expected a handle"))?;
+                self.recording = Some((h, Vec::new(), 0));
+                Ok(())
+            }
+            K::ObjectEnd => Err(r.error("no ObjectBegin is open")),
+            K::ObjectInstance => self.object_instance(&r),
+
+            // Transformations.
+            K::Identity => {
+                self.ctm = Xform::default();
+                Ok(())
+            }
+            K::Transform => {
+                self.ctm = Xform::still(xform::from_rib(r.floats(0).unwrap_or(&[0.0; 16])));
+                Ok(())
+            }
+            K::ConcatTransform | K::Translate | K::Rotate | K::Scale | K::Skew | K::Perspective => {
+                let m = self.matrix_of(&r)?;
+                self.ctm = self.ctm.then_apply(&m);
+                Ok(())
+            }
+            K::CoordinateSystem | K::ScopedCoordinateSystem => {
+                let name = r.string(0).unwrap_or_default().to_string();
+                self.coordinate_systems.insert(name, (self.ctm.clone(), self.in_world()));
+                Ok(())
+            }
+            K::CoordSysTransform => self.coord_sys_transform(&r),
+
+            // Attributes.
+            K::Color => {
+                self.attributes.color = f3(r.floats(0).unwrap_or(&[1.0; 3]));
+                Ok(())
+            }
+            K::Opacity => {
+                self.attributes.opacity = f3(r.floats(0).unwrap_or(&[1.0; 3]));
+                Ok(())
+            }
+            K::Surface => {
+                let name = r.string(0).unwrap_or_default().to_string();
+                self.attributes.surface = SurfaceShader {
+                    name: Some(name),
+                    params: r.params.clone(),
+                    at: Some(r.at.clone()),
+                };
+                Ok(())
+            }
+            K::ShadingRate => {
+                let rate = r.float(0).unwrap_or(1.0);
+                if !(rate > 0.0 && rate.is_finite()) {
+                    return Err(r.error(format!("size must be > 0, got {rate}")));
+                }
+                self.attributes.shading_rate = rate;
+                Ok(())
+            }
+            K::Sides => {
+                let n = r.int(0).unwrap_or(2);
+                if n != 1 && n != 2 {
+                    return Err(r.error(format!("nsides must be 1 or 2, got {n}")));
+                }
+                self.attributes.sides = n;
+                Ok(())
+            }
+            K::Orientation => {
+                let o = r.string(0).unwrap_or_default();
+                match o {
+                    "outside" | "lh" => {}
+                    "inside" | "rh" => {}
+                    other => {
+                        return Err(r.error(format!(
+                            "orientation must be \"outside\", \"inside\", \"lh\" or \"rh\", got \"{other}\""
+                        )));
+                    }
+                }
+                self.attributes.reverse_orientation = matches!(o, "inside" | "rh");
+                Ok(())
+            }
+            K::ReverseOrientation => {
+                self.attributes.reverse_orientation = !self.attributes.reverse_orientation;
+                Ok(())
+            }
+            K::Matte => {
+                self.attributes.matte = r.int(0).unwrap_or(0) != 0;
+                Ok(())
+            }
+            K::Attribute => self.attribute(&r),
+            K::LightSource => self.light_source(&r),
+            K::AreaLightSource => self.area_light_source(&r),
+            K::Illuminate => self.illuminate(&r),
+            K::Basis => self.basis(&r),
+            K::Declare | K::Version | K::ColorSamples => Ok(()),
+
+            // Options.
+            K::Format
+            | K::FrameAspectRatio
+            | K::ScreenWindow
+            | K::CropWindow
+            | K::Projection
+            | K::Clipping
+            | K::DepthOfField
+            | K::Shutter
+            | K::PixelSamples
+            | K::PixelFilter
+            | K::Exposure
+            | K::Quantize
+            | K::Display
+            | K::Hider
+            | K::Option
+            | K::PixelVariance
+            | K::RelativeDetail
+            | K::ClippingPlane
+            | K::Imager => self.option(&r),
+
+            // Geometry.
+            K::Sphere
+            | K::Cone
+            | K::Cylinder
+            | K::Disk
+            | K::Paraboloid
+            | K::Torus
+            | K::Hyperboloid
+            | K::Polygon
+            | K::GeneralPolygon
+            | K::PointsPolygons
+            | K::PointsGeneralPolygons
+            | K::Patch
+            | K::PatchMesh
+            | K::NuPatch
+            | K::SubdivisionMesh
+            | K::Points
+            | K::Curves
+            | K::Blobby
+            | K::Geometry => {
+                if !self.in_world() {
+                    return Err(r.error("geometry must be inside WorldBegin/WorldEnd"));
+                }
+                self.primitive(&r, None)
+            }
+            K::Procedural => self.procedural(&r),
+            K::ReadArchive => self.reader.read_archive(&r),
+
+            // Accepted and ignored, with a warning.
+            _ => {
+                let w = r.warning("not supported: ignored");
+                self.warn_once(format!("request {}", r.name()), w);
+                Ok(())
+            }
+        }
+    }
+
+    fn push(&mut self, b: Block) {
+        self.blocks.push(b);
+        self.attribute_stack.push(self.attributes.clone());
+        self.ctm_stack.push(self.ctm.clone());
+    }
+
+    /// Closes the innermost block, which must be `b`.
+    fn pop(&mut self, r: &Request, b: Block) -> Result<(), RibError> {
+        match self.blocks.last() {
+            Some(top) if *top == b => {}
+            Some(top) => {
+                return Err(r.error(format!(
+                    "closes {} but the open block is {}",
+                    b.begin(),
+                    top.begin()
+                )));
+            }
+            None => return Err(r.error(format!("no {} is open", b.begin()))),
+        }
+        self.blocks.pop();
+        if let Some(c) = self.ctm_stack.pop() {
+            self.ctm = c;
+        }
+        if b != Block::Transform
+            && let Some(a) = self.attribute_stack.pop()
+        {
+            self.attributes = a;
+        }
+        Ok(())
+    }
+
+    fn frame_begin(&mut self, r: &Request) -> Result<(), RibError> {
+        if !self.blocks.is_empty() {
+            return Err(r.error("frames must be outside every other block"));
+        }
+        self.frame_number = r.int(0);
+        self.saved_options.push(self.frame_options.clone());
+        self.push(Block::Frame);
+        Ok(())
+    }
+
+    fn frame_end(&mut self, r: &Request) -> Result<(), RibError> {
+        self.pop(r, Block::Frame)?;
+        self.pending_lights.clear();
+        if let Some(o) = self.saved_options.pop() {
+            self.frame_options = o;
+        }
+        self.frame_number = None;
+        Ok(())
+    }
+
+    fn world_begin(&mut self, r: &Request) -> Result<(), RibError> {
+        if self.in_world() || self.blocks.iter().any(|b| *b != Block::Frame) {
+            return Err(r.error("WorldBegin must be outside every block but a frame"));
+        }
+        // The transformation so far is the camera's: world to camera.
+        self.frame_options.camera = self.ctm.clone();
+        let number = self.frame_number.unwrap_or(1);
+        let mut build =
+            FrameBuild::new(self.frame_options.clone(), r.at.clone(), self.options.wants(number));
+        self.push(Block::World);
+        self.ctm = Xform::default();
+        // Lights of the world block are new for every frame; those declared before it are on.
+        self.attributes.lights_on.clear();
+        for (h, light, at) in self.pending_lights.clone() {
+            let index = build.add_light(h, light, at);
+            self.attributes.lights_on.push(index);
+        }
+        self.build = Some(build);
+        Ok(())
+    }
+
+    fn world_end(&mut self, r: &Request) -> Result<(), RibError> {
+        self.pop(r, Block::World)?;
+        let build = self.build.take().ok_or_else(|| r.error("no WorldBegin is open"))?;
+        let frame_number = self.frame_number;
+        if build.wanted {
+            let (scene, displays) = build.finish(&mut self.warnings)?;
+            self.frames.push(Frame { number: frame_number, scene, displays });
+        }
+        // Outside the world block the transformation is the camera's again.
+        self.ctm = self.frame_options.camera.clone();
+        Ok(())
+    }
+
+    /// The matrix of a transformation request.
+    fn matrix_of(&self, r: &Request) -> Result<DMat4, RibError> {
+        let v = |i| r.float(i).unwrap_or(0.0);
+        Ok(match r.kind {
+            K::ConcatTransform | K::Transform => xform::from_rib(r.floats(0).unwrap_or(&[0.0; 16])),
+            K::Translate => xform::translate([v(0), v(1), v(2)]),
+            K::Rotate => xform::rotate(v(0), [v(1), v(2), v(3)]),
+            K::Scale => xform::scale([v(0), v(1), v(2)]),
+            K::Skew => {
+                let a = r.floats(0).map(<[f32]>::to_vec).unwrap_or_else(|| (0..7).map(v).collect());
+                if a.len() != 7 {
+                    return Err(r.error("expected 7 numbers"));
+                }
+                xform::skew(a[0], [a[1], a[2], a[3]], [a[4], a[5], a[6]]).ok_or_else(|| {
+                    r.error("the vectors are parallel or the angle turns one past the other")
+                })?
+            }
+            K::Perspective => xform::perspective(v(0))
+                .ok_or_else(|| r.error(format!("fov must be in (0, 180) degrees, got {}", v(0))))?,
+            _ => DMat4::IDENTITY,
+        })
+    }
+
+    fn coord_sys_transform(&mut self, r: &Request) -> Result<(), RibError> {
+        let name = r.string(0).unwrap_or_default();
+        let in_world = self.in_world();
+        match (name, self.coordinate_systems.get(name)) {
+            ("world", _) if in_world => self.ctm = Xform::default(),
+            ("camera" | "screen" | "raster" | "NDC", _) if in_world => {
+                // Camera space inside the world: the inverse of the camera transformation.
+                let c = &self.frame_options.camera;
+                self.ctm = Xform { keys: c.keys.iter().map(|(t, m)| (*t, m.inverse())).collect() };
+            }
+            (_, Some((x, named_in_world))) if *named_in_world == in_world => self.ctm = x.clone(),
+            (_, Some(_)) => {
+                return Err(r.error(format!(
+                    "coordinate system \"{name}\" was named on the other side of WorldBegin"
+                )));
+            }
+            (_, None) => {
+                return Err(r.error(format!("no coordinate system named \"{name}\"")));
+            }
+        }
+        Ok(())
+    }
+
+    fn motion_end(&mut self, r: &Request) -> Result<(), RibError> {
+        let m = self.motion.take().ok_or_else(|| r.error("no MotionBegin is open"))?;
+        let Some(first) = m.requests.first() else { return Ok(()) };
+        let n = m.times.len();
+        let transform_kinds = [
+            K::ConcatTransform,
+            K::Translate,
+            K::Rotate,
+            K::Scale,
+            K::Skew,
+            K::Transform,
+            K::Perspective,
+        ];
+        if transform_kinds.contains(&first.kind) {
+            if m.requests.len() != n || m.requests.iter().any(|q| q.kind != first.kind) {
+                return Err(RibError::Request {
+                    at: m.at.clone(),
+                    request: "MotionBegin",
+                    message: format!(
+                        "{n} times need {n} transformations of one kind, got {} requests",
+                        m.requests.len()
+                    ),
+                });
+            }
+            let ms: Vec<DMat4> =
+                m.requests.iter().map(|q| self.matrix_of(q)).collect::<Result<_, _>>()?;
+            self.ctm = if first.kind == K::Transform {
+                Xform { keys: m.times.iter().copied().zip(ms).collect() }
+            } else {
+                self.ctm.then_apply_keys(&m.times, &ms)
+            };
+            return Ok(());
+        }
+        if m.requests.len() != n || m.requests.iter().any(|q| q.kind != first.kind) {
+            return Err(RibError::Request {
+                at: m.at.clone(),
+                request: "MotionBegin",
+                message: format!(
+                    "{n} times need {n} requests of one kind, got {}",
+                    m.requests.len()
+                ),
+            });
+        }
+        match first.kind {
+            K::Color | K::Opacity | K::Surface | K::LightSource | K::ShadingRate => {
+                // Moving attributes: the value at shutter open, as the peers do.
+                let w = first
+                    .warning("motion of this attribute is not supported: the first value is used");
+                self.warn_once(format!("motion {}", first.name()), w);
+                let first = first.clone();
+                self.dispatch(first)
+            }
+            _ if self.in_world() => {
+                let keys = m.requests;
+                let q = keys[0].clone();
+                self.primitive(&q, Some((&m.times, &keys)))
+            }
+            _ => Err(first.error("geometry must be inside WorldBegin/WorldEnd")),
+        }
+    }
+
+    fn solid_begin(&mut self, r: &Request) -> Result<(), RibError> {
+        if !self.in_world() {
+            return Err(r.error("solids must be inside WorldBegin/WorldEnd"));
+        }
+        let op = r.string(0).unwrap_or_default().to_string();
+        if !matches!(op.as_str(), "primitive" | "union" | "intersection" | "difference") {
+            return Err(r.error(format!(
+                "operation must be \"primitive\", \"union\", \"intersection\" or \"difference\", got \"{op}\""
+            )));
+        }
+        self.push(Block::Solid);
+        let name = self.attributes.name.clone();
+        if let Some(b) = &mut self.build {
+            b.solid_begin(op, name, r.at.clone());
+        }
+        Ok(())
+    }
+
+    fn solid_end(&mut self, r: &Request) -> Result<(), RibError> {
+        self.pop(r, Block::Solid)?;
+        let b = self.build.as_mut().ok_or_else(|| r.error("no SolidBegin is open"))?;
+        b.solid_end(r)
+    }
+
+    fn object_end(&mut self, r: &Request) -> Result<(), RibError> {
+        let (h, recorded, _) =
+            self.recording.take().ok_or_else(|| r.error("no ObjectBegin is open"))?;
+        self.objects.insert(h, recorded);
+        Ok(())
+    }
+
+    fn object_instance(&mut self, r: &Request) -> Result<(), RibError> {
+        let h = handle(r, 0).ok_or_else(|| r.error("expected a handle"))?;
+        let Some(requests) = self.objects.get(&h).cloned() else {
+            return Err(
+                r.error(format!("no object defined with handle {}", h.trim_start_matches('#')))
+            );
+        };
+        if !self.in_world() {
+            return Err(r.error("instances must be inside WorldBegin/WorldEnd"));
+        }
+        // Replay the definition in its own attribute block.
+        let depth = self.blocks.len();
+        self.push(Block::Attribute);
+        for q in requests {
+            self.request(q)?;
+        }
+        if self.blocks.len() != depth + 1 {
+            return Err(r.error(format!("the definition of object {h} leaves a block open")));
+        }
+        self.pop(r, Block::Attribute)
+    }
+
+    fn procedural(&mut self, r: &Request) -> Result<(), RibError> {
+        let name = r.string(0).unwrap_or_default();
+        if name == "DelayedReadArchive" {
+            let Some(file) = r.strings(1).and_then(|a| a.first()) else {
+                return Err(r.error("DelayedReadArchive needs a file name"));
+            };
+            let path = self.reader.resolve_archive(file, &r.at);
+            return self.reader.push_archive(&path, &r.at);
+        }
+        let w = r.warning(format!("procedural \"{name}\" is not supported: ignored"));
+        self.warn_once(format!("procedural {name}"), w);
+        Ok(())
+    }
+
+    fn attribute(&mut self, r: &Request) -> Result<(), RibError> {
+        let name = r.string(0).unwrap_or_default();
+        for p in &r.params {
+            match (name, p.name.as_str()) {
+                ("identifier", "name") => {
+                    self.attributes.name = p.strings().and_then(|s| s.first()).cloned();
+                }
+                _ => {
+                    let w = Warning {
+                        at: r.param_location(p),
+                        message: format!(
+                            "Attribute: \"{name}\" \"{}\" is not supported: ignored",
+                            p.name
+                        ),
+                    };
+                    self.warn_once(format!("attribute {name} {}", p.name), w);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Current space to the model's world at every time of the transformation.
+    pub(super) fn to_world(&self) -> Xform {
+        if self.in_world() {
+            let c0 = self.frame_options.camera.at(f32::NEG_INFINITY);
+            Xform::still(c0).compose(&self.ctm)
+        } else {
+            self.ctm.clone()
+        }
+    }
+
+    fn light_source(&mut self, r: &Request) -> Result<(), RibError> {
+        let name = r.string(0).unwrap_or_default().to_string();
+        let h = handle(r, 1).ok_or_else(|| r.error("expected a light handle"))?;
+        let to_world = self.to_world();
+        let made = super::shaders::light(&name, &r.params, &to_world, &r.at, &mut self.warnings);
+        let light = match made {
+            super::shaders::LightResult::Light(l) => l,
+            super::shaders::LightResult::Unknown(n) => {
+                if self.options.strict {
+                    return Err(r.error(format!("unknown light shader \"{n}\" (--strict)")));
+                }
+                let w = r.warning(format!(
+                    "unknown light shader \"{n}\": stands in as a pointlight of its \"intensity\" and \"lightcolor\" at its \"from\""
+                ));
+                self.warn_once(format!("light {n}"), w);
+                match super::shaders::light(
+                    "pointlight",
+                    &r.params,
+                    &to_world,
+                    &r.at,
+                    &mut Vec::new(),
+                ) {
+                    super::shaders::LightResult::Light(l) => l,
+                    super::shaders::LightResult::Unknown(_) => {
+                        Light::Ambient { color: [0.0; 3], intensity: 0.0 }
+                    }
+                }
+            }
+        };
+        match &mut self.build {
+            Some(b) => {
+                let index = b.add_light(h, light, r.at.clone());
+                if !self.attributes.lights_on.contains(&index) {
+                    self.attributes.lights_on.push(index);
+                }
+            }
+            // A light before WorldBegin is placed in camera space and shines in every frame
+            // that follows until the frame ends.
+            None => self.pending_lights.push((h, light, r.at.clone())),
+        }
+        Ok(())
+    }
+
+    fn area_light_source(&mut self, r: &Request) -> Result<(), RibError> {
+        let w = r.warning(
+            "area lights from geometry are not supported: the light is ignored (use an Area light in RON)",
+        );
+        self.warn_once("arealightsource", w);
+        Ok(())
+    }
+
+    fn illuminate(&mut self, r: &Request) -> Result<(), RibError> {
+        let h = handle(r, 0).ok_or_else(|| r.error("expected a light handle"))?;
+        let on = r.int(1).unwrap_or(1) != 0;
+        let b =
+            self.build.as_ref().ok_or_else(|| r.error("Illuminate must be inside the world"))?;
+        let Some(index) = b.light_index(&h) else {
+            return Err(r.error(format!("no light with handle {}", h.trim_start_matches('#'))));
+        };
+        let lights = &mut self.attributes.lights_on;
+        if on && !lights.contains(&index) {
+            lights.push(index);
+        } else if !on {
+            lights.retain(|&k| k != index);
+        }
+        Ok(())
+    }
+
+    fn basis(&mut self, r: &Request) -> Result<(), RibError> {
+        use super::geometry::BasisSpec;
+        let spec = |i: usize| match r.args.get(i) {
+            Some(Value::String(s)) => Some(BasisSpec::Named(s.clone())),
+            Some(Value::Floats(v)) if v.len() == 16 => Some(BasisSpec::Matrix(v.clone())),
+            _ => None,
+        };
+        let (Some(u), Some(v)) = (spec(0), spec(2)) else {
+            return Err(r.error("each basis must be a name or 16 numbers"));
+        };
+        for b in [&u, &v] {
+            if let BasisSpec::Named(n) = b
+                && !matches!(
+                    n.as_str(),
+                    "bezier" | "b-spline" | "catmull-rom" | "hermite" | "power"
+                )
+            {
+                return Err(r.error(format!(
+                    "unknown basis \"{n}\" (bezier, b-spline, catmull-rom, hermite, power, or 16 numbers)"
+                )));
+            }
+        }
+        let step = |i: usize| -> Result<u32, RibError> {
+            let s = r.int(i).unwrap_or(3);
+            u32::try_from(s)
+                .ok()
+                .filter(|&s| s >= 1)
+                .ok_or_else(|| r.error(format!("steps must be at least 1, got {s}")))
+        };
+        self.attributes.basis = (u, step(1)?, v, step(3)?);
+        Ok(())
+    }
+}

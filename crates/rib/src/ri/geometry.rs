@@ -1,0 +1,274 @@
+//! Geometric primitives of RIB (Spec 3.2, 5) as the scene model's shapes: the quadrics,
+//! polygons (convex, concave and with holes) and bilinear patches, with their primitive
+//! variables `P` and `Cs` of every storage class.
+//!
+//! Invariants: a primitive's counts are checked against its parameter lengths before anything
+//! is indexed, so a malformed primitive is an error naming the request and the parameter,
+//! never a panic; polygons are split into the model's triangles and quads without adding
+//! vertices, so neighbouring faces stay welded; when per-face or per-face-vertex colours ask
+//! for it, vertices are duplicated per face (positions unchanged, so no crack opens).
+
+use reyes_scene::{Rgb, Shape, V3};
+
+use crate::{Class, Param, Request, RibError, Warning};
+
+/// A `Basis` as written: a standard name or an explicit matrix.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum BasisSpec {
+    /// `"bezier"`, `"b-spline"`, `"catmull-rom"`, `"hermite"`, `"power"`.
+    Named(String),
+    /// 16 numbers.
+    Matrix(Vec<f32>),
+}
+
+/// Where a primitive variable's values go: one per primitive, per face, per vertex, or per
+/// face-vertex.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Counts {
+    /// Faces (1 for a single polygon or patch).
+    pub uniform: usize,
+    /// Vertices (`varying` and `vertex` count the same on polygons).
+    pub vertex: usize,
+    /// Face-vertices (the sum of the faces' vertex counts).
+    pub facevarying: usize,
+}
+
+/// The number of values of `p` expected for its class under `counts`.
+fn expected(class: Class, counts: Counts) -> usize {
+    match class {
+        Class::Constant => 1,
+        Class::Uniform => counts.uniform,
+        Class::Varying | Class::Vertex => counts.vertex,
+        Class::FaceVarying | Class::FaceVertex => counts.facevarying,
+    }
+}
+
+/// The values of a float-typed parameter in groups of `n`, checked against the counts of its
+/// class; None if the primitive does not have it.
+fn groups<'a>(
+    r: &Request,
+    p: &'a Param,
+    n: usize,
+    counts: Counts,
+) -> Result<(Class, &'a [f32]), RibError> {
+    let values = p.floats().ok_or_else(|| r.param_error(p, "must hold numbers"))?;
+    let class = p.decl.as_ref().map(|d| d.class).unwrap_or(Class::Vertex);
+    let want = expected(class, counts) * n;
+    if values.len() != want {
+        return Err(r.param_error(
+            p,
+            format!(
+                "{} {} values for {} {}: expected {want}, got {}",
+                class.name(),
+                if n == 1 { "float".to_string() } else { format!("{n}-component") },
+                expected(class, counts),
+                match class {
+                    Class::Constant => "primitive",
+                    Class::Uniform => "faces",
+                    Class::FaceVarying | Class::FaceVertex => "face-vertices",
+                    _ => "vertices",
+                },
+                values.len()
+            ),
+        ));
+    }
+    Ok((class, values))
+}
+
+/// A polygon mesh in RIB's terms, before it becomes a model mesh.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct PolyMesh {
+    /// Vertex positions.
+    pub points: Vec<V3>,
+    /// Each face: its loops (the first the outline, the others holes) of vertex indices.
+    pub faces: Vec<Vec<Vec<u32>>>,
+}
+
+/// The positions `P` (or `Pw`, divided through) of a primitive with `vertices` vertices.
+pub(crate) fn positions(r: &Request, vertices: usize) -> Result<Vec<V3>, RibError> {
+    let counts = Counts { uniform: 1, vertex: vertices, facevarying: vertices };
+    if let Some(p) = r.param("P") {
+        let (_, v) = groups(r, p, 3, counts)?;
+        return Ok(v.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect());
+    }
+    if let Some(p) = r.param("Pw") {
+        let (_, v) = groups(r, p, 4, counts)?;
+        return v
+            .chunks_exact(4)
+            .enumerate()
+            .map(|(i, c)| {
+                if c[3] == 0.0 || !c[3].is_finite() {
+                    Err(r.param_error(p, format!("point {i} has weight {}", c[3])))
+                } else {
+                    Ok([c[0] / c[3], c[1] / c[3], c[2] / c[3]])
+                }
+            })
+            .collect();
+    }
+    Err(r.error("needs \"P\" (or \"Pw\") positions"))
+}
+
+/// The mesh of `PointsGeneralPolygons` (and, with one loop per face, `PointsPolygons`;
+/// with one face, `Polygon` and `GeneralPolygon`): `nloops` per face, `nvertices` per loop,
+/// `vertices` the indices.
+pub(crate) fn poly_mesh(
+    r: &Request,
+    nloops: &[i32],
+    nvertices: &[i32],
+    vertices: Option<&[i32]>,
+) -> Result<PolyMesh, RibError> {
+    let sum = |v: &[i32], what: &str| -> Result<usize, RibError> {
+        let mut total = 0usize;
+        for (i, &n) in v.iter().enumerate() {
+            if n < 1 {
+                return Err(r.error(format!("{what}[{i}] must be at least 1, got {n}")));
+            }
+            total = total.saturating_add(n as usize);
+        }
+        Ok(total)
+    };
+    let loops = sum(nloops, "nloops")?;
+    if loops != nvertices.len() {
+        return Err(r.error(format!(
+            "nloops adds up to {loops} loops but nvertices has {} entries",
+            nvertices.len()
+        )));
+    }
+    for (i, &n) in nvertices.iter().enumerate() {
+        if n < 3 {
+            return Err(r.error(format!("nvertices[{i}] must be at least 3, got {n}")));
+        }
+    }
+    let corners = sum(nvertices, "nvertices")?;
+    let index: Vec<u32> = match vertices {
+        Some(v) => {
+            if v.len() != corners {
+                return Err(r.error(format!(
+                    "nvertices adds up to {corners} vertices but vertices has {} entries",
+                    v.len()
+                )));
+            }
+            v.iter()
+                .enumerate()
+                .map(|(i, &k)| {
+                    u32::try_from(k)
+                        .map_err(|_| r.error(format!("vertices[{i}] is negative ({k})")))
+                })
+                .collect::<Result<_, _>>()?
+        }
+        None => (0..corners as u32).collect(),
+    };
+    let npoints = index.iter().map(|&k| k as usize + 1).max().unwrap_or(0);
+    let points = positions(r, npoints)?;
+    let mut faces = Vec::with_capacity(nloops.len());
+    let (mut l, mut k) = (0usize, 0usize);
+    for &nl in nloops {
+        let mut face = Vec::with_capacity(nl as usize);
+        for _ in 0..nl {
+            let n = nvertices[l] as usize;
+            face.push(index[k..k + n].to_vec());
+            k += n;
+            l += 1;
+        }
+        faces.push(face);
+    }
+    Ok(PolyMesh { points, faces })
+}
+
+/// Colours `Cs` of a mesh, as the model needs them: one per vertex. Constant colours come
+/// back as `(Some(c), None)` (a material colour); per-face and per-face-vertex colours unweld
+/// the mesh (`mesh` is rewritten with one vertex per face-vertex).
+pub(crate) fn mesh_colors(
+    r: &Request,
+    mesh: &mut PolyMesh,
+) -> Result<(Option<Rgb>, Option<Vec<Rgb>>), RibError> {
+    let Some(p) = r.param("Cs") else { return Ok((None, None)) };
+    let counts = Counts {
+        uniform: mesh.faces.len(),
+        vertex: mesh.points.len(),
+        facevarying: mesh.faces.iter().flatten().map(Vec::len).sum(),
+    };
+    let (class, v) = groups(r, p, 3, counts)?;
+    let rgb: Vec<Rgb> = v.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+    match class {
+        Class::Constant => Ok((Some(rgb[0]), None)),
+        Class::Varying | Class::Vertex => Ok((None, Some(rgb))),
+        Class::Uniform | Class::FaceVarying | Class::FaceVertex => {
+            // One vertex per face-vertex, so each face carries its own colours.
+            let mut points = Vec::with_capacity(counts.facevarying);
+            let mut colors = Vec::with_capacity(counts.facevarying);
+            let mut fv = 0usize;
+            for (f, face) in mesh.faces.iter_mut().enumerate() {
+                for lp in face.iter_mut() {
+                    for k in lp.iter_mut() {
+                        points.push(mesh.points[*k as usize]);
+                        colors.push(if class == Class::Uniform { rgb[f] } else { rgb[fv] });
+                        *k = (points.len() - 1) as u32;
+                        fv += 1;
+                    }
+                }
+            }
+            mesh.points = points;
+            Ok((None, Some(colors)))
+        }
+    }
+}
+
+/// Warnings for the primitive variables of `r` that the model does not carry yet.
+pub(crate) fn unused_primvars(r: &Request, used: &[&str], warnings: &mut Vec<Warning>) {
+    for p in &r.params {
+        if used.contains(&p.name.as_str()) {
+            continue;
+        }
+        let what = match p.name.as_str() {
+            "N" | "Np" => "vertex normals are not used yet: faces shade by their own normals",
+            "st" | "s" | "t" => "texture coordinates are not used yet (no texture maps)",
+            "Os" => "per-vertex opacity is not supported: the Opacity attribute is used",
+            _ => "primitive variable ignored",
+        };
+        warnings.push(Warning {
+            at: r.param_location(p),
+            message: format!("{}: \"{}\": {what}", r.name(), p.name),
+        });
+    }
+}
+
+/// The model mesh of `mesh`: faces of 3 or 4 vertices. Convex faces of more vertices are
+/// fanned into triangles from their first vertex; concave faces and faces with holes are
+/// triangulated by ear clipping (holes bridged into the outline first).
+pub(crate) fn to_model_mesh(
+    r: &Request,
+    mesh: &PolyMesh,
+    colors: Option<Vec<Rgb>>,
+) -> Result<Shape, RibError> {
+    let mut faces = Vec::with_capacity(mesh.faces.len());
+    for (f, face) in mesh.faces.iter().enumerate() {
+        if face.len() == 1 && face[0].len() <= 4 {
+            faces.push(face[0].clone());
+            continue;
+        }
+        match crate::ri::triangulate::face(&mesh.points, face) {
+            Some(tris) => faces.extend(tris.into_iter().map(|t| t.to_vec())),
+            None => {
+                return Err(r.error(format!(
+                    "face {f} cannot be triangulated (degenerate, or its loops cross)"
+                )));
+            }
+        }
+    }
+    Ok(Shape::Mesh { points: mesh.points.clone(), faces, colors })
+}
+
+/// A quadric's shape, with its optional `zmin`/`zmax` cuts in the model's form.
+pub(crate) fn sphere(radius: f32, zmin: f32, zmax: f32, thetamax: f32) -> Shape {
+    // RenderMan clamps the cuts to the sphere; a negative radius turns it inside out, which
+    // two-sided shading does not see: its absolute value is the sphere.
+    let r = radius.abs();
+    let (lo, hi) = (zmin.min(zmax).max(-r), zmin.max(zmax).min(r));
+    Shape::Sphere {
+        radius: r,
+        zmin: (lo > -r).then_some(lo),
+        zmax: (hi < r).then_some(hi),
+        thetamax,
+    }
+}

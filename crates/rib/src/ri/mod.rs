@@ -1,0 +1,81 @@
+//! The RI state machine: RIB requests to validated scenes of the scene model, one per frame.
+//!
+//! World space of the model is RenderMan's camera space at shutter open (+x right, +y up, +z
+//! into the screen, the model's canonical camera at the origin looking down +z): every object
+//! carries its object-to-camera transformation, lights are placed in camera space, and a
+//! moving camera becomes the model's camera motion keys relative to its pose at shutter open.
+//!
+//! Invariants: the graphics state is a stack of value types, so `AttributeEnd` restores
+//! exactly what `AttributeBegin` saw; blocks must balance and nest as the Specification says
+//! (a mismatch is an error at the offending request); every scene handed out has passed
+//! [`reyes_scene::validate`], and a validation failure is reported at the RIB request that
+//! produced the offending value.
+
+mod build;
+mod frame;
+pub(crate) mod geometry;
+mod options;
+mod primitives;
+mod shaders;
+pub(crate) mod state;
+mod triangulate;
+pub(crate) mod xform;
+
+use reyes_scene::Scene;
+
+pub use state::Display;
+
+use crate::{Reader, ReaderOptions, RibError, Source, Warning};
+
+/// How to read a RIB file.
+#[derive(Debug, Clone, Default)]
+pub struct RiOptions {
+    /// Unknown shaders are errors instead of warnings.
+    pub strict: bool,
+    /// Build only the frames whose `FrameBegin` number is in one of these inclusive ranges
+    /// (None: every frame). A file without frames is frame 1 for this purpose.
+    pub frames: Option<Vec<(i32, i32)>>,
+}
+
+impl RiOptions {
+    /// True if frame `n` is to be built.
+    pub fn wants(&self, n: i32) -> bool {
+        self.frames.as_ref().is_none_or(|r| r.iter().any(|&(a, b)| a <= n && n <= b))
+    }
+}
+
+/// One frame of a RIB file.
+#[derive(Debug, Clone)]
+pub struct Frame {
+    /// The `FrameBegin` number (None: the file has no frame block).
+    pub number: Option<i32>,
+    /// The scene, validated.
+    pub scene: Scene,
+    /// Its `Display` requests, main output first.
+    pub displays: Vec<Display>,
+}
+
+/// What a RIB file holds.
+#[derive(Debug, Clone)]
+pub struct Loaded {
+    /// The frames built, in file order.
+    pub frames: Vec<Frame>,
+    /// Everything accepted but worth telling: unknown requests and parameters, features we
+    /// do not support, stand-in shaders.
+    pub warnings: Vec<Warning>,
+}
+
+/// Reads RIB from `source` into validated scenes, one per frame (archives are read relative
+/// to the including file).
+///
+/// # Errors
+///
+/// The first malformed request, unbalanced block or invalid value, as one line
+/// `file:line:col: Request: message`; [`RibError::Io`] if the source cannot be read.
+pub fn load(source: Source, options: &RiOptions) -> Result<Loaded, RibError> {
+    let reader = Reader::with_options(
+        source,
+        ReaderOptions { follow_archives: true, ..ReaderOptions::default() },
+    );
+    frame::Machine::new(reader, options.clone()).run()
+}

@@ -1,0 +1,204 @@
+//! Option requests of the RI state machine (Spec 3.2, 4.1): camera, display and hider
+//! options, each kept in the frame's [`FrameOptions`] with where it was set.
+//!
+//! Invariant: options are refused inside the world block, where the Specification freezes
+//! them; every value is checked where the model needs it checked first (sizes, counts, names).
+
+use reyes_scene::{FilterKind, HiderMethod};
+
+use super::frame::Machine;
+use super::state::{Display, Projection};
+use crate::{Request, RequestKind as K, RibError, Warning};
+
+impl Machine {
+    /// Options: only outside the world block.
+    pub(super) fn option(&mut self, r: &Request) -> Result<(), RibError> {
+        if self.in_world() {
+            return Err(r.error("options must be set before WorldBegin"));
+        }
+        let mut warnings = Vec::new();
+        self.set_option(r, &mut warnings)?;
+        for (key, w) in warnings {
+            self.warn_once(key, w);
+        }
+        Ok(())
+    }
+
+    fn set_option(
+        &mut self,
+        r: &Request,
+        warned: &mut Vec<(String, Warning)>,
+    ) -> Result<(), RibError> {
+        let o = &mut self.frame_options;
+        let v = |i| r.float(i).unwrap_or(0.0);
+        match r.kind {
+            K::Format => {
+                let (w, h) = (r.int(0).unwrap_or(0), r.int(1).unwrap_or(0));
+                if w < 1 || h < 1 {
+                    return Err(r.error(format!("resolution must be at least 1x1, got {w}x{h}")));
+                }
+                o.width = w as u32;
+                o.height = h as u32;
+                o.pixel_aspect = r.float(2).unwrap_or(1.0);
+                o.origin("image", &r.at, r.name());
+                if o.pixel_aspect != 1.0 && o.pixel_aspect > 0.0 {
+                    let w = r.warning("pixel aspect ratios other than 1 are not supported: square pixels are used");
+                    warned.push(("pixelaspect".to_string(), w));
+                }
+            }
+            K::FrameAspectRatio => {
+                o.frame_aspect = Some(v(0));
+                o.origin("camera.screen_window", &r.at, r.name());
+            }
+            K::ScreenWindow => {
+                let s = r.floats(0).map(<[f32]>::to_vec).unwrap_or_else(|| (0..4).map(v).collect());
+                o.screen_window = Some([s[0], s[1], s[2], s[3]]);
+                o.origin("camera.screen_window", &r.at, r.name());
+            }
+            K::CropWindow => {
+                let s = r.floats(0).map(<[f32]>::to_vec).unwrap_or_else(|| (0..4).map(v).collect());
+                o.crop = Some([s[0], s[1], s[2], s[3]]);
+                let w =
+                    r.warning("crop windows are not supported yet: the whole frame is rendered");
+                warned.push(("cropwindow".to_string(), w));
+            }
+            K::Projection => {
+                let name = r.string(0).unwrap_or_default();
+                o.projection = match name {
+                    "perspective" => {
+                        let fov = r
+                            .param("fov")
+                            .and_then(|p| p.floats())
+                            .and_then(|f| f.first().copied())
+                            .unwrap_or(90.0);
+                        Projection::Perspective { fov }
+                    }
+                    "orthographic" => Projection::Orthographic,
+                    other => {
+                        return Err(r.error(format!(
+                            "unknown projection \"{other}\" (perspective or orthographic)"
+                        )));
+                    }
+                };
+                o.origin("camera.fov", &r.at, r.name());
+                o.origin("camera.projection", &r.at, r.name());
+            }
+            K::Clipping => {
+                o.hither = v(0);
+                o.yon = v(1);
+                o.origin("camera.hither", &r.at, r.name());
+                o.origin("camera.yon", &r.at, r.name());
+            }
+            K::DepthOfField => {
+                o.depth_of_field = if r.args.is_empty() {
+                    None
+                } else {
+                    let f = v(0);
+                    if f.is_infinite() { None } else { Some((f, v(1), v(2))) }
+                };
+                o.origin("camera.lens", &r.at, r.name());
+            }
+            K::Shutter => {
+                o.shutter = (v(0), v(1));
+                o.origin("camera.shutter", &r.at, r.name());
+            }
+            K::PixelSamples => {
+                let (x, y) = (v(0), v(1));
+                let round =
+                    |s: f32| if s.is_finite() && s >= 1.0 { Some(s.round() as u32) } else { None };
+                let (Some(x), Some(y)) = (round(x), round(y)) else {
+                    return Err(r.error(format!("samples must be at least 1, got {x} {y}")));
+                };
+                o.pixel_samples = (x, y);
+                o.origin("hider.pixel_samples", &r.at, r.name());
+            }
+            K::PixelFilter => {
+                let name = r.string(0).unwrap_or_default();
+                let kind = FilterKind::from_renderman_name(name)
+                    .ok_or_else(|| r.error(format!("unknown filter \"{name}\"")))?;
+                o.filter.kind = kind;
+                o.filter.width = v(1);
+                o.filter.height = Some(v(2));
+                o.origin("hider.filter", &r.at, r.name());
+            }
+            K::Exposure => {
+                if (v(0), v(1)) != (1.0, 1.0) {
+                    let w = r.warning("exposure is not supported yet: gain 1 and gamma 1 are used");
+                    warned.push(("exposure".to_string(), w));
+                }
+            }
+            K::Quantize => {}
+            K::Display => {
+                let name = r.string(0).unwrap_or_default();
+                let (extra, name) = match name.strip_prefix('+') {
+                    Some(n) => (true, n),
+                    None => (false, name),
+                };
+                let d = Display {
+                    name: name.to_string(),
+                    driver: r.string(1).unwrap_or_default().to_string(),
+                    mode: r.string(2).unwrap_or_default().to_string(),
+                    extra,
+                    at: r.at.clone(),
+                };
+                if !extra {
+                    o.displays.clear();
+                }
+                o.displays.push(d);
+            }
+            K::Hider => {
+                let name = r.string(0).unwrap_or_default();
+                o.method = match name {
+                    "hidden" | "stochastic" => HiderMethod::Stochastic,
+                    "raytrace" => HiderMethod::RayTrace,
+                    other => {
+                        return Err(r.error(format!(
+                            "unknown hider \"{other}\" (hidden, stochastic or raytrace)"
+                        )));
+                    }
+                };
+                if let Some(j) = r.param("jitter").and_then(|p| {
+                    p.floats()
+                        .map(<[f32]>::to_vec)
+                        .or_else(|| p.ints().map(|i| i.iter().map(|&k| k as f32).collect()))
+                }) {
+                    o.jitter = j.first().is_some_and(|&x| x != 0.0);
+                }
+                o.origin("hider.method", &r.at, r.name());
+            }
+            K::Option => {
+                let name = r.string(0).unwrap_or_default().to_string();
+                for p in &r.params {
+                    match (name.as_str(), p.name.as_str()) {
+                        ("limits", "bucketsize") => {
+                            let b: Vec<i32> = p.ints().map(<[i32]>::to_vec).unwrap_or_else(|| {
+                                p.floats().unwrap_or(&[]).iter().map(|&f| f as i32).collect()
+                            });
+                            if b.len() != 2 || b.iter().any(|&k| k < 1) {
+                                return Err(r.param_error(p, "must be two sizes of at least 1"));
+                            }
+                            o.bucket_size = Some((b[0] as u32, b[1] as u32));
+                            o.origin("hider.bucket_size", &r.at, r.name());
+                        }
+                        ("statistics", _) | ("searchpath", _) => {}
+                        _ => {
+                            let w = Warning {
+                                at: r.param_location(p),
+                                message: format!(
+                                    "Option: \"{name}\" \"{}\" is not supported: ignored",
+                                    p.name
+                                ),
+                            };
+                            warned.push((format!("option {name} {}", p.name), w));
+                        }
+                    }
+                }
+            }
+            _ => {
+                let w = r.warning("not supported: ignored");
+                warned.push((format!("request {}", r.name()), w));
+            }
+        }
+        Ok(())
+    }
+}

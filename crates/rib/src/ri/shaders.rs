@@ -1,0 +1,183 @@
+//! RenderMan's standard shaders (Spec 3.2, Appendix A) as the scene model's materials and
+//! lights, with the Specification's parameters and defaults.
+//!
+//! Invariants: a shader parameter is read only when its declared type is the one the standard
+//! shader gives it (a float or a colour of the right size); anything else is a warning and the
+//! default is kept. Unknown shaders are named once per name in a warning (an error with
+//! `--strict`) and stand in as `plastic` on the primitive's `Cs` and `Os`.
+
+use reyes_scene::{Light, Material};
+
+use crate::ri::state::SurfaceShader;
+use crate::ri::xform::{Xform, point};
+use crate::{Location, Param, Warning};
+
+/// A float parameter of a shader, if given as one float.
+fn float(params: &[Param], name: &str) -> Option<f32> {
+    params.iter().find(|p| p.name == name).and_then(|p| match p.floats() {
+        Some([v]) => Some(*v),
+        _ => None,
+    })
+}
+
+/// A colour parameter of a shader, if given as three floats.
+fn color(params: &[Param], name: &str) -> Option<[f32; 3]> {
+    params.iter().find(|p| p.name == name).and_then(|p| match p.floats() {
+        Some([r, g, b]) => Some([*r, *g, *b]),
+        _ => None,
+    })
+}
+
+/// A point parameter of a shader, if given as three floats.
+fn point_param(params: &[Param], name: &str) -> Option<[f32; 3]> {
+    color(params, name)
+}
+
+/// Warnings for the parameters of `params` that a standard shader does not take, or takes in
+/// another form.
+fn unused(
+    shader: &str,
+    params: &[Param],
+    known: &[(&str, usize)],
+    at: &Location,
+    warnings: &mut Vec<Warning>,
+) {
+    for p in params {
+        match known.iter().find(|(n, _)| *n == p.name) {
+            None => warnings.push(Warning {
+                at: at.at(p.at),
+                message: format!("{shader}: unknown parameter \"{}\" ignored", p.name),
+            }),
+            Some((_, n)) if p.floats().map(<[f32]>::len) != Some(*n) => warnings.push(Warning {
+                at: at.at(p.at),
+                message: format!(
+                    "{shader}: parameter \"{}\" must be {n} number{}; the default is used",
+                    p.name,
+                    if *n == 1 { "" } else { "s" }
+                ),
+            }),
+            _ => {}
+        }
+    }
+}
+
+/// What a surface shader becomes.
+pub(crate) enum SurfaceResult {
+    /// A material.
+    Material(Material),
+    /// An unknown shader, standing in as plastic; the name is reported.
+    Unknown(Material, String),
+}
+
+/// The material of `surface` on a primitive of colour `cs` and opacity `os`. Warnings about
+/// parameters are pushed to `warnings` (once per shader request: `reported` remembers them).
+pub(crate) fn material(
+    surface: &SurfaceShader,
+    cs: [f32; 3],
+    os: [f32; 3],
+    warnings: &mut Vec<Warning>,
+    report: bool,
+) -> SurfaceResult {
+    let p = &surface.params;
+    let f = |name: &str, default: f32| float(p, name).unwrap_or(default);
+    let mut check = |shader: &str, known: &[(&str, usize)]| {
+        if report && let Some(at) = &surface.at {
+            unused(shader, p, known, at, warnings);
+        }
+    };
+    let plastic = |p: &[Param]| Material::Plastic {
+        color: cs,
+        opacity: os,
+        ka: float(p, "Ka").unwrap_or(1.0),
+        kd: float(p, "Kd").unwrap_or(0.5),
+        ks: float(p, "Ks").unwrap_or(0.5),
+        roughness: float(p, "roughness").unwrap_or(0.1),
+        specular_color: color(p, "specularcolor").unwrap_or([1.0; 3]),
+    };
+    match surface.name.as_deref() {
+        None | Some("defaultsurface") => {
+            // No shader: the renderer's own default, which in Aqsis and Pixie is a matte
+            // surface lit by the scene's lights (docs/rib.md).
+            SurfaceResult::Material(Material::Matte { color: cs, opacity: os, ka: 1.0, kd: 1.0 })
+        }
+        Some("constant") => {
+            check("constant", &[]);
+            SurfaceResult::Material(Material::Constant { color: cs, opacity: os })
+        }
+        Some("matte") => {
+            check("matte", &[("Ka", 1), ("Kd", 1)]);
+            SurfaceResult::Material(Material::Matte {
+                color: cs,
+                opacity: os,
+                ka: f("Ka", 1.0),
+                kd: f("Kd", 1.0),
+            })
+        }
+        Some("plastic") => {
+            check(
+                "plastic",
+                &[("Ka", 1), ("Kd", 1), ("Ks", 1), ("roughness", 1), ("specularcolor", 3)],
+            );
+            SurfaceResult::Material(plastic(p))
+        }
+        Some("paintedplastic") => {
+            check(
+                "paintedplastic",
+                &[("Ka", 1), ("Kd", 1), ("Ks", 1), ("roughness", 1), ("specularcolor", 3)],
+            );
+            SurfaceResult::Material(plastic(p))
+        }
+        Some(other) => SurfaceResult::Unknown(plastic(&[]), other.to_string()),
+    }
+}
+
+/// A light source shader placed by the transformation `to_world` (current space to ours).
+pub(crate) enum LightResult {
+    /// A light.
+    Light(Light),
+    /// A shader we do not have; the name is reported.
+    Unknown(String),
+}
+
+/// The light of `LightSource name params` under `to_world` at shutter open.
+pub(crate) fn light(
+    name: &str,
+    params: &[Param],
+    to_world: &Xform,
+    at: &Location,
+    warnings: &mut Vec<Warning>,
+) -> LightResult {
+    let m = to_world.at(f32::NEG_INFINITY);
+    let intensity = float(params, "intensity").unwrap_or(1.0);
+    let lightcolor = color(params, "lightcolor").unwrap_or([1.0; 3]);
+    match name {
+        "ambientlight" => {
+            unused(name, params, &[("intensity", 1), ("lightcolor", 3)], at, warnings);
+            LightResult::Light(Light::Ambient { color: lightcolor, intensity })
+        }
+        "distantlight" => {
+            unused(
+                name,
+                params,
+                &[("intensity", 1), ("lightcolor", 3), ("from", 3), ("to", 3)],
+                at,
+                warnings,
+            );
+            let from = point(&m, point_param(params, "from").unwrap_or([0.0; 3]));
+            let to = point(&m, point_param(params, "to").unwrap_or([0.0, 0.0, 1.0]));
+            LightResult::Light(Light::Distant {
+                from,
+                to,
+                color: lightcolor,
+                intensity,
+                shadows: false,
+            })
+        }
+        "pointlight" => {
+            unused(name, params, &[("intensity", 1), ("lightcolor", 3), ("from", 3)], at, warnings);
+            let from = point(&m, point_param(params, "from").unwrap_or([0.0; 3]));
+            LightResult::Light(Light::Point { from, color: lightcolor, intensity, shadows: false })
+        }
+        other => LightResult::Unknown(other.to_string()),
+    }
+}
