@@ -60,6 +60,8 @@ pub(super) struct FrameBuild {
     /// Per object: its transformation keys (before fitting to the shutter) and point keys.
     object_motion: Vec<(Xform, PointKeys)>,
     object_attributes: Vec<ObjectAttributes>,
+    /// Object names, kept for messages after the objects move into the scene.
+    object_names: Vec<String>,
     solids: Vec<Solid>,
     solid_origins: Vec<Location>,
     solid_stack: Vec<SolidNode>,
@@ -79,6 +81,7 @@ impl FrameBuild {
             object_origins: Vec::new(),
             object_motion: Vec::new(),
             object_attributes: Vec::new(),
+            object_names: Vec::new(),
             solids: Vec::new(),
             solid_origins: Vec::new(),
             solid_stack: Vec::new(),
@@ -119,6 +122,7 @@ impl FrameBuild {
             node.children.push(Csg::Object(object.name.clone()));
         }
         object.transform = xform::to_model(&to_world.keys[0].1);
+        self.object_names.push(object.name.clone());
         self.objects.push(object);
         self.object_origins.push(origin);
         self.object_motion.push((to_world.clone(), deform));
@@ -334,6 +338,11 @@ impl FrameBuild {
         }
     }
 
+    /// The index of the object named `name` (CSG leaves have unique names).
+    fn objects_named(&self, name: &str) -> Option<usize> {
+        self.object_names.iter().position(|n| n == name)
+    }
+
     /// A validation failure at `path`, reported at the request that made the value.
     fn locate(&self, path: &str, message: &str) -> RibError {
         let index = |prefix: &str| -> Option<usize> {
@@ -350,6 +359,14 @@ impl FrameBuild {
             && let Some(at) = self.light_origins.get(i)
         {
             return RibError::Request { at: at.clone(), request: "LightSource", message: what };
+        }
+        // A CSG operand at fault: its own primitive.
+        if path.starts_with("solids[")
+            && let Some(name) = message.split('"').nth(1)
+            && let Some(i) = self.objects_named(name)
+        {
+            let o = &self.object_origins[i];
+            return RibError::Request { at: o.at.clone(), request: o.request, message: what };
         }
         if let Some(i) = index("solids[")
             && let Some(at) = self.solid_origins.get(i)

@@ -58,7 +58,8 @@ pub(crate) struct Machine {
     /// space inside it.
     pub(super) ctm: Xform,
     ctm_stack: Vec<Xform>,
-    pub(super) blocks: Vec<Block>,
+    /// Open blocks, with where each began.
+    pub(super) blocks: Vec<(Block, Location)>,
     pub(super) motion: Option<Motion>,
     /// Named coordinate systems (`CoordinateSystem`), as current-to-camera (before the world)
     /// or current-to-world transformations, with whether they were named inside the world.
@@ -78,12 +79,12 @@ pub(crate) struct Machine {
     frames: Vec<Frame>,
 }
 
-/// A handle argument as a string key (RIB handles are integers or strings).
+/// A handle argument as a key (RIB handles are integers or strings; `1` and `"1"` differ).
 fn handle(r: &Request, i: usize) -> Option<String> {
     match r.args.get(i)? {
-        Value::Int(n) => Some(format!("#{n}")),
-        Value::Float(f) => Some(format!("#{f}")),
-        Value::String(s) => Some(s.clone()),
+        Value::Int(n) => Some(format!("{n}")),
+        Value::Float(f) => Some(format!("{f}")),
+        Value::String(s) => Some(format!("\"{s}\"")),
         _ => None,
     }
 }
@@ -131,13 +132,6 @@ impl Machine {
             self.request(r)?;
         }
         self.warnings.extend(self.reader.take_warnings());
-        if let Some(b) = self.blocks.last() {
-            return Err(RibError::Request {
-                at: self.end_location(),
-                request: b.begin(),
-                message: "block not closed at the end of the input".into(),
-            });
-        }
         if let Some(m) = &self.motion {
             return Err(RibError::Request {
                 at: m.at.clone(),
@@ -145,14 +139,14 @@ impl Machine {
                 message: "no MotionEnd before the end of the input".into(),
             });
         }
-        Ok(Loaded { frames: self.frames, warnings: self.warnings })
-    }
-
-    fn end_location(&self) -> Location {
-        Location {
-            file: self.reader.current_file().unwrap_or("<input>").into(),
-            pos: crate::Pos { line: 0, col: 0 },
+        if let Some((b, at)) = self.blocks.last() {
+            return Err(RibError::Request {
+                at: at.clone(),
+                request: b.begin(),
+                message: "block not closed at the end of the input".into(),
+            });
         }
+        Ok(Loaded { frames: self.frames, warnings: self.warnings })
     }
 
     pub(super) fn in_world(&self) -> bool {
@@ -191,12 +185,12 @@ impl Machine {
             K::WorldBegin => self.world_begin(&r),
             K::WorldEnd => self.world_end(&r),
             K::AttributeBegin => {
-                self.push(Block::Attribute);
+                self.push(Block::Attribute, &r.at);
                 Ok(())
             }
             K::AttributeEnd => self.pop(&r, Block::Attribute),
             K::TransformBegin => {
-                self.blocks.push(Block::Transform);
+                self.blocks.push((Block::Transform, r.at.clone()));
                 self.ctm_stack.push(self.ctm.clone());
                 Ok(())
             }
@@ -362,15 +356,15 @@ impl Machine {
         }
     }
 
-    fn push(&mut self, b: Block) {
-        self.blocks.push(b);
+    fn push(&mut self, b: Block, at: &Location) {
+        self.blocks.push((b, at.clone()));
         self.attribute_stack.push(self.attributes.clone());
         self.ctm_stack.push(self.ctm.clone());
     }
 
     /// Closes the innermost block, which must be `b`.
     fn pop(&mut self, r: &Request, b: Block) -> Result<(), RibError> {
-        match self.blocks.last() {
+        match self.blocks.last().map(|(top, _)| top) {
             Some(top) if *top == b => {}
             Some(top) => {
                 return Err(r.error(format!(
@@ -399,7 +393,7 @@ impl Machine {
         }
         self.frame_number = r.int(0);
         self.saved_options.push(self.frame_options.clone());
-        self.push(Block::Frame);
+        self.push(Block::Frame, &r.at);
         Ok(())
     }
 
@@ -414,7 +408,7 @@ impl Machine {
     }
 
     fn world_begin(&mut self, r: &Request) -> Result<(), RibError> {
-        if self.in_world() || self.blocks.iter().any(|b| *b != Block::Frame) {
+        if self.in_world() || self.blocks.iter().any(|(b, _)| *b != Block::Frame) {
             return Err(r.error("WorldBegin must be outside every block but a frame"));
         }
         // The transformation so far is the camera's: world to camera.
@@ -422,7 +416,7 @@ impl Machine {
         let number = self.frame_number.unwrap_or(1);
         let mut build =
             FrameBuild::new(self.frame_options.clone(), r.at.clone(), self.options.wants(number));
-        self.push(Block::World);
+        self.push(Block::World, &r.at);
         self.ctm = Xform::default();
         // Lights of the world block are new for every frame; those declared before it are on.
         self.attributes.lights_on.clear();
@@ -508,12 +502,15 @@ impl Machine {
         ];
         if transform_kinds.contains(&first.kind) {
             if m.requests.len() != n || m.requests.iter().any(|q| q.kind != first.kind) {
+                let mut kinds: Vec<&str> = m.requests.iter().map(Request::name).collect();
+                kinds.dedup();
                 return Err(RibError::Request {
                     at: m.at.clone(),
                     request: "MotionBegin",
                     message: format!(
-                        "{n} times need {n} transformations of one kind, got {} requests",
-                        m.requests.len()
+                        "{n} times need {n} transformations of one kind, got {} ({})",
+                        m.requests.len(),
+                        kinds.join(", ")
                     ),
                 });
             }
@@ -564,7 +561,7 @@ impl Machine {
                 "operation must be \"primitive\", \"union\", \"intersection\" or \"difference\", got \"{op}\""
             )));
         }
-        self.push(Block::Solid);
+        self.push(Block::Solid, &r.at);
         let name = self.attributes.name.clone();
         if let Some(b) = &mut self.build {
             b.solid_begin(op, name, r.at.clone());
@@ -597,7 +594,7 @@ impl Machine {
         }
         // Replay the definition in its own attribute block.
         let depth = self.blocks.len();
-        self.push(Block::Attribute);
+        self.push(Block::Attribute, &r.at);
         for q in requests {
             self.request(q)?;
         }
@@ -710,7 +707,7 @@ impl Machine {
         let b =
             self.build.as_ref().ok_or_else(|| r.error("Illuminate must be inside the world"))?;
         let Some(index) = b.light_index(&h) else {
-            return Err(r.error(format!("no light with handle {}", h.trim_start_matches('#'))));
+            return Err(r.error(format!("no light with handle {h}")));
         };
         let lights = &mut self.attributes.lights_on;
         if on && !lights.contains(&index) {

@@ -1,0 +1,76 @@
+//! The state machine's malformed-RIB catalogue: each case gives exactly one error, one line,
+//! `file:line:col: Request: message`, at the request at fault (a value that fails the scene's
+//! validation is reported at the request that made it). The whole catalogue is a snapshot.
+
+use super::{rib, world};
+
+/// Cases: a name and RIB text that must fail.
+fn cases() -> Vec<(&'static str, String)> {
+    let w = world;
+    vec![
+        ("geometry outside the world", "Sphere 1 -1 1 360".into()),
+        ("option inside the world", w("Format 10 10 1")),
+        ("AttributeEnd without AttributeBegin", w("AttributeEnd")),
+        ("TransformEnd closing an attribute block", w("AttributeBegin TransformEnd")),
+        ("WorldEnd without WorldBegin", "WorldEnd".into()),
+        ("unclosed AttributeBegin", "WorldBegin AttributeBegin Sphere 1 -1 1 360".into()),
+        ("unclosed MotionBegin", w("MotionBegin [0 1] Translate 0 0 1")),
+        ("motion times not increasing", w("MotionBegin [1 0] Translate 0 0 1 Translate 0 0 2 MotionEnd")),
+        ("motion with too few transformations", w("MotionBegin [0 0.5 1] Translate 0 0 1 Translate 0 0 2 MotionEnd")),
+        ("nested MotionBegin", w("MotionBegin [0 1] MotionBegin [0 1]")),
+        ("motion of two kinds", w("MotionBegin [0 1] Translate 0 0 1 Rotate 3 0 0 1 MotionEnd")),
+        ("motion of a changing polygon", w("MotionBegin [0 1] Polygon \"P\" [0 0 0 1 0 0 1 1 0] Polygon \"P\" [0 0 0 1 0 0 1 1 0 0 1 0] MotionEnd")),
+        ("unknown solid operation", w("SolidBegin \"xor\"")),
+        ("SolidEnd without SolidBegin", w("SolidEnd")),
+        ("empty solid", w("SolidBegin \"union\" SolidEnd")),
+        ("unknown object handle", w("ObjectInstance 7")),
+        ("ObjectEnd without ObjectBegin", w("ObjectEnd")),
+        ("Illuminate of an unknown light", w("Illuminate 3 1")),
+        ("unknown projection", "Projection \"fisheye\"".into()),
+        ("empty format", "Format 0 0 1".into()),
+        ("no pixel samples", "PixelSamples 0 2".into()),
+        ("unknown pixel filter", "PixelFilter \"lanczos3\" 2 2".into()),
+        ("unknown hider", "Hider \"zbuffer\"".into()),
+        ("bad bucket size", "Option \"limits\" \"bucketsize\" [0 16]".into()),
+        ("unknown basis", w("Basis \"nurbs\" 1 \"bezier\" 3")),
+        ("bad patch type", w("Patch \"trilinear\" \"P\" [0 0 0 1 0 0 0 1 0 1 1 0]")),
+        ("polygon of two points", w("Polygon \"P\" [0 0 0 1 0 0]")),
+        ("a face of two vertices", w("PointsPolygons [2] [0 1] \"P\" [0 0 0 1 0 0]")),
+        ("vertex count mismatch", w("PointsPolygons [3 3] [0 1 2] \"P\" [0 0 0 1 0 0 1 1 0]")),
+        ("negative vertex index", w("PointsPolygons [3] [0 -1 2] \"P\" [0 0 0 1 0 0 1 1 0]")),
+        ("too few points for the indices", w("PointsPolygons [3] [0 1 5] \"P\" [0 0 0 1 0 0 1 1 0]")),
+        ("varying colours of the wrong count", w("Polygon \"P\" [0 0 0 1 0 0 1 1 0] \"varying color Cs\" [1 0 0]")),
+        ("sphere of radius zero", w("Sphere 0 -1 1 360")),
+        ("torus with a zero tube", w("Torus 1 0 0 360 360")),
+        ("far clipping before near", "Clipping 10 1 Projection \"perspective\" WorldBegin Sphere 1 -1 1 360 WorldEnd".into()),
+        ("shutter closing before it opens", "Shutter 1 0 Projection \"perspective\" WorldBegin Sphere 1 -1 1 360 WorldEnd".into()),
+        ("focal distance behind the lens", "DepthOfField 2.8 1 -3 Projection \"perspective\" WorldBegin Sphere 1 -1 1 360 WorldEnd".into()),
+        ("shading rate zero", w("ShadingRate 0")),
+        ("three sides", w("Sides 3")),
+        ("unknown orientation", w("Orientation \"sideways\"")),
+        ("skew of parallel vectors", w("Skew 30 1 0 0 2 0 0")),
+        ("perspective of 200 degrees", w("Perspective 200")),
+        ("unknown coordinate system", w("CoordSysTransform \"lamp\"")),
+        ("an open CSG operand", w("SolidBegin \"union\" SolidBegin \"primitive\" Disk 0 1 360 SolidEnd SolidBegin \"primitive\" Sphere 1 -1 1 360 SolidEnd SolidEnd")),
+        ("FrameBegin inside the world", w("FrameBegin 1")),
+        ("WorldBegin twice", "WorldBegin WorldBegin".into()),
+        ("a degenerate polygon", w("Polygon \"P\" [0 0 0 1 0 0 2 0 0 3 0 0 4 0 0]")),
+        ("geometry in an object definition left open", w("ObjectBegin 1 AttributeBegin Sphere 1 -1 1 360 ObjectEnd ObjectInstance 1")),
+    ]
+}
+
+#[test]
+fn every_malformed_case_gives_its_one_line_error() {
+    let mut snapshot = String::new();
+    for (name, text) in cases() {
+        let err = match rib(&text) {
+            Ok(_) => panic!("{name}: loaded without an error"),
+            Err(e) => e.to_string(),
+        };
+        assert_eq!(err.lines().count(), 1, "{name}: {err}");
+        assert!(err.starts_with("test.rib:"), "{name}: {err}");
+        snapshot.push_str(&format!("{name}\n  {err}\n"));
+    }
+    assert!(cases().len() >= 30);
+    insta::assert_snapshot!("state_machine_catalogue", snapshot);
+}
