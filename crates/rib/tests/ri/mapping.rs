@@ -67,13 +67,13 @@ fn the_specification_defaults_apply() {
 fn the_camera_transformation_places_the_world_in_camera_space() {
     // Camera 5 units back, turned 90 degrees about y: the world origin is 5 ahead, and the
     // world's +x axis turns as RenderMan's Rotate turns it.
-    let s = scene(&format!(
+    let s = scene(
         "Format 64 48 1 Projection \"perspective\" \"fov\" [40]
          Translate 0 0 5 Rotate 90 0 1 0
          WorldBegin
            Translate 1 0 0 Sphere 0.5 -0.5 0.5 360
-         WorldEnd"
-    ));
+         WorldEnd",
+    );
     let o = &s.objects[0];
     let p = place(o, [0.0; 3]);
     // Rotate 90 about y takes +x to -z (right-hand rule matrix), so the sphere sits at
