@@ -276,3 +276,86 @@ fn stats_counts() {
         .collect();
     insta::assert_snapshot!("stats_transparency", counts);
 }
+
+/// A small RIB scene: a sphere in a 32 x 24 frame.
+const RIB: &str = "Format 32 24 1\nProjection \"perspective\" \"fov\" [40]\nPixelSamples 2 2\nWorldBegin\nLightSource \"ambientlight\" 1\nSurface \"matte\"\nTranslate 0 0 5\nSphere 1 -1 1 360\nWorldEnd\n";
+
+#[test]
+fn rib_scenes_render_by_extension_by_content_from_gzip_and_from_stdin() {
+    use std::io::Write;
+    let dir = tempfile::tempdir().unwrap();
+    let by_ext = dir.path().join("ball.rib");
+    std::fs::write(&by_ext, RIB).unwrap();
+    let by_content = dir.path().join("ball-scene");
+    std::fs::write(&by_content, RIB).unwrap();
+    let gz = dir.path().join("ball.rib.gz");
+    let mut enc = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::default());
+    enc.write_all(RIB.as_bytes()).unwrap();
+    std::fs::write(&gz, enc.finish().unwrap()).unwrap();
+    let mut outputs = Vec::new();
+    for (name, scene) in [("ext", &by_ext), ("content", &by_content), ("gz", &gz)] {
+        let out = dir.path().join(format!("{name}.exr"));
+        let o = run(&[scene.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+        assert!(o.status.success(), "{name}: {}", stderr(&o));
+        outputs.push(std::fs::read(&out).unwrap());
+    }
+    let out = dir.path().join("stdin.exr");
+    let mut child = bin()
+        .args(["-", "-o", out.to_str().unwrap()])
+        .stdin(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    child.stdin.take().unwrap().write_all(RIB.as_bytes()).unwrap();
+    assert!(child.wait().unwrap().success());
+    outputs.push(std::fs::read(&out).unwrap());
+    assert!(outputs.windows(2).all(|w| w[0] == w[1]), "the same scene four ways, the same file");
+}
+
+#[test]
+fn rib_frames_go_to_numbered_files_and_frames_chooses_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let body = RIB.replace("Format 32 24 1\n", "");
+    let text = format!(
+        "Format 32 24 1\nFrameBegin 1\n{body}FrameEnd\nFrameBegin 2\n{}FrameEnd\n",
+        body.replace("Translate 0 0 5", "Translate 0 0 8")
+    );
+    let scene = dir.path().join("frames.rib");
+    std::fs::write(&scene, text).unwrap();
+    let o = run(&[scene.to_str().unwrap(), "-o", dir.path().join("f.exr").to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(files_in(dir.path()), ["f.0001.exr", "f.0002.exr", "frames.rib"]);
+    let pattern = dir.path().join("g.##.png");
+    let o = run(&[scene.to_str().unwrap(), "-o", pattern.to_str().unwrap(), "--frames", "2"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(dir.path().join("g.02.png").exists() && !dir.path().join("g.01.png").exists());
+    let o = run(&[scene.to_str().unwrap(), "-o", pattern.to_str().unwrap(), "--frames", "3-1"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+}
+
+#[test]
+fn rib_errors_and_warnings_are_one_line_each() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out.exr");
+    let bad = dir.path().join("bad.rib");
+    std::fs::write(&bad, RIB.replace("Sphere 1 -1 1 360", "Sphere 0 -1 1 360")).unwrap();
+    let o = run(&[bad.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    let shown = stderr(&o).replace(&dir.path().display().to_string(), "DIR");
+    assert_eq!(
+        shown.trim_end(),
+        "reyes-render: error: DIR/bad.rib:8:1: Sphere: objects[0].shape.radius: must be > 0, got 0"
+    );
+    assert!(!out.exists());
+    let odd = dir.path().join("odd.rib");
+    std::fs::write(&odd, RIB.replace("\"matte\"", "\"wood\"")).unwrap();
+    let o = run(&[odd.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert!(o.status.success());
+    let err = stderr(&o);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains("odd.rib:6:1: warning: Surface: unknown shader \"wood\""), "{err}");
+    let o = run(&[odd.to_str().unwrap(), "-o", out.to_str().unwrap(), "--strict"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let missing = dir.path().join("missing.rib");
+    let o = run(&[missing.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+}
