@@ -10,8 +10,8 @@ use std::collections::HashMap;
 
 use glam::{DMat4, DVec3};
 use reyes_scene::{
-    Camera, CameraKey, Csg, Hider, Image, Lens, Light, Object, PointsKey, Scene, Shutter, Solid,
-    TransformKey,
+    Camera, CameraKey, Csg, Hider, Image, Lens, Light, Material, Object, PointsKey, Scene, Shape,
+    Shutter, Solid, TransformKey,
 };
 
 use super::state::{Display, FrameOptions, Projection};
@@ -62,6 +62,8 @@ pub(super) struct FrameBuild {
     object_attributes: Vec<ObjectAttributes>,
     /// Object names, kept for messages after the objects move into the scene.
     object_names: Vec<String>,
+    /// Objects merged into another (a solid's welded polygons, a quadric's caps).
+    dropped: Vec<bool>,
     solids: Vec<Solid>,
     solid_origins: Vec<Location>,
     solid_stack: Vec<SolidNode>,
@@ -82,6 +84,7 @@ impl FrameBuild {
             object_motion: Vec::new(),
             object_attributes: Vec::new(),
             object_names: Vec::new(),
+            dropped: Vec::new(),
             solids: Vec::new(),
             solid_origins: Vec::new(),
             solid_stack: Vec::new(),
@@ -123,6 +126,7 @@ impl FrameBuild {
         }
         object.transform = xform::to_model(&to_world.keys[0].1);
         self.object_names.push(object.name.clone());
+        self.dropped.push(false);
         self.objects.push(object);
         self.object_origins.push(origin);
         self.object_motion.push((to_world.clone(), deform));
@@ -136,6 +140,9 @@ impl FrameBuild {
     pub fn solid_end(&mut self, r: &Request) -> Result<(), RibError> {
         let node = self.solid_stack.pop().ok_or_else(|| r.error("no SolidBegin is open"))?;
         let mut children = node.children;
+        if node.op == "primitive" && children.len() > 1 {
+            children = self.one_surface(children);
+        }
         let tree = match node.op.as_str() {
             "primitive" | "union" if children.len() == 1 => children.pop(),
             "primitive" | "union" if children.is_empty() => None,
@@ -179,6 +186,66 @@ impl FrameBuild {
         Ok(())
     }
 
+    /// The leaves of one `SolidBegin "primitive"` block as the one closed surface RenderMan
+    /// takes them to be: polygons under one transformation are welded into one mesh (shared
+    /// positions become shared vertices, so the mesh is closed when the faces close it), and
+    /// disks that exactly cap a cylinder, cone or paraboloid are dropped (the model closes
+    /// those by their caps). Anything else is left as it is, and validation names the open
+    /// operand.
+    fn one_surface(&mut self, children: Vec<Csg>) -> Vec<Csg> {
+        let index: Vec<Option<usize>> = children
+            .iter()
+            .map(|c| match c {
+                Csg::Object(n) => self.objects_named(n),
+                _ => None,
+            })
+            .collect();
+        let Some(ix) = index.iter().copied().collect::<Option<Vec<usize>>>() else { return children };
+        let first = &self.objects[ix[0]];
+        let same_place = ix.iter().all(|&i| {
+            let o = &self.objects[i];
+            o.transform == first.transform
+                && self.object_motion[i].0 == self.object_motion[ix[0]].0
+                && self.object_motion[i].1.is_empty()
+        });
+        if !same_place {
+            return children;
+        }
+        if ix.iter().all(|&i| matches!(self.objects[i].shape, Shape::Mesh { .. })) {
+            let merged = weld(ix.iter().map(|&i| &self.objects[i]));
+            let keep = ix[0];
+            self.objects[keep].shape = merged.0;
+            self.objects[keep].material = merged.1;
+            for &i in &ix[1..] {
+                self.dropped[i] = true;
+            }
+            return vec![children[0].clone()];
+        }
+        // One capped quadric and the disks on its ends.
+        let quadric: Vec<usize> = ix
+            .iter()
+            .copied()
+            .filter(|&i| !matches!(self.objects[i].shape, Shape::Disk { .. }))
+            .collect();
+        if let [q] = quadric[..] {
+            let caps = caps_of(&self.objects[q].shape);
+            let all_caps = ix.iter().filter(|&&i| i != q).all(|&i| match self.objects[i].shape {
+                Shape::Disk { height, radius, thetamax } => {
+                    thetamax >= 360.0 && caps.iter().any(|&(h, r)| h == height && (r - radius).abs() <= 1e-6 * r.max(1.0))
+                }
+                _ => false,
+            });
+            if all_caps && !caps.is_empty() {
+                for &i in &ix {
+                    self.dropped[i] = i != q;
+                }
+                let name = Csg::Object(self.object_names[q].clone());
+                return vec![name];
+            }
+        }
+        children
+    }
+
     /// The frame's scene, validated, and its displays.
     pub fn finish(
         mut self,
@@ -209,6 +276,13 @@ impl FrameBuild {
                     set_points(&mut object.shape, points);
                 }
             }
+        }
+        if self.dropped.iter().any(|&d| d) {
+            let dropped = std::mem::take(&mut self.dropped);
+            retain_kept(&mut self.objects, &dropped);
+            retain_kept(&mut self.object_origins, &dropped);
+            retain_kept(&mut self.object_attributes, &dropped);
+            retain_kept(&mut self.object_names, &dropped);
         }
         let shading_rate = self.shared_attributes(warnings);
         let hider = Hider {
@@ -431,4 +505,80 @@ fn set_points(shape: &mut reyes_scene::Shape, new: Vec<[f32; 3]>) {
         }
         _ => {}
     }
+}
+
+/// The `(height, radius)` of the end caps that close a full quadric, in its own space.
+fn caps_of(shape: &Shape) -> Vec<(f32, f32)> {
+    match *shape {
+        Shape::Cylinder { radius, zmin, zmax, thetamax } if thetamax >= 360.0 => {
+            vec![(zmin, radius), (zmax, radius)]
+        }
+        Shape::Cone { radius, thetamax, .. } if thetamax >= 360.0 => vec![(0.0, radius)],
+        Shape::Paraboloid { rmax, zmin, zmax, thetamax } if thetamax >= 360.0 => {
+            let mut caps = vec![(zmax, rmax)];
+            if zmin > 0.0 {
+                caps.push((zmin, rmax * (zmin / zmax).sqrt()));
+            }
+            caps
+        }
+        _ => Vec::new(),
+    }
+}
+
+/// The meshes of `objects` (under one transformation) as one, their vertices welded where
+/// their positions are equal. A material colour that differs between the parts becomes a
+/// per-vertex colour on a white material of the first part's kind.
+fn weld<'a>(objects: impl Iterator<Item = &'a Object>) -> (Shape, Material) {
+    let objects: Vec<&Object> = objects.collect();
+    let color_of = |m: &Material| match *m {
+        Material::Constant { color, .. }
+        | Material::Matte { color, .. }
+        | Material::Plastic { color, .. } => color,
+    };
+    let base = objects[0].material.clone();
+    let one_color = objects.iter().all(|o| color_of(&o.material) == color_of(&base));
+    let mut points: Vec<[f32; 3]> = Vec::new();
+    let mut colors: Vec<[f32; 3]> = Vec::new();
+    let mut faces = Vec::new();
+    let mut at: HashMap<[u32; 3], u32> = HashMap::new();
+    let mut any_colors = !one_color;
+    for o in &objects {
+        let Shape::Mesh { points: p, faces: f, colors: c } = &o.shape else { continue };
+        any_colors |= c.is_some();
+        let cs = color_of(&o.material);
+        let remap: Vec<u32> = p
+            .iter()
+            .enumerate()
+            .map(|(k, q)| {
+                let key = q.map(f32::to_bits);
+                *at.entry(key).or_insert_with(|| {
+                    points.push(*q);
+                    let tint = c.as_ref().map_or([1.0; 3], |c| c[k]);
+                    let base = if one_color { [1.0; 3] } else { cs };
+                    colors.push(std::array::from_fn(|i| base[i] * tint[i]));
+                    (points.len() - 1) as u32
+                })
+            })
+            .collect();
+        faces.extend(f.iter().map(|face| face.iter().map(|&k| remap[k as usize]).collect::<Vec<u32>>()));
+    }
+    let material = if one_color { base } else { with_color(base, [1.0; 3]) };
+    (Shape::Mesh { points, faces, colors: any_colors.then_some(colors) }, material)
+}
+
+/// `m` with its surface colour replaced.
+fn with_color(m: Material, color: [f32; 3]) -> Material {
+    match m {
+        Material::Constant { opacity, .. } => Material::Constant { color, opacity },
+        Material::Matte { opacity, ka, kd, .. } => Material::Matte { color, opacity, ka, kd },
+        Material::Plastic { opacity, ka, kd, ks, roughness, specular_color, .. } => {
+            Material::Plastic { color, opacity, ka, kd, ks, roughness, specular_color }
+        }
+    }
+}
+
+/// Keeps the entries of `v` whose `dropped` flag is false.
+fn retain_kept<T>(v: &mut Vec<T>, dropped: &[bool]) {
+    let mut k = dropped.iter();
+    v.retain(|_| !k.next().copied().unwrap_or(false));
 }
