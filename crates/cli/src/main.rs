@@ -93,9 +93,7 @@ fn main() -> ExitCode {
         Ok(l) => l,
         Err(e) => return fail(e.exit_code(), e),
     };
-    for w in &loaded.warnings {
-        eprintln!("reyes-render: {w}");
-    }
+    print_warnings(&loaded.warnings);
     if loaded.frames.is_empty() {
         return fail(2, format_args!("{}: no frame to render", args.scene.display()));
     }
@@ -129,6 +127,24 @@ fn main() -> ExitCode {
         }
     }
     ExitCode::SUCCESS
+}
+
+/// Scene warnings, one line each; a message repeated at other places is shown once, at its
+/// first place, with the count of the others.
+fn print_warnings(warnings: &[reyes_rib::Warning]) {
+    let mut seen: Vec<(&str, usize, usize)> = Vec::new();
+    for (i, w) in warnings.iter().enumerate() {
+        match seen.iter_mut().find(|(m, _, _)| *m == w.message) {
+            Some(entry) => entry.2 += 1,
+            None => seen.push((&w.message, i, 0)),
+        }
+    }
+    for (_, i, more) in seen {
+        match more {
+            0 => eprintln!("reyes-render: {}", warnings[i]),
+            n => eprintln!("reyes-render: {} ({n} more like it)", warnings[i]),
+        }
+    }
 }
 
 /// Renders one frame to `main` (and the same image to each of `extras`).
