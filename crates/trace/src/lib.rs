@@ -45,6 +45,7 @@ mod placement;
 mod poly;
 mod quadric;
 mod query;
+mod tessellate;
 
 use glam::Vec3;
 use reyes_scene::Scene;

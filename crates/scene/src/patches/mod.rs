@@ -238,6 +238,19 @@ pub fn control_positions(shape: &Shape) -> Option<Vec<DVec3>> {
     }
 }
 
+/// The columns and rows of the grid [`bezier_patches`] lays out (sub-patches or knot
+/// spans along u and along v), so that patch `k` is column `k % columns`, row
+/// `k / columns`; `None` for other shapes.
+pub fn bezier_grid(shape: &Shape) -> Option<(usize, usize)> {
+    match shape {
+        Shape::PatchMesh { kind: PatchType::Bicubic, .. } => {
+            layout(shape).map(|l| (l.nupatches as usize, l.nvpatches as usize))
+        }
+        Shape::NuPatch { .. } => Some(nurbs::span_counts(shape)),
+        _ => None,
+    }
+}
+
 /// Every bicubic sub-patch (row by row) or NURBS span (v spans outer, u spans inner, empty
 /// spans skipped) of a valid shape as a rational Bezier patch; empty for other shapes.
 /// `positions`, when given, replaces the control positions (a deformation key: a NURBS

@@ -53,6 +53,22 @@ fn extract(knots: &[f64], ctrl: &[DVec4], p: usize, s: usize, [a, b]: [f64; 2]) 
         .collect()
 }
 
+/// The numbers of non-empty u and v spans [`spans`] gives, `(0, 0)` for other shapes.
+pub(super) fn span_counts(shape: &Shape) -> (usize, usize) {
+    let Shape::NuPatch { nu, uorder, uknot, umin, umax, nv, vorder, vknot, vmin, vmax, .. } = shape
+    else {
+        return (0, 0);
+    };
+    let count = |knots: &[f32], order: u32, n: u32, lo: f32, hi: f32| {
+        if knots.len() != n as usize + order as usize || order < 1 {
+            return 0;
+        }
+        let k: Vec<f64> = knots.iter().map(|&k| f64::from(k)).collect();
+        spans_of(&k, order as usize, n as usize, f64::from(lo), f64::from(hi)).len()
+    };
+    (count(uknot, *uorder, *nu, *umin, *umax), count(vknot, *vorder, *nv, *vmin, *vmax))
+}
+
 /// Every span of a valid `NuPatch` as a rational Bezier patch (v spans outer, u inner).
 pub(super) fn spans(shape: &Shape, positions: Option<&[DVec3]>) -> Vec<BezierPatch> {
     let Shape::NuPatch { nu, uorder, uknot, umin, umax, nv, vorder, vknot, vmin, vmax, points } =
