@@ -1,8 +1,10 @@
 //! End-to-end tests of rendering, one test binary (ripgrep's habit): analytic coverage and
-//! determinism through the whole pipeline, the golden images, CSG depths, the thin lens, and
-//! both hiders against each other.
+//! determinism through the whole pipeline, the golden images, CSG depths, the thin lens,
+//! both hiders against each other, and the RenderMan geometry (hyperboloids, patch meshes,
+//! NURBS).
 
 mod csg;
+mod geometry;
 mod lens;
 mod pipeline;
 mod raytrace;
