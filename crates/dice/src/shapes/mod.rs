@@ -167,6 +167,23 @@ impl Surface {
     }
 }
 
+impl Surface {
+    /// The object-space control hull of the part `[u0, u1] x [v0, v1]` of a rational Bezier
+    /// patch: the projected net of that sub-patch, whose convex hull encloses it (weights
+    /// are positive). `None` for every other surface, which the test grid and its margin bound.
+    pub fn hull(&self, u: [f32; 2], v: [f32; 2]) -> Option<Vec<Vec3>> {
+        match self {
+            Surface::Bezier(b) => {
+                let (u, v) = (u.map(f64::from), v.map(f64::from));
+                let sub =
+                    if u == [0.0, 1.0] && v == [0.0, 1.0] { (**b).clone() } else { b.sub(u, v) };
+                Some(sub.hull().map(|p| p.as_vec3()).collect())
+            }
+            _ => None,
+        }
+    }
+}
+
 /// The control points of a shape that can deform (bilinear patch corners, mesh points,
 /// patch-mesh points, NURBS points as positions `(x/w, y/w, z/w)`); `None` for the quadrics.
 pub(crate) fn control_points(shape: &Shape) -> Option<Vec<Vec3>> {
