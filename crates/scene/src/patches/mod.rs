@@ -75,7 +75,7 @@ impl Basis {
 
     /// `Mb^-1 M`: the matrix taking a geometry vector in this basis to the Bezier control
     /// points of the same cubic (the identity, exactly, for the Bezier basis).
-    fn to_bezier(&self) -> [[f64; 4]; 4] {
+    fn bezier_conversion(&self) -> [[f64; 4]; 4] {
         if *self == Basis::Bezier {
             return [
                 [1.0, 0.0, 0.0, 0.0],
@@ -131,7 +131,7 @@ pub fn patch_count(kind: PatchType, n: u32, wrap: Wrap, step: u32) -> Result<u32
         }
         (PatchType::Bicubic, _) if step == 0 => Err("the step must be >= 1, got 0".into()),
         (PatchType::Bicubic, Wrap::Nonperiodic) => {
-            if n < 4 || (n - 4) % step != 0 {
+            if n < 4 || !(n - 4).is_multiple_of(step) {
                 return Err(format!(
                     "a nonperiodic bicubic mesh needs 4 + k * step points (step {step}), got {n}"
                 ));
@@ -139,7 +139,7 @@ pub fn patch_count(kind: PatchType, n: u32, wrap: Wrap, step: u32) -> Result<u32
             Ok((n - 4) / step + 1)
         }
         (PatchType::Bicubic, Wrap::Periodic) => {
-            if n == 0 || n % step != 0 {
+            if n == 0 || !n.is_multiple_of(step) {
                 return Err(format!(
                     "a periodic bicubic mesh needs a non-zero multiple of the step ({step}) \
                      points, got {n}"
@@ -273,7 +273,7 @@ pub fn bezier_patches(shape: &Shape, positions: Option<&[DVec3]>) -> Vec<BezierP
                 let own = points.get(i).map_or(DVec3::ZERO, |p| DVec3::from(p.map(f64::from)));
                 moved(i, own)
             };
-            let (ku, kv) = (ubasis.to_bezier(), vbasis.to_bezier());
+            let (ku, kv) = (ubasis.bezier_conversion(), vbasis.bezier_conversion());
             let (nu, nv) = (*nu, points.len() as u32 / (*nu).max(1));
             let mut out = Vec::with_capacity((l.nupatches * l.nvpatches) as usize);
             for pv in 0..l.nvpatches {
