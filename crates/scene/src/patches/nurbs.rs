@@ -77,7 +77,15 @@ pub(super) fn spans(shape: &Shape, positions: Option<&[DVec3]>) -> Vec<BezierPat
         return Vec::new();
     };
     let (nu, nv, ou, ov) = (*nu as usize, *nv as usize, *uorder as usize, *vorder as usize);
-    if points.len() != nu * nv || uknot.len() != nu + ou || vknot.len() != nv + ov {
+    let orders = 2..=MAX_ORDER as usize;
+    if points.len() != nu * nv
+        || uknot.len() != nu + ou
+        || vknot.len() != nv + ov
+        || !orders.contains(&ou)
+        || !orders.contains(&ov)
+        || nu < ou
+        || nv < ov
+    {
         return Vec::new();
     }
     let uk: Vec<f64> = uknot.iter().map(|&k| f64::from(k)).collect();
