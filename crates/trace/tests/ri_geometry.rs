@@ -277,3 +277,20 @@ fn deforming_patch_meshes_follow_their_keys() {
         assert!(close(hit.p_world.z, 2.0 * time, 1e-5), "at {time}: {}", hit.p_world);
     }
 }
+
+#[test]
+fn a_horizontal_segment_sweeps_a_flat_ring() {
+    // point1 -> point2 along +x in z = 0.5: the ring 0.5 <= r <= 1.5, whose normal
+    // dP/du x dP/dv = (0, 0, -x dx) faces -z; v = r - 0.5.
+    let shape =
+        Shape::Hyperboloid { point1: [0.5, 0.0, 0.5], point2: [1.5, 0.0, 0.5], thetamax: 360.0 };
+    let t = Tracer::new(&scene(vec![object(shape, vec![])]));
+    for (x, y) in [(1.0_f32, 0.0_f32), (0.0, -0.7), (-1.2, 0.6)] {
+        let hit = shoot(&t, Vec3::new(x, y, 3.0), Vec3::NEG_Z, 0.0).expect("hit");
+        assert!(close(hit.t, 2.5, 1e-5));
+        assert!(close_v(hit.n_world, Vec3::NEG_Z, 1e-6), "{}", hit.n_world);
+        assert!(close(hit.v, Vec3::new(x, y, 0.0).length() - 0.5, 1e-5));
+    }
+    assert!(shoot(&t, Vec3::new(0.2, 0.1, 3.0), Vec3::NEG_Z, 0.0).is_none(), "the hole");
+    assert!(shoot(&t, Vec3::new(1.6, 0.0, 3.0), Vec3::NEG_Z, 0.0).is_none(), "outside");
+}

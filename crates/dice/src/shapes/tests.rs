@@ -505,4 +505,37 @@ fn deformation_keys_move_patch_meshes_and_nurbs() {
         let d = moved[0].position(u, v) - still[0].position(u, v);
         assert!((d - Vec3::Z).length() < 1e-5, "a translated net is the translated patch");
     }
+    // A NURBS key gives positions and keeps the weights: a quarter circle of weight 1/sqrt(2)
+    // moved up stays a (moved) circular arc.
+    let w = std::f32::consts::FRAC_1_SQRT_2;
+    let nurbs = Shape::NuPatch {
+        nu: 3,
+        uorder: 3,
+        uknot: vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+        umin: 0.0,
+        umax: 1.0,
+        nv: 2,
+        vorder: 2,
+        vknot: vec![0.0, 0.0, 1.0, 1.0],
+        vmin: 0.0,
+        vmax: 1.0,
+        points: vec![
+            [1.0, 0.0, 0.0, 1.0],
+            [w, w, 0.0, w],
+            [0.0, 1.0, 0.0, 1.0],
+            [1.0, 0.0, 1.0, 1.0],
+            [w, w, w, w],
+            [0.0, 1.0, 1.0, 1.0],
+        ],
+    };
+    let own = control_points(&nurbs).unwrap();
+    assert!((own[1] - Vec3::new(1.0, 1.0, 0.0)).length() < 1e-6, "positions, not Pw");
+    let lifted: Vec<Vec3> = own.iter().map(|p| *p + Vec3::Z * 2.0).collect();
+    let moved = shape_surfaces(&nurbs, Some(&lifted));
+    assert_eq!(moved.len(), surfaces(&object(nurbs)).len());
+    for (u, v) in params() {
+        let p = moved[0].position(u, v);
+        assert!((p.truncate().length() - 1.0).abs() < 1e-6, "({u},{v}): still round");
+        assert!((p.z - (2.0 + v)).abs() < 1e-6);
+    }
 }
