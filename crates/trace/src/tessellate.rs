@@ -3,10 +3,9 @@
 //! triangles whose vertices and normals lie exactly on the surface.
 //!
 //! The rule: each patch (degree `p x q`, homogeneous net `H = (w P, w)`) gets an
-//! `n_u x n_v` grid of its own `(u, v)`, each cell two triangles, with `n_u, n_v` the
-//! smallest found (by raising the direction with the larger error term, at most [`MAX_N`]
-//! each) such that the bound below is at most [`TOLERANCE`] times the diagonal of the box of
-//! its projected control points. Every patch of a column of the grid of sub-patches shares
+//! `n_u x n_v` grid of its own `(u, v)`, each cell two triangles: the grid of fewest cells
+//! (each side at most [`MAX_N`]) whose bound below is at most [`TOLERANCE`] times the
+//! diagonal of the box of its projected control points. Every patch of a column of the grid of sub-patches shares
 //! the largest `n_u` of the column and every patch of a row the largest `n_v` of the row
 //! (over every deformation key too), so neighbours meet vertex to vertex without cracks.
 //!
@@ -102,20 +101,22 @@ fn size(b: &BezierPatch) -> f64 {
     (hi - lo).length()
 }
 
-/// The smallest grid found meeting [`TOLERANCE`] for patch `b`, each side at most [`MAX_N`].
+/// The grid of fewest cells meeting [`TOLERANCE`] for patch `b`, each side at most
+/// [`MAX_N`] (ties to the smaller larger side, then the smaller `n_u`); `MAX_N x MAX_N` when
+/// none does.
 pub(crate) fn grid_for(b: &BezierPatch) -> (u32, u32) {
     let terms = error_terms(b);
     let target = TOLERANCE * size(b);
-    let (mut nu, mut nv) = (1u32, 1u32);
-    while bound(terms, nu, nv) > target && (nu < MAX_N || nv < MAX_N) {
-        let (a, c) = (terms[0] / f64::from(nu * nu), terms[2] / f64::from(nv * nv));
-        if (a >= c && nu < MAX_N) || nv >= MAX_N {
-            nu += 1;
-        } else {
-            nv += 1;
+    let mut best: Option<(u32, u32)> = None;
+    for nu in 1..=MAX_N {
+        // The bound falls as nv grows: the first nv that meets it is this nu's best.
+        let Some(nv) = (1..=MAX_N).find(|&nv| bound(terms, nu, nv) <= target) else { continue };
+        let better = best.is_none_or(|(bu, bv)| (nu * nv, nu.max(nv)) < (bu * bv, bu.max(bv)));
+        if better {
+            best = Some((nu, nv));
         }
     }
-    (nu, nv)
+    best.unwrap_or((MAX_N, MAX_N))
 }
 
 /// The tessellation of a bicubic patch mesh or NURBS at every key of `keys` (control
