@@ -14,8 +14,9 @@
 //!
 //! Pipeline per object (in scene order): work out the object's motion over the shutter
 //! (`motion.rs`: its breakpoints, and at each the object-to-world placement and the camera),
-//! turn the shape into parametric surfaces (quadrics, bilinear patches, one patch per mesh
-//! face), then REYES bound/split/dice per surface:
+//! turn the shape into parametric surfaces (quadrics and the hyperboloid, bilinear patches,
+//! one patch per mesh face, one per patch-mesh sub-patch and per NURBS knot span), then REYES
+//! bound/split/dice per surface:
 //!
 //! * **Motion.** Time is normalised over the shutter, `t = (time - open) / (close - open)`.
 //!   The breakpoints are {0, 1} and the normalised times of the object's transform and
@@ -35,6 +36,8 @@
 //!   Every bound is grown by a safety margin, 25% of its extent plus 2 pixels, because test
 //!   points do not bound a curved surface: between samples it bulges outward by up to its
 //!   sagitta. With a lens the projected bound also grows by the blur (`LensSetup::grow`).
+//!   A bicubic patch-mesh sub-patch or NURBS span (a rational Bezier patch) also bounds each
+//!   piece by its control hull, which encloses it whatever its curvature.
 //! * **Split.** A patch straddling hither at any breakpoint (some test z below it, not all)
 //!   is halved along its longer camera-space direction, at most 20 times; then it is diced
 //!   anyway. Otherwise the longest projected row and column over all breakpoints give
@@ -123,8 +126,8 @@ pub struct Diced {
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct DiceStats {
     /// Surfaces entering bound/split/dice: one per quadric or patch, one per mesh face
-    /// (one per fan triangle for faces of more than four vertices), one per end cap of a
-    /// CSG operand.
+    /// (one per fan triangle for faces of more than four vertices), one per patch-mesh
+    /// sub-patch or NURBS knot span, one per end cap of a CSG operand.
     pub primitives: u64,
     /// Patches split in two (for any reason).
     pub splits: u64,

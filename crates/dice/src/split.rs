@@ -9,6 +9,10 @@
 //! diced patch never exceeds `max_grid_size` micropolygons; recursion is bounded by
 //! `MAX_SPLIT_DEPTH` (and `MAX_HITHER_SPLITS` splits for straddling the hither plane).
 //! With one breakpoint (no motion) every decision is the one a still object always had.
+//! A surface with a control hull (a patch-mesh sub-patch or NURBS span, as a rational Bezier
+//! patch) also puts the hull of each sub-patch into its depth range, raster bound and
+//! side-plane tests, so its bound is conservative whatever its curvature; surfaces without
+//! one are decided exactly as before.
 
 use glam::{Vec2, Vec3};
 use reyes_hider::{Frame, LensSetup};
@@ -187,13 +191,30 @@ impl Splitter {
         }
     }
 
+    /// Camera-space control hull of `patch` of the surface in `pose` (a rational Bezier
+    /// patch's sub-patch net, which encloses it), or `None` for surfaces without one.
+    pub fn hull_points(&self, pose: &Pose<'_>, patch: &Patch) -> Option<Vec<Vec3>> {
+        let hull = pose.surface.hull(patch.u, patch.v)?;
+        Some(match pose.moment.object_to_camera() {
+            Some(m) => hull.into_iter().map(|p| m.project_point3(p)).collect(),
+            None => hull.into_iter().map(|p| pose.moment.camera_point(p)).collect(),
+        })
+    }
+
     /// Raster bound of the test points grown by the safety margin and, with a lens, by the
     /// blur over the margin-grown depth range; `None` unless every point is finite with z > 0.
+    #[cfg(test)]
     pub fn margin_bound(&self, grid: &TestGrid) -> Option<(Vec2, Vec2)> {
+        self.margin_bound_with(grid, &[])
+    }
+
+    /// [`Splitter::margin_bound`] of the test points and the `hull` points together (the
+    /// hull, when a surface has one, makes the bound conservative whatever its curvature).
+    fn margin_bound_with(&self, grid: &TestGrid, hull: &[Vec3]) -> Option<(Vec2, Vec2)> {
         let mut lo = Vec2::INFINITY;
         let mut hi = Vec2::NEG_INFINITY;
         let (mut zmin, mut zmax) = (f32::INFINITY, f32::NEG_INFINITY);
-        for p in grid.iter().flatten() {
+        for p in grid.iter().flatten().chain(hull) {
             if !(p.is_finite() && p.z > 0.0) {
                 return None;
             }
@@ -225,6 +246,13 @@ impl Splitter {
     /// (`poses`, in time order; one pose for a still object), with the top of the patch's
     /// raster bound (see [`Splitter::decide_grids_bound`]).
     pub fn decide_bound(&self, poses: &[Pose<'_>], patch: &Patch) -> (Decision, Option<f32>) {
+        let hulls: Vec<Vec<Vec3>> =
+            poses.iter().filter_map(|pose| self.hull_points(pose, patch)).collect();
+        if !hulls.is_empty() && hulls.len() == poses.len() {
+            let grids: Vec<TestGrid> =
+                poses.iter().map(|pose| self.test_grid(pose, patch)).collect();
+            return self.decide_grids_hulls_bound(&grids, &hulls, patch);
+        }
         if let [pose] = poses {
             let grid = self.test_grid(pose, patch);
             return self.decide_grids_bound(std::slice::from_ref(&grid), patch);
@@ -240,9 +268,24 @@ impl Splitter {
     /// those breakpoints has a point that is not finite or not in front of the eye (no raster
     /// bound), or the patch is culled.
     pub fn decide_grids_bound(&self, grids: &[TestGrid], patch: &Patch) -> (Decision, Option<f32>) {
+        self.decide_grids_hulls_bound(grids, &[], patch)
+    }
+
+    /// [`Splitter::decide_grids_bound`] with, per breakpoint, the control hull of a surface
+    /// that has one (`hulls` empty for the others): the depth range, the raster bound and
+    /// the side-plane tests then cover the hull as well as the test points.
+    fn decide_grids_hulls_bound(
+        &self,
+        grids: &[TestGrid],
+        hulls: &[Vec<Vec3>],
+        patch: &Patch,
+    ) -> (Decision, Option<f32>) {
         // `None`: no finite test point at that time, so no usable vertex.
-        let per_time: Vec<Option<GridFacts<'_>>> =
-            grids.iter().map(|g| self.grid_facts(g)).collect();
+        let per_time: Vec<Option<GridFacts<'_>>> = grids
+            .iter()
+            .enumerate()
+            .map(|(k, g)| self.grid_facts(g, hulls.get(k).map(Vec::as_slice)))
+            .collect();
         // Breakpoints ending a segment some micropolygon may be seen in; only they count.
         let mut live = vec![false; per_time.len()];
         if let [one] = per_time.as_slice() {
@@ -280,8 +323,13 @@ impl Splitter {
         (self.dice_decision(&facts, patch, false), top)
     }
 
-    /// The facts of `grid`, or `None` if no point of it is finite.
-    fn grid_facts<'a>(&self, grid: &'a TestGrid) -> Option<GridFacts<'a>> {
+    /// The facts of `grid` (with the control `hull` of a surface that has one), or `None` if
+    /// no point of it is finite.
+    fn grid_facts<'a>(
+        &self,
+        grid: &'a TestGrid,
+        hull: Option<&'a [Vec3]>,
+    ) -> Option<GridFacts<'a>> {
         let mut all_finite = true;
         let (mut lo, mut hi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
         for p in grid.iter().flatten() {
@@ -292,8 +340,17 @@ impl Splitter {
                 all_finite = false;
             }
         }
-        let raster = if all_finite { self.margin_bound(grid) } else { None };
-        (lo.z <= hi.z).then_some(GridFacts { grid, lo, hi, all_finite, raster })
+        let hull = hull.unwrap_or(&[]);
+        for p in hull {
+            if p.is_finite() {
+                lo = lo.min(*p);
+                hi = hi.max(*p);
+            } else {
+                all_finite = false;
+            }
+        }
+        let raster = if all_finite { self.margin_bound_with(grid, hull) } else { None };
+        (lo.z <= hi.z).then_some(GridFacts { grid, hull, lo, hi, all_finite, raster })
     }
 
     /// True if no micropolygon of the segment from test grid `a` to test grid `b` (the same
@@ -331,7 +388,7 @@ impl Splitter {
             (Some(planes), true) => planes.iter().any(|n| {
                 [a, b].iter().all(|f| {
                     let m3 = MARGIN_FRACTION * (f.hi - f.lo).max_element();
-                    f.grid.iter().flatten().all(|p| n.dot(*p) > m3)
+                    f.grid.iter().flatten().chain(f.hull).all(|p| n.dot(*p) > m3)
                 })
             }),
             _ => false,
@@ -363,6 +420,8 @@ impl Splitter {
 #[derive(Debug, Clone, Copy)]
 struct GridFacts<'a> {
     grid: &'a TestGrid,
+    /// The control hull of a surface that has one (empty otherwise).
+    hull: &'a [Vec3],
     /// Camera-space bound of the finite points.
     lo: Vec3,
     hi: Vec3,
@@ -477,6 +536,48 @@ mod tests {
         assert!(matches!(decide(0.0, 0.0, 10.0), Decision::Split { hither: false, .. }));
         // Far away: diced whole.
         assert!(matches!(decide(0.0, 0.0, 90.0), Decision::Dice { .. }));
+    }
+
+    #[test]
+    fn a_bezier_patch_is_bounded_by_its_control_hull() {
+        // A bicubic patch folded on itself, with the fold's tip between test points: every
+        // dense surface point (and every sub-patch's) lies inside the raster bound, whose
+        // top is what lazy dicing waits for.
+        let points: Vec<[f32; 3]> = (0..16)
+            .map(|k| {
+                let (i, j) = ((k % 4) as f32, (k / 4) as f32);
+                let spike = if (1..3).contains(&(k % 4)) { 30.0 } else { 0.0 };
+                [i - 1.5, j - 1.5 + spike * (1.0 - 2.0 * (k % 4 == 2) as i32 as f32), 20.0]
+            })
+            .collect();
+        let shape = Shape::PatchMesh {
+            kind: reyes_scene::PatchType::Bicubic,
+            nu: 4,
+            nv: 4,
+            uwrap: reyes_scene::Wrap::Nonperiodic,
+            vwrap: reyes_scene::Wrap::Nonperiodic,
+            points,
+            ubasis: reyes_scene::Basis::Bezier,
+            ustep: None,
+            vbasis: reyes_scene::Basis::Bezier,
+            vstep: None,
+        };
+        let surface = surfaces(&shape_object(shape)).remove(0);
+        let (cam, sp) = splitter(None);
+        let moment = Moment::new(0.0, Placement::Matrix(Mat4::IDENTITY), Mat4::IDENTITY, 0);
+        let pose = Pose { surface: &surface, moment: &moment };
+        for patch in [Patch::root(), Patch::root().split(true, false)[1]] {
+            let (_, top) = sp.decide_bound(std::slice::from_ref(&pose), &patch);
+            let top = top.expect("in front of the eye");
+            for j in 0..=64 {
+                for i in 0..=64 {
+                    let u = patch.u[0] + (patch.u[1] - patch.u[0]) * i as f32 / 64.0;
+                    let v = patch.v[0] + (patch.v[1] - patch.v[0]) * j as f32 / 64.0;
+                    let r = cam.eye_to_raster(surface.position(u, v));
+                    assert!(r.y >= top, "({u}, {v}) at raster y {} above the bound {top}", r.y);
+                }
+            }
+        }
     }
 
     /// The decision for the whole of `surface` translated to each of `at` in turn (one

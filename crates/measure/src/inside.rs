@@ -92,7 +92,11 @@ pub(crate) fn closed_quadric(shape: &Shape) -> Result<Option<Quadric>, String> {
         }
         Shape::Mesh { .. } => return Ok(None),
         // `closure` calls these open.
-        Shape::Disk { .. } | Shape::BilinearPatch { .. } => return Err(shape.name().into()),
+        Shape::Disk { .. }
+        | Shape::BilinearPatch { .. }
+        | Shape::Hyperboloid { .. }
+        | Shape::PatchMesh { .. }
+        | Shape::NuPatch { .. } => return Err(shape.name().into()),
     }))
 }
 

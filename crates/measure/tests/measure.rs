@@ -229,3 +229,31 @@ fn disjoint_intersection_is_empty() {
     assert!(m.points() >= 1000 && m.inside == 0 && m.volume == 0.0 && m.centre.is_none());
     assert!(m.to_string().contains("centre   none"), "{m}");
 }
+
+#[test]
+fn the_renderman_surfaces_are_open() {
+    // Hyperboloids, patch meshes (even wrapped into a tube) and NURBS bound no volume by the
+    // scene's closure rule: measuring one is the "not closed" error naming the shape.
+    let scene = parse(&scene_text(
+        &[
+            "name: \"hyp\", shape: Hyperboloid(point1: (1.0, 0.0, -1.0), point2: (1.0, 0.0, 1.0))",
+            "name: \"tube\", shape: PatchMesh(kind: Bilinear, nu: 3, nv: 2, uwrap: Periodic, \
+             points: [(1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (-1.0, 0.0, 0.0), \
+                      (1.0, 0.0, 1.0), (0.0, 1.0, 1.0), (-1.0, 0.0, 1.0)])",
+            "name: \"nurbs\", shape: NuPatch(nu: 2, uorder: 2, uknot: [0.0, 0.0, 1.0, 1.0], \
+             umin: 0.0, umax: 1.0, nv: 2, vorder: 2, vknot: [0.0, 0.0, 1.0, 1.0], vmin: 0.0, \
+             vmax: 1.0, points: [(0.0, 0.0, 0.0, 1.0), (1.0, 0.0, 0.0, 1.0), (0.0, 1.0, 0.0, 1.0), \
+             (1.0, 1.0, 0.0, 1.0)])",
+        ],
+        "",
+    ));
+    for (name, shape) in [("hyp", "Hyperboloid"), ("tube", "PatchMesh"), ("nurbs", "NuPatch")] {
+        let err =
+            measure(&scene, Path::new("m.ron"), name, &MeasureOptions { samples: 1000, seed: 0 })
+                .unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            format!("--object: object \"{name}\" is not closed ({shape}), so it bounds no volume")
+        );
+    }
+}

@@ -20,7 +20,8 @@ pub enum Closure {
 
 /// Closure of a valid shape (one that passed validation). Quadrics: full sweeps, a sphere uncut (cuts at or
 /// beyond the poles do not cut), a torus's whole tube; cylinders and cones are closed by end
-/// caps in a solid. Disks and patches never are. Meshes by [`mesh_closure`].
+/// caps in a solid. Disks, patches, patch meshes, NURBS and hyperboloids never are (a
+/// wrapped patch mesh or a NURBS may bound a solid, but that is not proved). Meshes by [`mesh_closure`].
 pub fn closure(shape: &Shape) -> Closure {
     let sweep = |kind: &str, thetamax: f32| {
         if thetamax == 360.0 {
@@ -55,6 +56,10 @@ pub fn closure(shape: &Shape) -> Closure {
         }
         Shape::Disk { .. } => Closure::Open("Disk".into()),
         Shape::BilinearPatch { .. } => Closure::Open("BilinearPatch".into()),
+        // Open surfaces: no attempt is made to prove a wrapped mesh or a NURBS closed.
+        Shape::Hyperboloid { .. } => Closure::Open("Hyperboloid".into()),
+        Shape::PatchMesh { .. } => Closure::Open("PatchMesh".into()),
+        Shape::NuPatch { .. } => Closure::Open("NuPatch".into()),
         Shape::Mesh { faces, .. } => mesh_closure(faces),
     }
 }

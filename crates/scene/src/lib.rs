@@ -9,6 +9,7 @@ pub mod closure;
 mod error;
 mod locate;
 pub mod model;
+pub mod patches;
 mod roll;
 mod syntax;
 mod validate;

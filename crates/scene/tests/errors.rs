@@ -190,6 +190,35 @@ const CASES: &[Case] = &[
     Case { name: "operand name without quotes", from: "  ],\n)", to: "    (name: \"hole\", shape: Cylinder(radius: 0.5, zmin: -2.0, zmax: 2.0), material: Matte(color: (0.5, 0.5, 0.5))),\n    (name: \"plate\", shape: Disk(radius: 2.0), material: Matte(color: (0.5, 0.5, 0.5))),\n  ],\n  solids: [(tree: Difference(Object(ball), Object(\"hole\")))],\n)", field: "solids[0].tree[0]", at: Some((11, 37)) },
     Case { name: "solid without a tree", from: "  ],\n)", to: "    (name: \"hole\", shape: Cylinder(radius: 0.5, zmin: -2.0, zmax: 2.0), material: Matte(color: (0.5, 0.5, 0.5))),\n  ],\n  solids: [(name: \"nothing\")],\n)", field: "solids[0].tree", at: Some((10, 28)) },
     Case { name: "unknown field in a solid", from: "  ],\n)", to: "    (name: \"hole\", shape: Cylinder(radius: 0.5, zmin: -2.0, zmax: 2.0), material: Matte(color: (0.5, 0.5, 0.5))),\n  ],\n  solids: [(tree: Difference(Object(\"ball\"), Object(\"hole\")), op: 3)],\n)", field: "solids[0].op", at: Some((10, 63)) },
+    Case { name: "hyperboloid with equal points", from: "Sphere(radius: 1.0)", to: "Hyperboloid(point1: (1.0, 0.0, 0.0), point2: (1.0, 0.0, 0.0))", field: "objects[0].shape.point2", at: Some((7, 72)) },
+    Case { name: "hyperboloid on the z axis", from: "Sphere(radius: 1.0)", to: "Hyperboloid(point1: (0.0, 0.0, -1.0), point2: (0.0, 0.0, 1.0))", field: "objects[0].shape.point2", at: Some((7, 73)) },
+    Case { name: "hyperboloid thetamax 0", from: "Sphere(radius: 1.0)", to: "Hyperboloid(point1: (1.0, 0.0, -1.0), point2: (1.0, 0.0, 1.0), thetamax: 0.0)", field: "objects[0].shape.thetamax", at: Some((7, 100)) },
+    Case { name: "hyperboloid NaN point", from: "Sphere(radius: 1.0)", to: "Hyperboloid(point1: (1.0, NaN, -1.0), point2: (1.0, 0.0, 1.0))", field: "objects[0].shape.point1[1]", at: Some((7, 53)) },
+    Case { name: "bicubic patch mesh with 5 points along u", from: "Sphere(radius: 1.0)", to: "PatchMesh(kind: Bicubic, nu: 5, nv: 4, points: [])", field: "objects[0].shape.nu", at: Some((7, 56)) },
+    Case { name: "periodic bezier mesh with 4 points along u", from: "Sphere(radius: 1.0)", to: "PatchMesh(kind: Bicubic, nu: 4, nv: 4, uwrap: Periodic, points: [])", field: "objects[0].shape.nu", at: Some((7, 56)) },
+    Case { name: "periodic b-spline mesh with no points along v", from: "Sphere(radius: 1.0)", to: "PatchMesh(kind: Bicubic, nu: 4, nv: 0, vwrap: Periodic, vbasis: BSpline, points: [])", field: "objects[0].shape.nv", at: Some((7, 63)) },
+    Case { name: "b-spline mesh whose step leaves points over", from: "Sphere(radius: 1.0)", to: "PatchMesh(kind: Bicubic, nu: 9, nv: 4, ubasis: BSpline, ustep: Some(2), points: [])", field: "objects[0].shape.nu", at: Some((7, 56)) },
+    Case { name: "bilinear patch mesh with 1 point along v", from: "Sphere(radius: 1.0)", to: "PatchMesh(kind: Bilinear, nu: 2, nv: 1, points: [])", field: "objects[0].shape.nv", at: Some((7, 64)) },
+    Case { name: "patch mesh step 0", from: "Sphere(radius: 1.0)", to: "PatchMesh(kind: Bicubic, nu: 4, nv: 4, ustep: Some(0), points: [])", field: "objects[0].shape.ustep", at: Some((7, 73)) },
+    Case { name: "matrix basis without a step", from: "Sphere(radius: 1.0)", to: "PatchMesh(kind: Bicubic, nu: 4, nv: 4, vbasis: Matrix(((1.0, 0.0, 0.0, 0.0), (0.0, 1.0, 0.0, 0.0), (0.0, 0.0, 1.0, 0.0), (0.0, 0.0, 0.0, 1.0))), points: [])", field: "objects[0].shape.vstep", at: Some((7, 27)) },
+    Case { name: "NaN in a basis matrix", from: "Sphere(radius: 1.0)", to: "PatchMesh(kind: Bicubic, nu: 4, nv: 4, ubasis: Matrix(((1.0, 0.0, 0.0, 0.0), (0.0, 1.0, NaN, 0.0), (0.0, 0.0, 1.0, 0.0), (0.0, 0.0, 0.0, 1.0))), ustep: Some(1), points: [])", field: "objects[0].shape.ubasis[1][2]", at: Some((7, 115)) },
+    Case { name: "patch mesh with too few points", from: "Sphere(radius: 1.0)", to: "PatchMesh(kind: Bilinear, nu: 2, nv: 2, points: [(0.0, 0.0, 0.0)])", field: "objects[0].shape.points", at: Some((7, 75)) },
+    Case { name: "patch mesh inf point", from: "Sphere(radius: 1.0)", to: "PatchMesh(kind: Bilinear, nu: 2, nv: 2, points: [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (1.0, 1.0, inf)])", field: "objects[0].shape.points[3][2]", at: Some((7, 138)) },
+    Case { name: "nurbs order 1", from: "Sphere(radius: 1.0)", to: "NuPatch(nu: 2, uorder: 1, uknot: [0.0, 0.0, 1.0, 1.0], umin: 0.0, umax: 1.0, nv: 2, vorder: 2, vknot: [0.0, 0.0, 1.0, 1.0], vmin: 0.0, vmax: 1.0, points: [(0.0, 0.0, 0.0, 1.0), (1.0, 0.0, 0.0, 1.0), (0.0, 1.0, 0.0, 1.0), (1.0, 1.0, 0.0, 1.0)])", field: "objects[0].shape.uorder", at: Some((7, 50)) },
+    Case { name: "nurbs order above 16", from: "Sphere(radius: 1.0)", to: "NuPatch(nu: 2, uorder: 2, uknot: [0.0, 0.0, 1.0, 1.0], umin: 0.0, umax: 1.0, nv: 2, vorder: 17, vknot: [0.0, 0.0, 1.0, 1.0], vmin: 0.0, vmax: 1.0, points: [(0.0, 0.0, 0.0, 1.0), (1.0, 0.0, 0.0, 1.0), (0.0, 1.0, 0.0, 1.0), (1.0, 1.0, 0.0, 1.0)])", field: "objects[0].shape.vorder", at: Some((7, 119)) },
+    Case { name: "nurbs with fewer points than its order", from: "Sphere(radius: 1.0)", to: "NuPatch(nu: 2, uorder: 3, uknot: [0.0, 0.0, 1.0, 1.0], umin: 0.0, umax: 1.0, nv: 2, vorder: 2, vknot: [0.0, 0.0, 1.0, 1.0], vmin: 0.0, vmax: 1.0, points: [(0.0, 0.0, 0.0, 1.0), (1.0, 0.0, 0.0, 1.0), (0.0, 1.0, 0.0, 1.0), (1.0, 1.0, 0.0, 1.0)])", field: "objects[0].shape.nu", at: Some((7, 39)) },
+    Case { name: "nurbs with a knot too few", from: "Sphere(radius: 1.0)", to: "NuPatch(nu: 2, uorder: 2, uknot: [0.0, 0.0, 1.0], umin: 0.0, umax: 1.0, nv: 2, vorder: 2, vknot: [0.0, 0.0, 1.0, 1.0], vmin: 0.0, vmax: 1.0, points: [(0.0, 0.0, 0.0, 1.0), (1.0, 0.0, 0.0, 1.0), (0.0, 1.0, 0.0, 1.0), (1.0, 1.0, 0.0, 1.0)])", field: "objects[0].shape.uknot", at: Some((7, 60)) },
+    Case { name: "nurbs knots decreasing", from: "Sphere(radius: 1.0)", to: "NuPatch(nu: 2, uorder: 2, uknot: [0.0, 0.0, 1.0, 0.5], umin: 0.0, umax: 0.5, nv: 2, vorder: 2, vknot: [0.0, 0.0, 1.0, 1.0], vmin: 0.0, vmax: 1.0, points: [(0.0, 0.0, 0.0, 1.0), (1.0, 0.0, 0.0, 1.0), (0.0, 1.0, 0.0, 1.0), (1.0, 1.0, 0.0, 1.0)])", field: "objects[0].shape.uknot[3]", at: Some((7, 76)) },
+    Case { name: "nurbs NaN knot", from: "Sphere(radius: 1.0)", to: "NuPatch(nu: 2, uorder: 2, uknot: [0.0, 0.0, 1.0, 1.0], umin: 0.0, umax: 1.0, nv: 2, vorder: 2, vknot: [0.0, NaN, 1.0, 1.0], vmin: 0.0, vmax: 1.0, points: [(0.0, 0.0, 0.0, 1.0), (1.0, 0.0, 0.0, 1.0), (0.0, 1.0, 0.0, 1.0), (1.0, 1.0, 0.0, 1.0)])", field: "objects[0].shape.vknot[1]", at: Some((7, 135)) },
+    Case { name: "nurbs umin before the valid range", from: "Sphere(radius: 1.0)", to: "NuPatch(nu: 2, uorder: 2, uknot: [0.0, 0.0, 1.0, 1.0], umin: -0.5, umax: 1.0, nv: 2, vorder: 2, vknot: [0.0, 0.0, 1.0, 1.0], vmin: 0.0, vmax: 1.0, points: [(0.0, 0.0, 0.0, 1.0), (1.0, 0.0, 0.0, 1.0), (0.0, 1.0, 0.0, 1.0), (1.0, 1.0, 0.0, 1.0)])", field: "objects[0].shape.umin", at: Some((7, 88)) },
+    Case { name: "nurbs vmax after the valid range", from: "Sphere(radius: 1.0)", to: "NuPatch(nu: 2, uorder: 2, uknot: [0.0, 0.0, 1.0, 1.0], umin: 0.0, umax: 1.0, nv: 2, vorder: 2, vknot: [0.0, 0.0, 1.0, 1.0], vmin: 0.0, vmax: 2.0, points: [(0.0, 0.0, 0.0, 1.0), (1.0, 0.0, 0.0, 1.0), (0.0, 1.0, 0.0, 1.0), (1.0, 1.0, 0.0, 1.0)])", field: "objects[0].shape.vmax", at: Some((7, 168)) },
+    Case { name: "nurbs umax at umin", from: "Sphere(radius: 1.0)", to: "NuPatch(nu: 2, uorder: 2, uknot: [0.0, 0.0, 1.0, 1.0], umin: 0.5, umax: 0.5, nv: 2, vorder: 2, vknot: [0.0, 0.0, 1.0, 1.0], vmin: 0.0, vmax: 1.0, points: [(0.0, 0.0, 0.0, 1.0), (1.0, 0.0, 0.0, 1.0), (0.0, 1.0, 0.0, 1.0), (1.0, 1.0, 0.0, 1.0)])", field: "objects[0].shape.umax", at: Some((7, 99)) },
+    Case { name: "nurbs weight 0", from: "Sphere(radius: 1.0)", to: "NuPatch(nu: 2, uorder: 2, uknot: [0.0, 0.0, 1.0, 1.0], umin: 0.0, umax: 1.0, nv: 2, vorder: 2, vknot: [0.0, 0.0, 1.0, 1.0], vmin: 0.0, vmax: 1.0, points: [(0.0, 0.0, 0.0, 1.0), (1.0, 0.0, 0.0, 1.0), (0.0, 1.0, 0.0, 1.0), (1.0, 1.0, 0.0, 0.0)])", field: "objects[0].shape.points[3][3]", at: Some((7, 264)) },
+    Case { name: "nurbs with too many points", from: "Sphere(radius: 1.0)", to: "NuPatch(nu: 2, uorder: 2, uknot: [0.0, 0.0, 1.0, 1.0], umin: 0.0, umax: 1.0, nv: 2, vorder: 2, vknot: [0.0, 0.0, 1.0, 1.0], vmin: 0.0, vmax: 1.0, points: [(0.0, 0.0, 0.0, 1.0), (1.0, 0.0, 0.0, 1.0), (0.0, 1.0, 0.0, 1.0), (1.0, 1.0, 0.0, 1.0), (2.0, 1.0, 0.0, 1.0)])", field: "objects[0].shape.points", at: Some((7, 181)) },
+    Case { name: "deformation of a nurbs with 3 points", from: "Sphere(radius: 1.0)", to: "NuPatch(nu: 2, uorder: 2, uknot: [0.0, 0.0, 1.0, 1.0], umin: 0.0, umax: 1.0, nv: 2, vorder: 2, vknot: [0.0, 0.0, 1.0, 1.0], vmin: 0.0, vmax: 1.0, points: [(0.0, 0.0, 0.0, 1.0), (1.0, 0.0, 0.0, 1.0), (0.0, 1.0, 0.0, 1.0), (1.0, 1.0, 0.0, 1.0)]), deform: [(time: 0.0, points: [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (1.0, 1.0, 0.0)]), (time: 1.0, points: [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)])]", field: "objects[0].deform[1].points", at: Some((7, 392)) },
+    Case { name: "hyperboloid operand", from: "  ],\n)", to: "    (name: \"hyp\", shape: Hyperboloid(point1: (1.0, 0.0, -1.0), point2: (1.0, 0.0, 1.0)), material: Matte(color: (0.5, 0.5, 0.5))),\n  ],\n  solids: [(tree: Union([Object(\"ball\"), Object(\"hyp\")]))],\n)", field: "solids[0].tree[1]", at: Some((10, 42)) },
+    Case { name: "wrapped patch mesh operand", from: "  ],\n)", to: "    (name: \"tube\", shape: PatchMesh(kind: Bilinear, nu: 3, nv: 2, uwrap: Periodic, points: [(1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (-1.0, 0.0, 0.0), (1.0, 0.0, 1.0), (0.0, 1.0, 1.0), (-1.0, 0.0, 1.0)]), material: Matte(color: (0.5, 0.5, 0.5))),\n  ],\n  solids: [(tree: Union([Object(\"ball\"), Object(\"tube\")]))],\n)", field: "solids[0].tree[1]", at: Some((10, 42)) },
+    Case { name: "nurbs operand", from: "  ],\n)", to: "    (name: \"sheet\", shape: NuPatch(nu: 2, uorder: 2, uknot: [0.0, 0.0, 1.0, 1.0], umin: 0.0, umax: 1.0, nv: 2, vorder: 2, vknot: [0.0, 0.0, 1.0, 1.0], vmin: 0.0, vmax: 1.0, points: [(0.0, 0.0, 0.0, 1.0), (1.0, 0.0, 0.0, 1.0), (0.0, 1.0, 0.0, 1.0), (1.0, 1.0, 0.0, 1.0)]), material: Matte(color: (0.5, 0.5, 0.5))),\n  ],\n  solids: [(tree: Union([Object(\"ball\"), Object(\"sheet\")]))],\n)", field: "solids[0].tree[1]", at: Some((10, 42)) },
 ];
 
 /// The text of `case` and the error it must produce.
@@ -389,7 +418,7 @@ fn exact_messages() {
     );
     assert_eq!(
         shown("deformation of a sphere"),
-        "scenes/bad.ron:7:56: objects[0].deform: deformation keys need a Mesh or BilinearPatch shape, got Sphere"
+        "scenes/bad.ron:7:56: objects[0].deform: deformation keys need a Mesh, BilinearPatch, PatchMesh or NuPatch shape, got Sphere"
     );
     assert_eq!(
         shown("deformation of a patch with 3 points"),
@@ -614,5 +643,29 @@ fn positions_survive_comments_and_strings() {
     assert_eq!(
         e.as_deref(),
         Some("scenes/bad.ron:8:15: objects[0].shape.radius: must be > 0, got -3")
+    );
+}
+
+#[test]
+fn new_geometry_messages() {
+    let shown = |name: &str| {
+        let case = CASES.iter().find(|c| c.name == name).expect(name);
+        run(case).to_string()
+    };
+    assert_eq!(
+        shown("nurbs knots decreasing"),
+        "scenes/bad.ron:7:76: objects[0].shape.uknot[3]: must not decrease, got 0.5 after 1"
+    );
+    assert_eq!(
+        shown("bicubic patch mesh with 5 points along u"),
+        "scenes/bad.ron:7:56: objects[0].shape.nu: a nonperiodic bicubic mesh needs 4 + k * step points (step 3), got 5"
+    );
+    assert_eq!(
+        shown("nurbs umin before the valid range"),
+        "scenes/bad.ron:7:88: objects[0].shape.umin: must be >= uknot[1] (0), the start of the valid range, got -0.5"
+    );
+    assert_eq!(
+        shown("hyperboloid operand"),
+        "scenes/bad.ron:10:42: solids[0].tree[1]: object \"hyp\" is not closed (Hyperboloid); CSG operands must be closed solids"
     );
 }

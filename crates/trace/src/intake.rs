@@ -10,18 +10,22 @@
 
 use glam::{DMat4, DVec3, Vec3};
 use reyes_scene::object_to_world;
-use reyes_scene::{Object, Scene, Shape, V3};
+use reyes_scene::patches;
+use reyes_scene::{Object, PatchType, Scene, Shape, V3};
 
 use crate::Tracer;
 use crate::bvh::{self, Aabb, Bvh};
 use crate::placement::{MatrixKey, Placement, is_projective};
 use crate::quadric::Quadric;
+use crate::tessellate;
 
-/// The points of a shape at one normalised time.
+/// The points of a shape at one normalised time (and, for a tessellated patch mesh or
+/// NURBS, the exact surface normal at each of its vertices; empty otherwise).
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct PointKey {
     pub(crate) time: f32,
     pub(crate) points: Vec<Vec3>,
+    pub(crate) normals: Vec<Vec3>,
 }
 
 /// One primitive's geometry, in its object's placement space (world space when the
@@ -38,6 +42,12 @@ pub(crate) enum Geometry {
     DeformingPatch([u32; 4]),
     /// A triangle whose vertices are the object's deforming points at these indices.
     DeformingTriangle([u32; 3]),
+    /// A triangle of a tessellated patch: vertices, their exact surface normals and their
+    /// `(u, v)` on the patch.
+    SmoothTriangle { p: [Vec3; 3], n: [Vec3; 3], uv: [[f32; 2]; 3] },
+    /// A deforming [`Geometry::SmoothTriangle`]: vertices and normals are the object's
+    /// deforming points and normals at these indices.
+    DeformingSmoothTriangle { idx: [u32; 3], uv: [[f32; 2]; 3] },
 }
 
 /// One primitive and what a hit on it reports.
@@ -176,9 +186,14 @@ impl Builder {
         }
 
         // Points of a mesh or patch, per deformation key (one key when still).
+        let tessellated = patches::is_bezier_shape(&object.shape);
         let own_points: Vec<Vec3> = match &object.shape {
             Shape::BilinearPatch { points } => points.iter().map(v3).collect(),
             Shape::Mesh { points, .. } => points.iter().map(v3).collect(),
+            Shape::PatchMesh { kind: PatchType::Bilinear, points, .. } => {
+                points.iter().map(v3).collect()
+            }
+            _ if tessellated => tessellate::own_positions(&object.shape),
             _ => Vec::new(),
         };
         // Deformation keys of a mesh or patch, each with exactly the shape's point count: a
@@ -195,21 +210,33 @@ impl Builder {
                         .enumerate()
                         .map(|(i, own)| k.points.get(i).map_or(*own, v3))
                         .collect(),
+                    normals: Vec::new(),
                 })
                 .collect()
         };
         if point_keys.is_empty() {
-            point_keys = vec![PointKey { time: 0.0, points: own_points }];
+            point_keys = vec![PointKey { time: 0.0, points: own_points, normals: Vec::new() }];
         }
         // A still affine placement of a mesh or patch is baked into its points (exact: the
-        // dicer applies the same matrix to the same points).
+        // dicer applies the same matrix to the same points); a tessellated patch's into its
+        // vertices and normals once they are made.
+        let mut bake = None;
         if let Placement::Static(_) = &placement
             && !is_projective(&still)
-            && matches!(object.shape, Shape::BilinearPatch { .. } | Shape::Mesh { .. })
+            && (matches!(
+                object.shape,
+                Shape::BilinearPatch { .. }
+                    | Shape::Mesh { .. }
+                    | Shape::PatchMesh { kind: PatchType::Bilinear, .. }
+            ) || tessellated)
         {
-            for key in &mut point_keys {
-                for p in &mut key.points {
-                    *p = still.transform_point3(p.as_dvec3()).as_vec3();
+            if tessellated {
+                bake = Some(still);
+            } else {
+                for key in &mut point_keys {
+                    for p in &mut key.points {
+                        *p = still.transform_point3(p.as_dvec3()).as_vec3();
+                    }
                 }
             }
             placement = Placement::Identity;
@@ -220,6 +247,11 @@ impl Builder {
         }
         let matrices = placement.key_matrices();
         let deforming = point_keys.len() > 1;
+        if tessellated {
+            let t = tessellate::tessellate(&object.shape, &point_keys, bake.as_ref());
+            point_keys = t.keys;
+            self.add_tessellated(index, &t.tris, &point_keys, &matrices, deforming);
+        }
         // The box of the points `idx` at every deformation key under every transform key.
         let bound = |idx: &[u32]| {
             let points: Vec<DVec3> = point_keys
@@ -258,6 +290,20 @@ impl Builder {
                 let idx = [0, 1, 2, 3];
                 self.push(patch(idx), index, 0, 0, bound(&idx));
             }
+            Shape::Hyperboloid { .. } => {
+                if let Some(q) = Quadric::from_shape(&object.shape) {
+                    let (lo, hi) = q.object_bounds();
+                    let b = bound_points(&matrices, &corners(lo, hi));
+                    self.push(Geometry::Quadric(q), index, 0, 0, b);
+                }
+            }
+            Shape::PatchMesh { kind: PatchType::Bilinear, .. } => {
+                for (k, idx) in patches::bilinear_corners(&object.shape).into_iter().enumerate() {
+                    self.push(patch(idx), index, k as u32, 0, bound(&idx));
+                }
+            }
+            // Tessellated above.
+            Shape::PatchMesh { .. } | Shape::NuPatch { .. } => {}
             Shape::Mesh { points, faces, .. } => {
                 let mut surface = 0u32;
                 for (f, face) in faces.iter().enumerate() {
@@ -291,6 +337,39 @@ impl Builder {
         }
         let deform = if deforming { point_keys } else { Vec::new() };
         ObjectData { placement, deform, unbake }
+    }
+}
+
+impl Builder {
+    /// Adds the triangles of a tessellated patch mesh or NURBS, whose vertices and normals
+    /// at every key are `keys` (boxes over every key under every matrix).
+    fn add_tessellated(
+        &mut self,
+        index: u32,
+        tris: &[tessellate::Tri],
+        keys: &[PointKey],
+        matrices: &[DMat4],
+        deforming: bool,
+    ) {
+        let first = keys.first();
+        for tri in tris {
+            let at = |k: &PointKey, i: u32| k.points.get(i as usize).copied();
+            let points: Vec<DVec3> = keys
+                .iter()
+                .flat_map(|k| tri.idx.iter().filter_map(move |&i| at(k, i)))
+                .map(|p| p.as_dvec3())
+                .collect();
+            let b = bound_points(matrices, &points);
+            let g = if deforming {
+                Geometry::DeformingSmoothTriangle { idx: tri.idx, uv: tri.uv }
+            } else {
+                let Some(k) = first else { continue };
+                let p = tri.idx.map(|i| at(k, i).unwrap_or(Vec3::ZERO));
+                let n = tri.idx.map(|i| k.normals.get(i as usize).copied().unwrap_or(Vec3::Z));
+                Geometry::SmoothTriangle { p, n, uv: tri.uv }
+            };
+            self.push(g, index, tri.surface, 0, b);
+        }
     }
 }
 

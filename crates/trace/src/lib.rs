@@ -1,20 +1,25 @@
 //! reyes-trace: a ray engine over the scene, for the distributed ray tracing of the later
 //! stages (soft shadows, glossy reflection, translucency, the Appendix B hider).
 //!
-//! [`Tracer::new`] turns every surface the dicer would dice into one primitive (a quadric
-//! or torus, a bilinear patch, each mesh face: quads as their bilinear patch, triangles and
-//! the fan triangles of larger polygons as triangles) and builds a bounding volume
-//! hierarchy over them. [`Tracer::intersect`] finds the nearest hit of a [`Ray`] and
+//! [`Tracer::new`] turns every surface the dicer would dice into one primitive (a quadric,
+//! torus or hyperboloid, a bilinear patch or bilinear patch-mesh sub-patch, each mesh face:
+//! quads as their bilinear patch, triangles and the fan triangles of larger polygons as
+//! triangles), or, for a bicubic patch-mesh sub-patch or a NURBS span, into the triangles of
+//! its tessellation (`tessellate.rs`: vertices and normals on the exact surface, the surface
+//! within 1/1000 of the patch's size of its triangles by a proven bound, hits reporting the
+//! normals interpolated), and builds a bounding volume hierarchy over them. [`Tracer::intersect`] finds the nearest hit of a [`Ray`] and
 //! [`Tracer::occluded`] whether there is any.
 //!
 //! Layout: this file holds the API; `intake.rs` turns the scene into primitives and their
 //! boxes, `bvh.rs` builds the hierarchy over them and `query.rs` traverses it, intersecting
 //! each primitive met (`quadric.rs`, `patch.rs`; `placement.rs` carries the ray into the
-//! object's space at its time; `poly.rs` solves the polynomials).
+//! object's space at its time; `poly.rs` solves the polynomials; `tessellate.rs` makes the
+//! triangles of bicubic patch meshes and NURBS).
 //!
 //! Invariants and conventions:
 //!
-//! * **Same surfaces as the dicer.** Quadrics are intersected analytically in object space
+//! * **Same surfaces as the dicer** (but for the tessellated patches, which are within their
+//!   stated bound of it). Quadrics are intersected analytically in object space
 //!   (`f64`), with the partial sweeps, z cuts and tube-angle ranges of `reyes_dice`; hits
 //!   report the dicer's `(u, v)` and its outward geometric normal, carried to world space
 //!   by the inverse transpose. Object-to-world matrices come from
@@ -45,6 +50,7 @@ mod placement;
 mod poly;
 mod quadric;
 mod query;
+mod tessellate;
 
 use glam::Vec3;
 use reyes_scene::Scene;
@@ -92,7 +98,8 @@ pub struct Hit {
     pub object: u32,
     /// Index of the surface within the object, in the dicer's order (0 for quadrics and
     /// patches; for meshes, faces in list order with bad faces skipped and polygons of
-    /// more than four vertices fanned into several triangles).
+    /// more than four vertices fanned into several triangles; for patch meshes and NURBS,
+    /// the sub-patch or knot span, row by row).
     pub surface: u32,
     /// Index of the mesh face in `Shape::Mesh::faces` (0 for other shapes).
     pub face: u32,
@@ -141,7 +148,8 @@ impl Tracer {
         intake::build(scene)
     }
 
-    /// Number of primitives (quadrics, patches, mesh faces and fan triangles).
+    /// Number of primitives (quadrics, patches, mesh faces, fan triangles and the triangles
+    /// of tessellated patches).
     pub fn primitive_count(&self) -> usize {
         self.prims.len()
     }

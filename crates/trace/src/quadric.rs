@@ -5,7 +5,8 @@
 //! `[0, thetamax]` and `u = theta / thetamax`; `v` and the outward normal follow the
 //! dicer's parametrisation of each shape (sphere latitude between the clamped z cuts,
 //! cylinder height, cone `z = v height`, paraboloid `z = zmin + v (zmax - zmin)`, disk
-//! `r = radius (1 - v)`, torus tube angle in `[phimin, phimax]`). `intersect` returns the nearest hit with object parameter `s > 0`,
+//! `r = radius (1 - v)`, torus tube angle in `[phimin, phimax]`, hyperboloid `v` along its
+//! segment with `theta` measured from the segment's own angle). `intersect` returns the nearest hit with object parameter `s > 0`,
 //! whatever the caller's `t_max`, so the same ray always gives the same answer.
 
 use std::f64::consts::TAU;
@@ -86,6 +87,8 @@ pub(crate) enum Quadric {
     Disk { height: f64, radius: f64, sweep: Sweep },
     /// Torus; the tube angle runs over `phi_min..=phi_max`.
     Torus { major: f64, minor: f64, phi_min: f64, phi_max: f64, full_tube: bool, sweep: Sweep },
+    /// Hyperboloid: the segment `p1 -> p2` (`v` along it) turned about z through the sweep.
+    Hyperboloid { p1: DVec3, p2: DVec3, sweep: Sweep },
 }
 
 impl Quadric {
@@ -140,7 +143,15 @@ impl Quadric {
                     sweep: Sweep::new(*thetamax),
                 }
             }
-            Shape::BilinearPatch { .. } | Shape::Mesh { .. } => return None,
+            Shape::Hyperboloid { point1, point2, thetamax } => Quadric::Hyperboloid {
+                p1: DVec3::from(point1.map(f64::from)),
+                p2: DVec3::from(point2.map(f64::from)),
+                sweep: Sweep::new(*thetamax),
+            },
+            Shape::BilinearPatch { .. }
+            | Shape::Mesh { .. }
+            | Shape::PatchMesh { .. }
+            | Shape::NuPatch { .. } => return None,
         })
     }
 
@@ -158,6 +169,11 @@ impl Quadric {
             Quadric::Paraboloid { rmax, zmin, zmax, .. } => box_of(*rmax, *zmin, *zmax),
             Quadric::Disk { height, radius, .. } => box_of(*radius, *height, *height),
             Quadric::Torus { major, minor, .. } => box_of(major + minor, -minor, *minor),
+            // |L_xy(v)| is convex along the segment: largest at an end.
+            Quadric::Hyperboloid { p1, p2, .. } => {
+                let r = p1.truncate().length().max(p2.truncate().length());
+                box_of(r, p1.z, p2.z)
+            }
         }
     }
 
@@ -250,8 +266,81 @@ impl Quadric {
             Quadric::Torus { major, minor, phi_min, phi_max, full_tube, sweep } => {
                 torus(ray, *major, *minor, *phi_min, *phi_max, *full_tube, *sweep)
             }
+            Quadric::Hyperboloid { p1, p2, sweep } => hyperboloid(ray, *p1, *p2, *sweep),
         }
     }
+}
+
+/// Tolerance on a hyperboloid's `v` outside `[0, 1]` before clamping.
+const V_EDGE: f64 = 1e-9;
+
+/// The hyperboloid's hit at segment parameter `v` and point `p`, if its angle from the
+/// segment's own point lies in the sweep. The normal is `dP/du x dP/dv` (see the dicer's
+/// shapes stage): `Rz(theta) ((-y, x, 0) x D)` for the segment point `(x, y, z)`, taken a
+/// little way along the segment where it vanishes (a point on the axis).
+fn hyperboloid_hit(
+    s: f64,
+    p: DVec3,
+    v: f64,
+    p1: DVec3,
+    p2: DVec3,
+    sweep: Sweep,
+) -> Option<LocalHit> {
+    if !(-V_EDGE..=1.0 + V_EDGE).contains(&v) {
+        return None;
+    }
+    let v = v.clamp(0.0, 1.0);
+    let d = p2 - p1;
+    let l = p1.lerp(p2, v);
+    // The angle from the segment's point to the hit: arg(p) - arg(l), via p * conj(l).
+    let theta = if l.x == 0.0 && l.y == 0.0 {
+        0.0
+    } else {
+        sweep.angle(p.x * l.x + p.y * l.y, p.y * l.x - p.x * l.y)?
+    };
+    let unturned = |l: DVec3| DVec3::new(l.x * d.z, l.y * d.z, -(l.x * d.x + l.y * d.y));
+    let scale = p1.abs().max_element() + p2.abs().max_element();
+    let mut n = unturned(l);
+    if n.length() <= 1e-12 * scale * scale {
+        n = unturned(p1.lerp(p2, if v < 0.5 { v + 1e-3 } else { v - 1e-3 }));
+    }
+    let (st, ct) = theta.sin_cos();
+    let n = DVec3::new(n.x * ct - n.y * st, n.x * st + n.y * ct, n.z);
+    let n = if n == DVec3::ZERO { DVec3::Z } else { n };
+    Some(LocalHit { s, p, n, u: sweep.u(theta), v })
+}
+
+/// The hyperboloid: where the segment is not horizontal, `v` is linear in the ray's `s`
+/// (through z) and `|p_xy|^2 = |L_xy(v)|^2` is a quadratic in `s`; a horizontal segment sweeps
+/// a flat ring in its plane, where `|L_xy(v)|^2 = rho^2` is a quadratic in `v`.
+fn hyperboloid(ray: &LocalRay, p1: DVec3, p2: DVec3, sweep: Sweep) -> Option<LocalHit> {
+    let (o, d) = (ray.o, ray.d);
+    let seg = p2 - p1;
+    if seg.z != 0.0 {
+        let (v0, v1) = ((o.z - p1.z) / seg.z, d.z / seg.z);
+        let c0 = p1.truncate() + seg.truncate() * v0;
+        let c1 = seg.truncate() * v1;
+        let (oxy, dxy) = (o.truncate(), d.truncate());
+        let a = dxy.length_squared() - c1.length_squared();
+        let b = 2.0 * (oxy.dot(dxy) - c0.dot(c1));
+        let c = oxy.length_squared() - c0.length_squared();
+        return first_root(ray, a, b, c, |s, p| hyperboloid_hit(s, p, v0 + s * v1, p1, p2, sweep));
+    }
+    if d.z == 0.0 {
+        return None;
+    }
+    let s = (p1.z - o.z) / d.z;
+    if s.is_nan() || s <= 0.0 {
+        return None;
+    }
+    let p = DVec3::new(o.x + d.x * s, o.y + d.y * s, p1.z);
+    let (l0, dl) = (p1.truncate(), seg.truncate());
+    let roots = quadratic(
+        dl.length_squared(),
+        2.0 * l0.dot(dl),
+        l0.length_squared() - p.truncate().length_squared(),
+    );
+    roots.as_slice().iter().find_map(|&v| hyperboloid_hit(s, p, v, p1, p2, sweep))
 }
 
 /// The hit at the first root `s > 0` of `a s^2 + b s + c` (ascending) whose point

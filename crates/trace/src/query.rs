@@ -12,7 +12,7 @@ use crate::bvh::{Aabb, NodeKind, STACK};
 use crate::intake::{Geometry, PointKey};
 use crate::placement::{Frame, LocalRay, Placement, bracket};
 use crate::quadric::LocalHit;
-use crate::{Hit, Ray, Tracer, patch};
+use crate::{Hit, Ray, Tracer, patch, tessellate};
 
 /// A candidate hit: world `t` and what is needed to report it.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -238,6 +238,35 @@ impl Tracer {
                 make(local.world_t(s), n, f64::from(h.u), f64::from(h.v), p)
             }
         };
+        // A tessellated patch's triangle: the exact normals and `(u, v)` of its vertices,
+        // interpolated (the flat normal where the interpolation vanishes).
+        let smooth = |tri: &[Vec3; 3], normals: &[Vec3; 3], uv: &[[f32; 2]; 3]| {
+            let (origin, dir) = match &space {
+                Space::World => (ray.origin, ray.dir),
+                Space::Object(frame) => {
+                    let local = frame.localise(ray.origin, ray.dir)?;
+                    (local.o.as_vec3(), local.d.as_vec3())
+                }
+            };
+            let h = patch::triangle(tri, origin, dir)?;
+            let (wb, wc) = tessellate::weights(h.u, h.v);
+            let wa = 1.0 - wb - wc;
+            let n = tessellate::interpolate_normal(normals, wb, wc)
+                .unwrap_or_else(|| patch::triangle_normal(tri))
+                .as_dvec3();
+            let u = wa * uv[0][0] + wb * uv[1][0] + wc * uv[2][0];
+            let v = wa * uv[0][1] + wb * uv[1][1] + wc * uv[2][1];
+            let s = f64::from(h.t);
+            let (u, v) = (f64::from(u), f64::from(v));
+            match &space {
+                Space::World => make(s, n, u, v, ray.origin.as_dvec3() + ray.dir.as_dvec3() * s),
+                Space::Object(frame) => {
+                    let local = frame.localise(ray.origin, ray.dir)?;
+                    let p = local.o + local.d * s;
+                    make(local.world_t(s), frame.normal_to_world(p, n), u, v, p)
+                }
+            }
+        };
         match &prim.geometry {
             Geometry::Triangle(tri) => triangle(tri),
             Geometry::Quadric(q) => {
@@ -252,6 +281,12 @@ impl Tracer {
                 let keys = &self.objects.get(prim.object as usize)?.deform;
                 let tri = deformed(keys, idx, ray.time)?;
                 triangle(&tri)
+            }
+            Geometry::SmoothTriangle { p, n, uv } => smooth(p, n, uv),
+            Geometry::DeformingSmoothTriangle { idx, uv } => {
+                let keys = &self.objects.get(prim.object as usize)?.deform;
+                let (p, n) = deformed_smooth(keys, idx, ray.time)?;
+                smooth(&p, &n, uv)
             }
             Geometry::DeformingPatch(idx) => {
                 let keys = &self.objects.get(prim.object as usize)?.deform;
@@ -297,4 +332,19 @@ fn deformed<const N: usize>(keys: &[PointKey], idx: &[u32; N], time: f32) -> Opt
         *o = a.get(k)?.lerp(*b.get(k)?, w);
     }
     Some(out)
+}
+
+/// The deforming points and normals `idx` at normalised `time` (normals lerped, not
+/// normalised: the hit normalises them).
+#[inline]
+fn deformed_smooth(keys: &[PointKey], idx: &[u32; 3], time: f32) -> Option<([Vec3; 3], [Vec3; 3])> {
+    let p = deformed(keys, idx, time)?;
+    let (i, j, w) = bracket(keys.iter().map(|k| k.time), time);
+    let (a, b) = (&keys.get(i)?.normals, &keys.get(j)?.normals);
+    let mut n = [Vec3::ZERO; 3];
+    for (o, &k) in n.iter_mut().zip(idx) {
+        let k = k as usize;
+        *o = a.get(k)?.lerp(*b.get(k)?, w);
+    }
+    Some((p, n))
 }

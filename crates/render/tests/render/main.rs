@@ -1,9 +1,11 @@
 //! End-to-end tests of rendering, one test binary (ripgrep's habit): analytic coverage and
 //! determinism through the whole pipeline, the golden images, CSG depths, the thin lens, the
-//! pixel filters, and both hiders against each other.
+//! pixel filters, both hiders against each other, and the RenderMan geometry (hyperboloids,
+//! patch meshes, NURBS).
 
 mod csg;
 mod filters;
+mod geometry;
 mod lens;
 mod pipeline;
 mod raytrace;

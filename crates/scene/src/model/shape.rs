@@ -1,7 +1,9 @@
 //! Surfaces and their placement: the [`Shape`] of an object and the [`Transform`] steps
 //! that carry it to world space.
 //!
-//! Invariant: quadrics sweep around the object's z axis, angles are in degrees.
+//! Invariant: quadrics sweep around the object's z axis, angles are in degrees; control
+//! points of patch meshes and NURBS are listed u-major (u varies fastest), as RenderMan
+//! lists them.
 
 use serde::{Deserialize, Serialize};
 
@@ -97,6 +99,76 @@ pub enum Shape {
         /// The four corners.
         points: [V3; 4],
     },
+    /// RenderMan hyperboloid (`RiHyperboloid`): the surface swept by turning the segment
+    /// `point1 -> point2` about the z axis through `thetamax` degrees. `u` is the sweep
+    /// (`theta = u * thetamax`, from +x towards +y), `v` runs along the segment.
+    Hyperboloid {
+        /// Start of the segment (`v = 0`).
+        point1: V3,
+        /// End of the segment (`v = 1`); != `point1`.
+        point2: V3,
+        /// Sweep angle in degrees, (0, 360].
+        #[serde(default = "deg360")]
+        thetamax: f32,
+    },
+    /// RenderMan patch mesh (`RiPatchMesh`; `RiPatch` is the mesh of one patch): an
+    /// `nu x nv` grid of control points, `points[j * nu + i]` at column `i` (u), row `j` (v),
+    /// cut into sub-patches by the basis steps (see [`PatchType`], [`Basis`]).
+    PatchMesh {
+        /// `Bilinear` or `Bicubic` (RenderMan's `type` argument).
+        kind: PatchType,
+        /// Control points along u.
+        nu: u32,
+        /// Control points along v.
+        nv: u32,
+        /// Whether the mesh wraps around in u.
+        #[serde(default)]
+        uwrap: Wrap,
+        /// Whether the mesh wraps around in v.
+        #[serde(default)]
+        vwrap: Wrap,
+        /// The `nu * nv` control points, u-major.
+        points: Vec<V3>,
+        /// Basis along u (`RiBasis`'s `ubasis`; bicubic only).
+        #[serde(default)]
+        ubasis: Basis,
+        /// Step along u between sub-patches; `None`: the standard step of `ubasis`.
+        #[serde(default)]
+        ustep: Option<u32>,
+        /// Basis along v.
+        #[serde(default)]
+        vbasis: Basis,
+        /// Step along v; `None`: the standard step of `vbasis`.
+        #[serde(default)]
+        vstep: Option<u32>,
+    },
+    /// RenderMan NURBS patch (`RiNuPatch`), rational, without trim curves. Knot vectors have
+    /// `n + order` entries; the surface is drawn over `[umin, umax] x [vmin, vmax]`.
+    NuPatch {
+        /// Control points along u.
+        nu: u32,
+        /// Order along u (degree + 1), >= 2.
+        uorder: u32,
+        /// Knots along u: `nu + uorder` non-decreasing values.
+        uknot: Vec<f32>,
+        /// Start of the drawn u range, `>= uknot[uorder - 1]`.
+        umin: f32,
+        /// End of the drawn u range, `> umin`, `<= uknot[nu]`.
+        umax: f32,
+        /// Control points along v.
+        nv: u32,
+        /// Order along v.
+        vorder: u32,
+        /// Knots along v: `nv + vorder` values.
+        vknot: Vec<f32>,
+        /// Start of the drawn v range.
+        vmin: f32,
+        /// End of the drawn v range.
+        vmax: f32,
+        /// The `nu * nv` homogeneous control points `(x, y, z, w)` (RenderMan's `Pw`; the
+        /// point is `(x/w, y/w, z/w)`, `w > 0`; `P` is `w = 1`), u-major.
+        points: Vec<[f32; 4]>,
+    },
     /// Polygon mesh of triangles and quads (planar or not).
     Mesh {
         /// Vertex positions.
@@ -121,8 +193,51 @@ impl Shape {
             Shape::Paraboloid { .. } => "Paraboloid",
             Shape::BilinearPatch { .. } => "BilinearPatch",
             Shape::Mesh { .. } => "Mesh",
+            Shape::Hyperboloid { .. } => "Hyperboloid",
+            Shape::PatchMesh { .. } => "PatchMesh",
+            Shape::NuPatch { .. } => "NuPatch",
         }
     }
+}
+
+/// The kind of a [`Shape::PatchMesh`]: RenderMan's `"bilinear"` or `"bicubic"`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum PatchType {
+    /// Sub-patches of 2 x 2 points, interpolated bilinearly (the basis is ignored).
+    Bilinear,
+    /// Sub-patches of 4 x 4 points in the mesh's bases.
+    Bicubic,
+}
+
+/// Whether a patch mesh wraps around in one direction (RenderMan's `"periodic"` and
+/// `"nonperiodic"`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Wrap {
+    /// The mesh ends at its last control point (the default).
+    #[default]
+    Nonperiodic,
+    /// The control points wrap around: the last sub-patch reuses the first points.
+    Periodic,
+}
+
+/// A cubic basis of `RiBasis`: the matrix `M` of `P(u, v) = U M G M^T V^T` with
+/// `U = (u^3, u^2, u, 1)`. Each named basis has its standard step (`RiBezierStep` ...).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+pub enum Basis {
+    /// `RiBezierBasis`, step 3 (the default).
+    #[default]
+    Bezier,
+    /// `RiBSplineBasis` (uniform cubic B-spline), step 1.
+    BSpline,
+    /// `RiCatmullRomBasis`, step 1.
+    CatmullRom,
+    /// `RiHermiteBasis` (points `P0, T0, P1, T1`), step 2.
+    Hermite,
+    /// `RiPowerBasis` (the identity: points are the coefficients of `u^3 .. 1`), step 4.
+    Power,
+    /// An explicit matrix, rows written top to bottom as `RtBasis` (`M[row][column]`); it
+    /// has no standard step, so the mesh must give one.
+    Matrix([[f32; 4]; 4]),
 }
 
 /// One step of an object's transform.

@@ -52,8 +52,9 @@ fn motion(at: &str, object: &Object, shutter: &Shutter) -> Check {
     )
 }
 
-/// Deformation motion: only of a `Mesh` or `BilinearPatch`; key times, then each key's points
-/// (as many as the shape has, all finite).
+/// Deformation motion: only of a `Mesh`, `BilinearPatch`, `PatchMesh` or `NuPatch`; key
+/// times, then each key's points (as many as the shape has control points, all finite; a
+/// NURBS key gives positions `(x/w, y/w, z/w)` and keeps the shape's weights).
 fn deform(at: &str, object: &Object, shutter: &Shutter) -> Check {
     if object.deform.is_empty() {
         return Ok(());
@@ -61,11 +62,14 @@ fn deform(at: &str, object: &Object, shutter: &Shutter) -> Check {
     let count = match &object.shape {
         Shape::BilinearPatch { points } => points.len(),
         Shape::Mesh { points, .. } => points.len(),
+        Shape::PatchMesh { points, .. } => points.len(),
+        Shape::NuPatch { points, .. } => points.len(),
         other => {
             return fail(
                 at,
                 format!(
-                    "deformation keys need a Mesh or BilinearPatch shape, got {}",
+                    "deformation keys need a Mesh, BilinearPatch, PatchMesh or NuPatch shape, \
+                     got {}",
                     other.name()
                 ),
             );

@@ -6,9 +6,11 @@
 use glam::DMat4;
 
 use super::primitives::{
-    Check, above, each, fail, finite, finite_all, finite_each, nonzero_vector, positive, sweep,
+    Check, above, each, fail, finite, finite_all, finite_each, int_in, nonzero_vector, positive,
+    sweep,
 };
-use crate::model::{Shape, Transform};
+use crate::model::{Basis, PatchType, Shape, Transform, Wrap};
+use crate::patches::{self, MAX_ORDER};
 
 pub(super) fn shape(at: &str, shape: &Shape) -> Check {
     let field = |name: &str| format!("{at}.{name}");
@@ -122,7 +124,131 @@ pub(super) fn shape(at: &str, shape: &Shape) -> Check {
             }
             Ok(())
         }
+        Shape::Hyperboloid { point1, point2, thetamax } => {
+            finite_all(&field("point1"), point1)?;
+            finite_all(&field("point2"), point2)?;
+            if point1 == point2 {
+                return fail(
+                    field("point2"),
+                    "must differ from point1, or the segment sweeps nothing",
+                );
+            }
+            let on_axis = |p: &[f32; 3]| p[0] == 0.0 && p[1] == 0.0;
+            if on_axis(point1) && on_axis(point2) {
+                return fail(
+                    field("point2"),
+                    "the segment lies on the z axis, so it sweeps no surface",
+                );
+            }
+            sweep(&field("thetamax"), *thetamax)
+        }
+        Shape::PatchMesh { kind, nu, nv, uwrap, vwrap, points, ubasis, ustep, vbasis, vstep } => {
+            let mut steps = [1, 1];
+            for (k, (dir, basis, given)) in
+                [("u", ubasis, ustep), ("v", vbasis, vstep)].into_iter().enumerate()
+            {
+                if let Basis::Matrix(m) = basis {
+                    finite_each(&field(&format!("{dir}basis")), m)?;
+                }
+                if *kind == PatchType::Bicubic {
+                    steps[k] = match patches::step(basis, *given) {
+                        Some(0) => {
+                            return fail(field(&format!("{dir}step")), "must be >= 1, got 0");
+                        }
+                        Some(s) => s,
+                        None => {
+                            return fail(
+                                field(&format!("{dir}step")),
+                                format!("a Matrix {dir}basis has no standard step: give {dir}step"),
+                            );
+                        }
+                    };
+                }
+            }
+            counts(&field("nu"), *kind, *nu, *uwrap, steps[0])?;
+            counts(&field("nv"), *kind, *nv, *vwrap, steps[1])?;
+            point_count(&field("points"), points.len(), *nu, *nv)?;
+            finite_each(&field("points"), points)
+        }
+        Shape::NuPatch { nu, uorder, uknot, umin, umax, nv, vorder, vknot, vmin, vmax, points } => {
+            knots(at, "u", *nu, *uorder, uknot, *umin, *umax)?;
+            knots(at, "v", *nv, *vorder, vknot, *vmin, *vmax)?;
+            point_count(&field("points"), points.len(), *nu, *nv)?;
+            finite_each(&field("points"), points)?;
+            for (i, p) in points.iter().enumerate() {
+                if p[3] <= 0.0 {
+                    return fail(
+                        format!("{at}.points[{i}][3]"),
+                        format!("the weight must be > 0, got {}", p[3]),
+                    );
+                }
+            }
+            Ok(())
+        }
     }
+}
+
+/// The sub-patch count of one direction of a patch mesh ([`patches::patch_count`]).
+fn counts(path: &str, kind: PatchType, n: u32, wrap: Wrap, step: u32) -> Check {
+    match patches::patch_count(kind, n, wrap, step) {
+        Ok(_) => Ok(()),
+        Err(why) => fail(path, why),
+    }
+}
+
+/// `len` control points for an `nu x nv` grid.
+fn point_count(path: &str, len: usize, nu: u32, nv: u32) -> Check {
+    let want = u64::from(nu) * u64::from(nv);
+    if len as u64 != want {
+        return fail(path, format!("must have nu * nv = {want} points, got {len}"));
+    }
+    Ok(())
+}
+
+/// One direction of a NURBS patch (`dir` is `u` or `v`): the order in `2..=MAX_ORDER`, at
+/// least `order` points, `n + order` finite non-decreasing knots, and a drawn range
+/// `min < max` inside the valid range `[knot[order - 1], knot[n]]`.
+fn knots(at: &str, dir: &str, n: u32, order: u32, knot: &[f32], min: f32, max: f32) -> Check {
+    let field = |name: &str| format!("{at}.{dir}{name}");
+    int_in(&field("order"), order, 2, MAX_ORDER)?;
+    if n < order {
+        return fail(format!("{at}.n{dir}"), format!("must be >= {dir}order ({order}), got {n}"));
+    }
+    let want = u64::from(n) + u64::from(order);
+    if knot.len() as u64 != want {
+        return fail(
+            field("knot"),
+            format!("must have n{dir} + {dir}order = {want} knots, got {}", knot.len()),
+        );
+    }
+    finite_all(&field("knot"), knot)?;
+    for (i, w) in knot.windows(2).enumerate() {
+        if w[1] < w[0] {
+            return fail(
+                format!("{at}.{dir}knot[{}]", i + 1),
+                format!("must not decrease, got {} after {}", w[1], w[0]),
+            );
+        }
+    }
+    finite(&field("min"), min)?;
+    finite(&field("max"), max)?;
+    let (lo, hi) = (knot[order as usize - 1], knot[n as usize]);
+    if min < lo {
+        return fail(
+            field("min"),
+            format!(
+                "must be >= {dir}knot[{}] ({lo}), the start of the valid range, got {min}",
+                order - 1
+            ),
+        );
+    }
+    if max > hi {
+        return fail(
+            field("max"),
+            format!("must be <= {dir}knot[{n}] ({hi}), the end of the valid range, got {max}"),
+        );
+    }
+    above(&field("max"), max, &format!("{dir}min"), min)
 }
 
 /// Each step of a transform list at `at`, step `i` at `at[i]`.
