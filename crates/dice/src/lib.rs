@@ -94,6 +94,7 @@ mod motion;
 mod shade;
 mod shapes;
 mod split;
+mod spot;
 
 pub use bucket::screen_bound;
 pub use camera::CameraSetup;
@@ -101,6 +102,7 @@ pub use csg::CsgSetup;
 pub use hook::{DiceOptions, VertexContext, VertexShader};
 pub use lazy::Dicer;
 pub use shade::{Shader, facing};
+pub use spot::{SpotLight, smoothstep};
 
 use reyes_hider::{CsgTree, Frame, Micropolygon};
 use reyes_scene::Scene;

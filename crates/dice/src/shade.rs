@@ -5,11 +5,13 @@
 //! is finite for finite input (a point light at the shaded point contributes nothing).
 //!
 //! The illumination models themselves ([`Shader::illuminate`]) are public so that the
-//! ray-traced shading (reyes-shade) evaluates the same Constant, Matte and Plastic models
-//! under its own lights (shadowed, area-sampled) without a second copy of them.
+//! ray-traced shading (reyes-shade) evaluates the same Constant, Matte, Plastic and Metal
+//! models under its own lights (shadowed, area-sampled) without a second copy of them.
 
 use glam::Vec3;
 use reyes_scene::{Light, Material};
+
+use crate::spot::SpotLight;
 
 /// A light after setup: the ambient ones are summed into [`Shader`]'s ambient term.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -18,6 +20,8 @@ enum DirectLight {
     Distant { l: Vec3, cl: Vec3 },
     /// Point light: position and `intensity * color` (divided by d^2 at the surface).
     Point { from: Vec3, cl: Vec3 },
+    /// RenderMan's spotlight.
+    Spot(SpotLight),
 }
 
 /// The illumination model of a material.
@@ -26,10 +30,11 @@ enum Model {
     Constant,
     Matte { ka: f32, kd: f32 },
     Plastic { ka: f32, kd: f32, ks: f32, exponent: f32, specular: Vec3 },
+    Metal { ka: f32, ks: f32, exponent: f32 },
 }
 
 /// Shades points of one object: its material's illumination model, colour and opacity,
-/// and the scene's ambient, distant and point lights.
+/// and the scene's ambient, distant, point and spot lights.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Shader {
     model: Model,
@@ -49,6 +54,15 @@ const MIN_DIST2: f32 = 1e-20;
 impl Shader {
     /// Set up the shading of `material` under `lights`, seen from `eye_world`.
     pub fn new(material: &Material, lights: &[Light], eye_world: Vec3) -> Shader {
+        Shader::with_lights(material, lights.iter(), eye_world)
+    }
+
+    /// Set up the shading of `material` under `lights`, in order, seen from `eye_world`.
+    fn with_lights<'l>(
+        material: &Material,
+        lights: impl Iterator<Item = &'l Light>,
+        eye_world: Vec3,
+    ) -> Shader {
         let (model, cs, os) = match *material {
             Material::Constant { color, opacity } => (Model::Constant, color, opacity),
             Material::Matte { color, opacity, ka, kd } => (Model::Matte { ka, kd }, color, opacity),
@@ -65,6 +79,9 @@ impl Shader {
                 color,
                 opacity,
             ),
+            Material::Metal { color, opacity, ka, ks, roughness } => {
+                (Model::Metal { ka, ks, exponent: 8.0 / roughness }, color, opacity)
+            }
         };
         let mut ambient = Vec3::ZERO;
         let mut direct = Vec::new();
@@ -81,6 +98,29 @@ impl Shader {
                     from: Vec3::from(from),
                     cl: intensity * Vec3::from(color),
                 }),
+                Light::Spot {
+                    from,
+                    to,
+                    color,
+                    intensity,
+                    cone_angle,
+                    cone_delta,
+                    beam_distribution,
+                    ..
+                } => {
+                    // A spot light with from == to has no axis and lights nothing.
+                    if let Some(spot) = SpotLight::new(
+                        from,
+                        to,
+                        color,
+                        intensity,
+                        cone_angle,
+                        cone_delta,
+                        beam_distribution,
+                    ) {
+                        direct.push(DirectLight::Spot(spot));
+                    }
+                }
                 // Area lights are sampled by the ray-traced shading (reyes-shade).
                 Light::Area { .. } => {}
             }
@@ -124,7 +164,9 @@ impl Shader {
     /// * Matte: `cs * (ka * ambient + kd * sum Cl max(0, N.L))`;
     /// * Plastic: the Matte terms with its `ka`, `kd`, plus
     ///   `specular_color * ks * sum Cl max(0, N.H)^(8/roughness)`, `H = normalize(L + V)`,
-    ///   over the lights with `N.L > 0`.
+    ///   over the lights with `N.L > 0`;
+    /// * Metal: `cs * (ka * ambient + ks * sum Cl max(0, N.H)^(8/roughness))`, the same
+    ///   specular sum coloured by the surface (RenderMan's `metal`).
     pub fn illuminate(
         &self,
         cs: Vec3,
@@ -141,6 +183,10 @@ impl Shader {
             Model::Plastic { ka, kd, ks, exponent, specular } => {
                 let (diffuse, spec) = direct(n, Some((v, exponent)), lights);
                 cs * (ka * self.ambient + kd * diffuse) + specular * ks * spec
+            }
+            Model::Metal { ka, ks, exponent } => {
+                let (_, spec) = direct(n, Some((v, exponent)), lights);
+                cs * (ka * self.ambient + ks * spec)
             }
         }
     }
@@ -163,6 +209,7 @@ impl Shader {
                     }
                     Some((d / d2.sqrt(), cl / d2))
                 }
+                DirectLight::Spot(spot) => spot.arriving(p_world),
             });
             self.illuminate(cs, n, v, lights)
         };
@@ -303,5 +350,93 @@ mod tests {
         let s = Shader::new(&m, &behind, EYE);
         let (c, _) = s.shade(Vec3::ZERO, Vec3::NEG_Z, Vec3::ONE);
         assert!(close3(c, Vec3::ZERO), "{c:?}");
+    }
+
+    #[test]
+    fn metal_is_specular_in_the_surface_colour() {
+        let m = Material::Metal {
+            color: [0.9, 0.6, 0.3],
+            opacity: [0.5, 1.0, 1.0],
+            ka: 0.5,
+            ks: 0.8,
+            roughness: 0.2,
+        };
+        let lights =
+            [Light::Ambient { color: [0.4; 3], intensity: 0.5 }, distant([0.0, 1.0, -1.0])];
+        let s = Shader::new(&m, &lights, EYE);
+        // Ci = Os * Cs * (Ka ambient + Ks specular); no diffuse term.
+        let n_dot_h = 22.5_f32.to_radians().cos();
+        let spec = n_dot_h.powf(8.0 / 0.2);
+        let ci = Vec3::new(0.9, 0.6, 0.3) * (0.5 * 0.2 + 0.8 * spec);
+        let (c, t) = s.shade(Vec3::ZERO, Vec3::NEG_Z, Vec3::ONE);
+        assert!(close3(c, Vec3::new(0.5, 1.0, 1.0) * ci), "{c:?} vs {ci}");
+        assert!(close3(t, Vec3::new(0.5, 0.0, 0.0)), "{t:?}");
+        // The specular term is Plastic's: with ka = kd = 0 and a white surface, the same.
+        let plastic = Material::Plastic {
+            color: [1.0; 3],
+            opacity: [1.0; 3],
+            ka: 0.0,
+            kd: 0.0,
+            ks: 0.8,
+            roughness: 0.2,
+            specular_color: [1.0; 3],
+        };
+        let metal = Material::Metal {
+            color: [1.0; 3],
+            opacity: [1.0; 3],
+            ka: 0.0,
+            ks: 0.8,
+            roughness: 0.2,
+        };
+        for from in [[0.0, 1.0, -1.0], [0.3, 0.2, -1.0], [-1.0, 0.5, -0.2]] {
+            let lights = [distant(from)];
+            let a = Shader::new(&plastic, &lights, EYE).shade(Vec3::ZERO, Vec3::NEG_Z, Vec3::ONE);
+            let b = Shader::new(&metal, &lights, EYE).shade(Vec3::ZERO, Vec3::NEG_Z, Vec3::ONE);
+            assert_eq!(a, b, "light from {from:?}");
+        }
+    }
+
+    #[test]
+    fn spot_light_shades_by_the_specifications_falloff() {
+        let m = Material::Matte { color: [1.0; 3], opacity: [1.0; 3], ka: 1.0, kd: 1.0 };
+        // Aimed straight down at the origin from 4 units above; the surface faces up.
+        let spot = |to: [f32; 3], cone: f32, delta: f32| Light::Spot {
+            from: [0.0, 4.0, 0.0],
+            to,
+            color: [1.0; 3],
+            intensity: 16.0,
+            cone_angle: cone,
+            cone_delta: delta,
+            beam_distribution: 2.0,
+            shadows: false,
+        };
+        let s = Shader::new(&m, &[spot([0.0; 3], 30.0, 5.0)], Vec3::new(0.0, 10.0, -1.0));
+        for x in [0.0f32, 1.0, 1.8, 2.0, 2.2, 2.5, 3.0] {
+            let p = Vec3::new(x, 0.0, 0.0);
+            let d2 = 16.0 + x * x;
+            let cos = 4.0 / d2.sqrt();
+            let step = smoothstep_f64(30.0, 25.0, f64::from(cos));
+            // Lambert: N.L = cos as well.
+            let want = 16.0 * cos * cos / d2 * step as f32 * cos;
+            let (c, _) = s.shade(p, Vec3::Y, Vec3::ONE);
+            assert!((c[0] - want).abs() < 1e-5, "x {x}: {} vs {want}", c[0]);
+        }
+        // From the light with from == to nothing arrives.
+        let aimless = spot([0.0, 4.0, 0.0], 30.0, 5.0);
+        let (c, _) = Shader::new(&m, &[aimless], EYE).shade(Vec3::ZERO, Vec3::Y, Vec3::ONE);
+        assert_eq!(c, [0.0; 3]);
+    }
+
+    /// The Shading Language's smoothstep between the cosines of two angles in degrees.
+    fn smoothstep_f64(outer: f64, inner: f64, x: f64) -> f64 {
+        let (e0, e1) = (outer.to_radians().cos(), inner.to_radians().cos());
+        if x < e0 {
+            0.0
+        } else if x >= e1 {
+            1.0
+        } else {
+            let t = (x - e0) / (e1 - e0);
+            t * t * (3.0 - 2.0 * t)
+        }
     }
 }

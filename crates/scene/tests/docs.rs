@@ -129,6 +129,10 @@ fn the_document_covers_every_variant() {
         "striped: true",
         "roll: Some(",
         "steps:",
+        "Spot(",
+        "cone_delta:",
+        "beam_distribution:",
+        "Metal(",
     ] {
         assert!(ron_blocks().iter().any(|b| b.contains(name)), "no ```ron example uses {name}");
     }

@@ -183,6 +183,20 @@ const CASES: &[Case] = &[
     Case { name: "operand name without quotes", from: "  ],\n)", to: "    (name: \"hole\", shape: Cylinder(radius: 0.5, zmin: -2.0, zmax: 2.0), material: Matte(color: (0.5, 0.5, 0.5))),\n    (name: \"plate\", shape: Disk(radius: 2.0), material: Matte(color: (0.5, 0.5, 0.5))),\n  ],\n  solids: [(tree: Difference(Object(ball), Object(\"hole\")))],\n)", field: "solids[0].tree[0]", at: Some((11, 37)) },
     Case { name: "solid without a tree", from: "  ],\n)", to: "    (name: \"hole\", shape: Cylinder(radius: 0.5, zmin: -2.0, zmax: 2.0), material: Matte(color: (0.5, 0.5, 0.5))),\n  ],\n  solids: [(name: \"nothing\")],\n)", field: "solids[0].tree", at: Some((10, 28)) },
     Case { name: "unknown field in a solid", from: "  ],\n)", to: "    (name: \"hole\", shape: Cylinder(radius: 0.5, zmin: -2.0, zmax: 2.0), material: Matte(color: (0.5, 0.5, 0.5))),\n  ],\n  solids: [(tree: Difference(Object(\"ball\"), Object(\"hole\")), op: 3)],\n)", field: "solids[0].op", at: Some((10, 63)) },
+    Case { name: "spot at its target", from: "Distant(from: (1.0, 1.0, -1.0))", to: "Spot(from: (1.0, 1.0, -1.0), to: (1.0, 1.0, -1.0))", field: "lights[1].to", at: Some((5, 70)) },
+    Case { name: "spot without to", from: "Distant(from: (1.0, 1.0, -1.0))", to: "Spot(from: (1.0, 1.0, -1.0))", field: "lights[1].to", at: Some((5, 64)) },
+    Case { name: "spot NaN to", from: "Distant(from: (1.0, 1.0, -1.0))", to: "Spot(from: (1.0, 1.0, -1.0), to: (0.0, NaN, 0.0))", field: "lights[1].to[1]", at: Some((5, 76)) },
+    Case { name: "spot negative intensity", from: "Distant(from: (1.0, 1.0, -1.0))", to: "Spot(from: (1.0, 1.0, -1.0), to: (0.0, 0.0, 0.0), intensity: -2.0)", field: "lights[1].intensity", at: Some((5, 98)) },
+    Case { name: "spot cone angle 0", from: "Distant(from: (1.0, 1.0, -1.0))", to: "Spot(from: (1.0, 1.0, -1.0), to: (0.0, 0.0, 0.0), cone_angle: 0.0)", field: "lights[1].cone_angle", at: Some((5, 99)) },
+    Case { name: "spot cone angle above 180", from: "Distant(from: (1.0, 1.0, -1.0))", to: "Spot(from: (1.0, 1.0, -1.0), to: (0.0, 0.0, 0.0), cone_angle: 190.0)", field: "lights[1].cone_angle", at: Some((5, 99)) },
+    Case { name: "spot cone delta negative", from: "Distant(from: (1.0, 1.0, -1.0))", to: "Spot(from: (1.0, 1.0, -1.0), to: (0.0, 0.0, 0.0), cone_delta: -1.0)", field: "lights[1].cone_delta", at: Some((5, 99)) },
+    Case { name: "spot cone delta above the cone angle", from: "Distant(from: (1.0, 1.0, -1.0))", to: "Spot(from: (1.0, 1.0, -1.0), to: (0.0, 0.0, 0.0), cone_angle: 10.0, cone_delta: 12.0)", field: "lights[1].cone_delta", at: Some((5, 117)) },
+    Case { name: "spot beam distribution negative", from: "Distant(from: (1.0, 1.0, -1.0))", to: "Spot(from: (1.0, 1.0, -1.0), to: (0.0, 0.0, 0.0), beam_distribution: -1.0)", field: "lights[1].beam_distribution", at: Some((5, 106)) },
+    Case { name: "metal without colour", from: "Matte(color: (0.8, 0.1, 0.1))", to: "Metal(roughness: 0.2)", field: "objects[0].material.color", at: Some((7, 78)) },
+    Case { name: "metal roughness 0", from: "Matte(color: (0.8, 0.1, 0.1))", to: "Metal(color: (0.8, 0.1, 0.1), roughness: 0.0)", field: "objects[0].material.roughness", at: Some((7, 99)) },
+    Case { name: "metal colour above 1", from: "Matte(color: (0.8, 0.1, 0.1))", to: "Metal(color: (0.8, 1.5, 0.1))", field: "objects[0].material.color[1]", at: Some((7, 77)) },
+    Case { name: "metal ks negative", from: "Matte(color: (0.8, 0.1, 0.1))", to: "Metal(color: (0.8, 0.1, 0.1), ks: -0.5)", field: "objects[0].material.ks", at: Some((7, 92)) },
+    Case { name: "metal with kd", from: "Matte(color: (0.8, 0.1, 0.1))", to: "Metal(color: (0.8, 0.1, 0.1), kd: 0.5)", field: "objects[0].material.kd", at: Some((7, 88)) },
 ];
 
 /// The text of `case` and the error it must produce.
@@ -297,6 +311,20 @@ fn the_catalogue_covers_the_required_inputs() {
         "glass above 1",
         "glass negative",
         "glass NaN",
+        "spot at its target",
+        "spot without to",
+        "spot NaN to",
+        "spot negative intensity",
+        "spot cone angle 0",
+        "spot cone angle above 180",
+        "spot cone delta negative",
+        "spot cone delta above the cone angle",
+        "spot beam distribution negative",
+        "metal without colour",
+        "metal roughness 0",
+        "metal colour above 1",
+        "metal ks negative",
+        "metal with kd",
     ] {
         assert!(CASES.iter().any(|c| c.name == required), "missing case {required}");
     }
@@ -596,5 +624,23 @@ fn positions_survive_comments_and_strings() {
     assert_eq!(
         e.as_deref(),
         Some("scenes/bad.ron:8:15: objects[0].shape.radius: must be > 0, got -3")
+    );
+}
+
+/// The exact text of the errors of the spot light and the metal material.
+#[test]
+fn exact_messages_of_the_renderman_fields() {
+    let shown = |name: &str| {
+        let case =
+            CASES.iter().find(|c| c.name == name).unwrap_or_else(|| panic!("no case {name}"));
+        run(case).to_string()
+    };
+    assert_eq!(
+        shown("spot cone delta above the cone angle"),
+        "scenes/bad.ron:5:117: lights[1].cone_delta: must be <= cone_angle (10), got 12"
+    );
+    assert_eq!(
+        shown("metal roughness 0"),
+        "scenes/bad.ron:7:99: objects[0].material.roughness: must be > 0, got 0"
     );
 }

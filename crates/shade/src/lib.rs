@@ -10,13 +10,14 @@
 //! # Shading a point
 //!
 //! * **Local illumination** is the dicer's ([`reyes_dice::Shader::illuminate`]): Constant,
-//!   Matte and Plastic, two-sided (the normal is face-forwarded toward the viewer), so a
-//!   scene without shadows, area lights, reflection, refraction or patterns shades exactly
+//!   Matte, Plastic and Metal, two-sided (the normal is face-forwarded toward the viewer), so
+//!   a scene without shadows, area lights, reflection, refraction or patterns shades exactly
 //!   (bit for bit) as the dicer does.
 //! * **Colour** `Cs` is the material colour, or the object's pattern ([`pool_ball`]) in its
 //!   place, times the mesh vertex colour interpolated at the point (the dicer's tint).
-//! * **Lights.** Ambient lights as in the dicer. Distant and point lights as in the dicer,
-//!   times the visibility of one shadow ray when `shadows` is on (hard shadows). Each area
+//! * **Lights.** Ambient lights as in the dicer. Distant, point and spot lights as in the
+//!   dicer (a spot light's cone and fall-off are [`reyes_dice::SpotLight`]'s), times the
+//!   visibility of one shadow ray when `shadows` is on (hard shadows). Each area
 //!   light gives one point per shading call, drawn from the stream's next dimension (see
 //!   `lights.rs` for the shapes), contributing `intensity(t) color |cos at the light| / d^2`
 //!   times the visibility of the shadow ray to it; the time `t` is the shading time, and the
@@ -228,7 +229,9 @@ impl<'a> Shading<'a> {
     pub fn needed(scene: &Scene) -> bool {
         let lights = scene.lights.iter().any(|l| match l {
             Light::Ambient { .. } => false,
-            Light::Distant { shadows, .. } | Light::Point { shadows, .. } => *shadows,
+            Light::Distant { shadows, .. }
+            | Light::Point { shadows, .. }
+            | Light::Spot { shadows, .. } => *shadows,
             Light::Area { .. } => true,
         });
         lights
@@ -472,6 +475,10 @@ impl<'a> Shading<'a> {
                     return None;
                 }
                 (d / d2.sqrt(), *cl / d2, shadows.then_some(Toward::Point(*from)))
+            }
+            DirectLight::Spot { spot, shadows } => {
+                let (l, cl) = spot.arriving(p)?;
+                (l, cl, shadows.then_some(Toward::Point(spot.from())))
             }
             DirectLight::Area(area) => {
                 let u = light_strata.next_2d();

@@ -56,6 +56,24 @@ pub enum Material {
         #[serde(default = "white")]
         specular_color: Rgb,
     },
+    /// RenderMan's `metal`: `Ci = Os * Cs * (ka * ambient + ks * specular)`, with the
+    /// specular term of `Plastic` (`N.H` raised to `8 / roughness`) coloured by the surface.
+    Metal {
+        /// Colour.
+        color: Rgb,
+        /// Opacity per channel.
+        #[serde(default = "white")]
+        opacity: Rgb,
+        /// Ambient coefficient.
+        #[serde(default = "one")]
+        ka: f32,
+        /// Specular coefficient.
+        #[serde(default = "one")]
+        ks: f32,
+        /// Specular roughness (> 0): the exponent is `8 / roughness`, RenderMan's `specular()`.
+        #[serde(default = "tenth")]
+        roughness: f32,
+    },
 }
 
 fn half() -> f32 {

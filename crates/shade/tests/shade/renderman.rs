@@ -1,0 +1,156 @@
+//! RenderMan's standard spot light and metal in the ray-traced shading, against closed forms and against the dicer's local
+//! illumination (both shading paths must agree).
+
+use glam::Vec3;
+use reyes_dice::{Shader, smoothstep};
+use reyes_sampling::Strata;
+use reyes_scene::Scene;
+use reyes_shade::{Shading, SurfacePoint};
+
+use crate::common::{floor_point, patch, scene, tracer};
+
+/// A white matte floor `y = 0` (ka 0) lit by a spot light 6 units above the origin aimed
+/// straight down (cone 30, penumbra 8 degrees, beam 2), with a shadow ray when `shadows`,
+/// and `extra` more objects.
+fn spot_floor(shadows: bool, extra: &str) -> Scene {
+    let floor = patch(
+        Vec3::new(-20.0, 0.0, -20.0),
+        Vec3::new(40.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, 40.0),
+        "material: Matte(color: (1.0, 1.0, 1.0), ka: 0.0)",
+    );
+    scene(&format!(
+        "lights: [Spot(from: (0.0, 6.0, 0.0), to: (0.0, 0.0, 0.0), intensity: 36.0, \
+                       cone_angle: 30.0, cone_delta: 8.0, beam_distribution: 2.0, shadows: {shadows})], \
+         objects: [{floor}{extra}]"
+    ))
+}
+
+/// The Specification's spotlight on the floor at radial distance `r`, times Lambert's
+/// cosine: `36 cos^2 / d^2 * smoothstep(cos 30, cos 22, cos) * cos`, with `cos = 6 / d`.
+fn spot_closed_form(r: f64) -> f64 {
+    let d2 = 36.0 + r * r;
+    let cos = 6.0 / d2.sqrt();
+    let (e0, e1) = (30f64.to_radians().cos(), 22f64.to_radians().cos());
+    let step = if cos < e0 {
+        0.0
+    } else if cos >= e1 {
+        1.0
+    } else {
+        let t = (cos - e0) / (e1 - e0);
+        t * t * (3.0 - 2.0 * t)
+    };
+    36.0 * cos * cos / d2 * step * cos
+}
+
+/// Radial distances across the beam: inside the inner cone (r < 6 tan 22 = 2.42), across the
+/// penumbra (to 6 tan 30 = 3.46) and past the edge.
+fn radii() -> impl Iterator<Item = f32> {
+    (0..=90).map(|k| k as f32 * 0.05)
+}
+
+#[test]
+fn the_spot_lights_falloff_across_its_penumbra_is_the_closed_form() {
+    for shadows in [false, true] {
+        let s = spot_floor(shadows, "");
+        assert_eq!(Shading::needed(&s), shadows);
+        let t = tracer(&s);
+        let shading = Shading::new(&s, &t);
+        let eye = Vec3::new(0.0, 20.0, -20.0);
+        let dicer = Shader::new(&s.objects[0].material, &s.lights, eye);
+        for r in radii() {
+            for angle in [0.0f32, 1.3, 2.9] {
+                let at = floor_point(0, r * angle.cos(), r * angle.sin(), 0.0);
+                let got = shading.shade_surface(&at, &mut Strata::new(0, 0, 0, 1));
+                let want = spot_closed_form(f64::from(r));
+                // f32 arithmetic against f64: a few ulps of values below 1.
+                assert!((f64::from(got.0[0]) - want).abs() < 2e-6, "r {r}: {:?} vs {want}", got.0);
+                // The dicer lights the point bit for bit alike (the shadow ray is clear).
+                assert_eq!(got, dicer.shade(at.p_world, at.n_world, at.tint), "r {r}");
+            }
+        }
+    }
+    // The cone's edge and the penumbra's inner edge, where the closed form is 0 and 1.
+    let (cos_outer, cos_inner) = (30f32.to_radians().cos(), 22f32.to_radians().cos());
+    assert_eq!(smoothstep(cos_outer, cos_inner, cos_outer - 1e-6), 0.0);
+    assert_eq!(smoothstep(cos_outer, cos_inner, cos_inner), 1.0);
+}
+
+#[test]
+fn a_shadowing_spot_light_casts_a_hard_shadow() {
+    // An opaque plate at height 3 over x in [-1, 1]: its shadow on the floor spans
+    // x in [-2, 2] (the light is at height 6), inside the beam.
+    let plate = patch(
+        Vec3::new(-1.0, 3.0, -1.0),
+        Vec3::new(2.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, 2.0),
+        "material: Matte(color: (1.0, 1.0, 1.0))",
+    );
+    for shadows in [true, false] {
+        let s = spot_floor(shadows, &format!(", {plate}"));
+        let t = tracer(&s);
+        let shading = Shading::new(&s, &t);
+        for x in [0.0f32, 1.5, 1.9, 2.1, 2.4] {
+            let at = floor_point(0, x, 0.0, 0.0);
+            let got = f64::from(shading.shade_surface(&at, &mut Strata::new(0, 0, 0, 1)).0[0]);
+            let want = if shadows && x < 2.0 { 0.0 } else { spot_closed_form(f64::from(x)) };
+            assert!((got - want).abs() < 2e-6, "shadows {shadows}, x {x}: {got} vs {want}");
+        }
+    }
+}
+
+#[test]
+fn metal_shades_as_the_dicers_metal_and_its_formula() {
+    let s = scene(
+        "lights: [Ambient(intensity: 0.2), Distant(from: (1.0, 2.0, -3.0), color: (1.0, 0.9, 0.8)), \
+                  Point(from: (-2.0, 3.0, -1.0), intensity: 5.0), \
+                  Spot(from: (0.0, 4.0, -4.0), to: (0.0, 0.0, 0.0), intensity: 20.0, cone_angle: 60.0)], \
+         objects: [(shape: Sphere(radius: 1.0), material: Metal(color: (0.9, 0.6, 0.3), \
+                    opacity: (0.9, 0.8, 1.0), ka: 0.7, ks: 0.9, roughness: 0.15))]",
+    );
+    assert!(!Shading::needed(&s));
+    let t = tracer(&s);
+    let shading = Shading::new(&s, &t);
+    let eye = Vec3::new(0.3, 0.5, -6.0);
+    let shader = Shader::new(&s.objects[0].material, &s.lights, eye);
+    for i in 0..50 {
+        let a = i as f32 * 0.7;
+        let n = Vec3::new(a.cos(), (a * 1.3).sin(), (a * 0.4).cos() - 0.5).normalize();
+        let p = Vec3::new(a.sin(), 0.1 * a - 2.0, (2.0 * a).cos());
+        let at = SurfacePoint {
+            object: 0,
+            p_world: p,
+            n_world: n,
+            p_object: p,
+            tint: Vec3::ONE,
+            from: eye,
+            time: 0.5,
+        };
+        let got = shading.shade_surface(&at, &mut Strata::new(0, 0, 0, 1));
+        assert_eq!(got, shader.shade(p, n, Vec3::ONE), "point {i}");
+    }
+    // The formula at one point: light and eye straight along -z, normal -z; N.H = 1.
+    let s = scene(
+        "lights: [Ambient(intensity: 0.5), Distant(from: (0.0, 0.0, -1.0), intensity: 0.8)], \
+         objects: [(shape: Sphere(radius: 1.0), material: Metal(color: (0.9, 0.6, 0.3), \
+                    opacity: (0.5, 1.0, 1.0), ka: 0.4, ks: 0.9))]",
+    );
+    let t = tracer(&s);
+    let shading = Shading::new(&s, &t);
+    let p = Vec3::new(0.0, 0.0, -1.0);
+    let at = SurfacePoint {
+        object: 0,
+        p_world: p,
+        n_world: Vec3::NEG_Z,
+        p_object: p,
+        tint: Vec3::ONE,
+        from: Vec3::new(0.0, 0.0, -10.0),
+        time: 0.0,
+    };
+    let (c, trans) = shading.shade_surface(&at, &mut Strata::new(0, 0, 0, 1));
+    // Ci = Os * Cs * (Ka * ambient + Ks * Cl * 1^(8/roughness)).
+    let ci = Vec3::new(0.9, 0.6, 0.3) * (0.4 * 0.5 + 0.9 * 0.8);
+    let want = Vec3::new(0.5, 1.0, 1.0) * ci;
+    assert!((Vec3::from(c) - want).abs().max_element() < 1e-6, "{c:?} vs {want}");
+    assert_eq!(trans, [0.5, 0.0, 0.0]);
+}
