@@ -538,9 +538,9 @@ pub(crate) fn cull_back_faces(
         && placements_affine
 }
 
-/// Per-object setup: shading (seen from `eye_world`, with the object placed by `open`, its
-/// placement at shutter open), flags, and the CSG label `csg` (`(tree index, slot id)` of
-/// a CSG operand, from [`crate::CsgSetup::leaf`]).
+/// Per-object setup: shading (under the object's light set, seen from `eye_world`, with the
+/// object placed by `open`, its placement at shutter open), flags, and the CSG label `csg`
+/// (`(tree index, slot id)` of a CSG operand, from [`crate::CsgSetup::leaf`]).
 pub(crate) fn object_context(
     object: &reyes_scene::Object,
     lights: &[reyes_scene::Light],
@@ -548,7 +548,7 @@ pub(crate) fn object_context(
     open: &Placement,
     csg: Option<(u16, u16)>,
 ) -> ObjectContext<'static> {
-    let shader = Shader::new(&object.material, lights, eye_world);
+    let shader = Shader::for_object(object, lights, eye_world);
     let mut flags = 0;
     if shader.opaque() {
         flags |= flags::OPAQUE;

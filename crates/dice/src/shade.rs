@@ -7,9 +7,12 @@
 //! The illumination models themselves ([`Shader::illuminate`]) are public so that the
 //! ray-traced shading (reyes-shade) evaluates the same Constant, Matte, Plastic and Metal
 //! models under its own lights (shadowed, area-sampled) without a second copy of them.
+//!
+//! An object lit by a light set (`Object::lights`) is shaded by [`Shader::for_object`] under
+//! those lights only, ambient ones included.
 
 use glam::Vec3;
-use reyes_scene::{Light, Material};
+use reyes_scene::{Light, Material, Object};
 
 use crate::spot::SpotLight;
 
@@ -34,7 +37,7 @@ enum Model {
 }
 
 /// Shades points of one object: its material's illumination model, colour and opacity,
-/// and the scene's ambient, distant, point and spot lights.
+/// and the scene's (or the object's light set's) ambient, distant, point and spot lights.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Shader {
     model: Model,
@@ -55,6 +58,14 @@ impl Shader {
     /// Set up the shading of `material` under `lights`, seen from `eye_world`.
     pub fn new(material: &Material, lights: &[Light], eye_world: Vec3) -> Shader {
         Shader::with_lights(material, lights.iter(), eye_world)
+    }
+
+    /// Set up the shading of `object`'s material under the lights of the scene's `lights`
+    /// that illuminate it ([`Object::lit_by`]: all of them without a light set), seen from
+    /// `eye_world`.
+    pub fn for_object(object: &Object, lights: &[Light], eye_world: Vec3) -> Shader {
+        let lit = lights.iter().enumerate().filter(|(i, _)| object.lit_by(*i)).map(|(_, l)| l);
+        Shader::with_lights(&object.material, lit, eye_world)
     }
 
     /// Set up the shading of `material` under `lights`, in order, seen from `eye_world`.
@@ -438,5 +449,33 @@ mod tests {
             let t = (x - e0) / (e1 - e0);
             t * t * (3.0 - 2.0 * t)
         }
+    }
+
+    #[test]
+    fn an_objects_light_set_selects_its_lights_ambient_included() {
+        let lights = [
+            Light::Ambient { color: [1.0; 3], intensity: 0.25 },
+            distant([0.0, 0.0, -1.0]),
+            Light::Ambient { color: [1.0; 3], intensity: 0.5 },
+        ];
+        let shape =
+            reyes_scene::Shape::Sphere { radius: 1.0, zmin: None, zmax: None, thetamax: 360.0 };
+        let m = Material::Matte { color: [1.0; 3], opacity: [1.0; 3], ka: 1.0, kd: 1.0 };
+        let object =
+            |set: Option<Vec<u32>>| Object { lights: set, ..Object::new(shape.clone(), m.clone()) };
+        let shade = |set: Option<Vec<u32>>| {
+            Shader::for_object(&object(set), &lights, EYE)
+                .shade(Vec3::ZERO, Vec3::NEG_Z, Vec3::ONE)
+                .0[0]
+        };
+        assert!((shade(None) - 1.75).abs() < 1e-6, "every light: {}", shade(None));
+        assert_eq!(
+            Shader::for_object(&object(None), &lights, EYE),
+            Shader::new(&m, &lights, EYE),
+            "no light set is every light"
+        );
+        assert!((shade(Some(vec![1])) - 1.0).abs() < 1e-6, "the distant light only");
+        assert!((shade(Some(vec![2, 0])) - 0.75).abs() < 1e-6, "the ambient lights only");
+        assert_eq!(shade(Some(vec![])), 0.0, "an empty set lights nothing");
     }
 }

@@ -158,9 +158,14 @@ impl Splitter {
             screen_lo,
             screen_hi,
             frustum,
-            step: shading_rate.max(1e-6).sqrt(),
+            step: step(shading_rate),
             max_grid: u64::from(max_grid_size.max(1)),
         }
+    }
+
+    /// The same decisions at another shading rate (an object's own `shading_rate`).
+    pub fn with_shading_rate(&self, shading_rate: f32) -> Splitter {
+        Splitter { step: step(shading_rate), ..self.clone() }
     }
 
     /// The depth below which a micropolygon vertex is not kept (`hither / 2`).
@@ -357,6 +362,11 @@ impl Splitter {
         let (nu, nv) = clamp_grid(nu, nv, self.max_grid);
         Decision::Dice { nu, nv, limited: true }
     }
+}
+
+/// Micropolygon side length in pixels at `shading_rate` pixels per micropolygon.
+fn step(shading_rate: f32) -> f32 {
+    shading_rate.max(1e-6).sqrt()
 }
 
 /// What the decisions need to know of one breakpoint's test grid.

@@ -133,6 +133,8 @@ fn the_document_covers_every_variant() {
         "cone_delta:",
         "beam_distribution:",
         "Metal(",
+        "shading_rate: Some(",
+        "lights: Some([",
     ] {
         assert!(ron_blocks().iter().any(|b| b.contains(name)), "no ```ron example uses {name}");
     }

@@ -183,6 +183,12 @@ const CASES: &[Case] = &[
     Case { name: "operand name without quotes", from: "  ],\n)", to: "    (name: \"hole\", shape: Cylinder(radius: 0.5, zmin: -2.0, zmax: 2.0), material: Matte(color: (0.5, 0.5, 0.5))),\n    (name: \"plate\", shape: Disk(radius: 2.0), material: Matte(color: (0.5, 0.5, 0.5))),\n  ],\n  solids: [(tree: Difference(Object(ball), Object(\"hole\")))],\n)", field: "solids[0].tree[0]", at: Some((11, 37)) },
     Case { name: "solid without a tree", from: "  ],\n)", to: "    (name: \"hole\", shape: Cylinder(radius: 0.5, zmin: -2.0, zmax: 2.0), material: Matte(color: (0.5, 0.5, 0.5))),\n  ],\n  solids: [(name: \"nothing\")],\n)", field: "solids[0].tree", at: Some((10, 28)) },
     Case { name: "unknown field in a solid", from: "  ],\n)", to: "    (name: \"hole\", shape: Cylinder(radius: 0.5, zmin: -2.0, zmax: 2.0), material: Matte(color: (0.5, 0.5, 0.5))),\n  ],\n  solids: [(tree: Difference(Object(\"ball\"), Object(\"hole\")), op: 3)],\n)", field: "solids[0].op", at: Some((10, 63)) },
+    Case { name: "object shading rate 0", from: "material:", to: "shading_rate: Some(0.0), material:", field: "objects[0].shading_rate", at: Some((7, 62)) },
+    Case { name: "object shading rate negative", from: "material:", to: "shading_rate: Some(-0.5), material:", field: "objects[0].shading_rate", at: Some((7, 62)) },
+    Case { name: "object shading rate NaN", from: "material:", to: "shading_rate: Some(NaN), material:", field: "objects[0].shading_rate", at: Some((7, 62)) },
+    Case { name: "light set index out of range", from: "material:", to: "lights: Some([0, 2]), material:", field: "objects[0].lights[1]", at: Some((7, 65)) },
+    Case { name: "light set with a light twice", from: "material:", to: "lights: Some([1, 0, 1]), material:", field: "objects[0].lights[2]", at: Some((7, 68)) },
+    Case { name: "light set without Some", from: "material:", to: "lights: [0], material:", field: "objects[0].lights", at: Some((7, 56)) },
     Case { name: "spot at its target", from: "Distant(from: (1.0, 1.0, -1.0))", to: "Spot(from: (1.0, 1.0, -1.0), to: (1.0, 1.0, -1.0))", field: "lights[1].to", at: Some((5, 70)) },
     Case { name: "spot without to", from: "Distant(from: (1.0, 1.0, -1.0))", to: "Spot(from: (1.0, 1.0, -1.0))", field: "lights[1].to", at: Some((5, 64)) },
     Case { name: "spot NaN to", from: "Distant(from: (1.0, 1.0, -1.0))", to: "Spot(from: (1.0, 1.0, -1.0), to: (0.0, NaN, 0.0))", field: "lights[1].to[1]", at: Some((5, 76)) },
@@ -311,6 +317,12 @@ fn the_catalogue_covers_the_required_inputs() {
         "glass above 1",
         "glass negative",
         "glass NaN",
+        "object shading rate 0",
+        "object shading rate negative",
+        "object shading rate NaN",
+        "light set index out of range",
+        "light set with a light twice",
+        "light set without Some",
         "spot at its target",
         "spot without to",
         "spot NaN to",
@@ -627,7 +639,8 @@ fn positions_survive_comments_and_strings() {
     );
 }
 
-/// The exact text of the errors of the spot light and the metal material.
+/// The exact text of the errors of an object's shading rate and light set, the spot light and
+/// the metal material.
 #[test]
 fn exact_messages_of_the_renderman_fields() {
     let shown = |name: &str| {
@@ -635,6 +648,18 @@ fn exact_messages_of_the_renderman_fields() {
             CASES.iter().find(|c| c.name == name).unwrap_or_else(|| panic!("no case {name}"));
         run(case).to_string()
     };
+    assert_eq!(
+        shown("object shading rate 0"),
+        "scenes/bad.ron:7:62: objects[0].shading_rate: must be > 0, got 0"
+    );
+    assert_eq!(
+        shown("light set index out of range"),
+        "scenes/bad.ron:7:65: objects[0].lights[1]: index 2 is out of range: the scene has 2 lights"
+    );
+    assert_eq!(
+        shown("light set with a light twice"),
+        "scenes/bad.ron:7:68: objects[0].lights[2]: light 1 is listed twice (also at lights[0])"
+    );
     assert_eq!(
         shown("spot cone delta above the cone angle"),
         "scenes/bad.ron:5:117: lights[1].cone_delta: must be <= cone_angle (10), got 12"

@@ -1,4 +1,5 @@
-//! RenderMan's standard spot light and metal in the ray-traced shading, against closed forms and against the dicer's local
+//! RenderMan's standard spot light and metal and per-object light sets in the ray-traced
+//! shading, against closed forms and against the dicer's local
 //! illumination (both shading paths must agree).
 
 use glam::Vec3;
@@ -7,7 +8,7 @@ use reyes_sampling::Strata;
 use reyes_scene::Scene;
 use reyes_shade::{Shading, SurfacePoint};
 
-use crate::common::{floor_point, patch, scene, tracer};
+use crate::common::{floor_point, patch, scene, shade_mean, tracer};
 
 /// A white matte floor `y = 0` (ka 0) lit by a spot light 6 units above the origin aimed
 /// straight down (cone 30, penumbra 8 degrees, beam 2), with a shadow ray when `shadows`,
@@ -153,4 +154,99 @@ fn metal_shades_as_the_dicers_metal_and_its_formula() {
     let want = Vec3::new(0.5, 1.0, 1.0) * ci;
     assert!((Vec3::from(c) - want).abs().max_element() < 1e-6, "{c:?} vs {want}");
     assert_eq!(trans, [0.5, 0.0, 0.0]);
+}
+
+/// Two floors side by side under an ambient light, a spot light and a shadowing area light;
+/// the right one (object 1) has the light set `set`.
+fn two_floors(set: &str) -> Scene {
+    let left = patch(
+        Vec3::new(-8.0, 0.0, -4.0),
+        Vec3::new(8.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, 8.0),
+        "material: Matte(color: (1.0, 1.0, 1.0))",
+    );
+    let right = patch(
+        Vec3::new(0.0, 0.0, -4.0),
+        Vec3::new(8.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, 8.0),
+        &format!("material: Matte(color: (1.0, 1.0, 1.0)), lights: {set}"),
+    );
+    scene(&format!(
+        "lights: [Ambient(intensity: 0.1), \
+                  Spot(from: (0.0, 5.0, 0.0), to: (0.0, 0.0, 0.0), intensity: 25.0, cone_angle: 70.0, shadows: true), \
+                  Area(shape: Disk(center: (0.0, 6.0, 0.0), normal: (0.0, -1.0, 0.0), radius: 0.5), intensity: 36.0)], \
+         objects: [{left}, {right}]"
+    ))
+}
+
+#[test]
+fn an_object_outside_a_lights_set_is_not_lit_by_it() {
+    let all = two_floors("None");
+    let t_all = tracer(&all);
+    let shading_all = Shading::new(&all, &t_all);
+    let mean = |shading: &Shading, object: u32, x: f32| {
+        shade_mean(shading, &floor_point(object, x, 0.5, 0.0), 64, 3)
+    };
+    // The right floor lit by the spot light only, by the area light only, by nothing.
+    for (set, lit_by) in [("Some([1])", "spot"), ("Some([2])", "area"), ("Some([])", "nothing")] {
+        let s = two_floors(set);
+        let t = tracer(&s);
+        let shading = Shading::new(&s, &t);
+        // The left floor, lit by everything, is unchanged, member for member: an excluded area
+        // light keeps its stratum dimension.
+        for x in [-0.5f32, -2.0, -3.0] {
+            let at = floor_point(0, x, 0.5, 0.0);
+            for m in 0..8 {
+                let a = shading_all.shade_surface(&at, &mut Strata::new(7, 3, m, 8));
+                let b = shading.shade_surface(&at, &mut Strata::new(7, 3, m, 8));
+                assert_eq!(a, b, "{set}: the left floor at {x}");
+            }
+        }
+        // The right floor gets exactly the lights of its set. A scene holding only them
+        // shades it identically: each excluded light adds nothing, shadow rays included.
+        let only = |keep: &[&str]| {
+            let lights = [
+                "Ambient(intensity: 0.1)",
+                "Spot(from: (0.0, 5.0, 0.0), to: (0.0, 0.0, 0.0), intensity: 25.0, cone_angle: 70.0, shadows: true)",
+                "Area(shape: Disk(center: (0.0, 6.0, 0.0), normal: (0.0, -1.0, 0.0), radius: 0.5), intensity: 36.0)",
+            ];
+            let kept: Vec<&str> =
+                lights.iter().copied().filter(|l| keep.iter().any(|k| l.starts_with(k))).collect();
+            let floor = patch(
+                Vec3::new(0.0, 0.0, -4.0),
+                Vec3::new(8.0, 0.0, 0.0),
+                Vec3::new(0.0, 0.0, 8.0),
+                "material: Matte(color: (1.0, 1.0, 1.0))",
+            );
+            scene(&format!("lights: [{}], objects: [{floor}]", kept.join(", ")))
+        };
+        let reference = match lit_by {
+            "spot" => only(&["Spot"]),
+            "area" => only(&["Area"]),
+            _ => only(&[]),
+        };
+        let t_ref = tracer(&reference);
+        let shading_ref = Shading::new(&reference, &t_ref);
+        for x in [0.5f32, 2.0, 3.5] {
+            let got = mean(&shading, 1, x);
+            let want = mean(&shading_ref, 0, x);
+            assert!((got - want).abs().max_element() < 1e-6, "{set} at {x}: {got} vs {want}");
+            if lit_by == "nothing" {
+                assert_eq!(got, Vec3::ZERO, "an empty light set leaves a matte surface black");
+            }
+        }
+        // The dicer's local illumination honours the set too (no shadows, no area lights).
+        let eye = Vec3::new(0.0, 20.0, -20.0);
+        let dicer = Shader::for_object(&s.objects[1], &s.lights, eye);
+        let dicer_all = Shader::for_object(&all.objects[1], &all.lights, eye);
+        let p = Vec3::new(2.0, 0.0, 0.5);
+        let (c, _) = dicer.shade(p, Vec3::Y, Vec3::ONE);
+        let (c_all, _) = dicer_all.shade(p, Vec3::Y, Vec3::ONE);
+        match lit_by {
+            // The spot light's contribution alone: everything minus the ambient 0.1.
+            "spot" => assert!((c[0] - (c_all[0] - 0.1)).abs() < 1e-6, "{c:?} vs {c_all:?}"),
+            // Area lights are the ray-traced shading's; the dicer has nothing left.
+            _ => assert_eq!(c, [0.0; 3], "{set}"),
+        }
+    }
 }
