@@ -215,7 +215,7 @@ impl<'a> Dicer<'a> {
             let mut ctx = dice::object_context(
                 object,
                 &scene.lights,
-                dicer.camera.eye_world(),
+                dicer.camera.viewer(),
                 &open.place,
                 leaf,
             );

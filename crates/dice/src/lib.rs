@@ -30,7 +30,8 @@
 //!   nearer than `hither / 2` (its micropolygons would all be dropped), or (when all are in
 //!   front of the eye) the union over the breakpoints of its projected bounds misses the
 //!   bucket grid, or (pinhole camera, some points at or behind the eye) at every breakpoint
-//!   all points lie outside the same side plane of the view frustum. Micropolygons move
+//!   all points lie outside the same side plane of the view frustum (through the eye for a
+//!   perspective camera, parallel to the view for an orthographic one). Micropolygons move
 //!   linearly in raster space between breakpoints, so these unions hold them at every time.
 //!   Every bound is grown by a safety margin, 25% of its extent plus 2 pixels, because test
 //!   points do not bound a curved surface: between samples it bulges outward by up to its
@@ -44,8 +45,9 @@
 //!   direction (at most 40 splits deep, beyond which the grid is shrunk). One decision holds
 //!   for every breakpoint, so all times share one grid topology.
 //! * **Dice.** The `(nu+1) x (nv+1)` vertex grid is evaluated and projected at every
-//!   breakpoint, shaded once in world space at shutter open (t = 0) under the object's
-//!   light set, and emitted as `nu x nv` micropolygons per segment
+//!   breakpoint (perspective or orthographic, through the screen window: see `camera.rs`),
+//!   shaded once in world space at shutter open (t = 0) under the object's light set, and
+//!   emitted as `nu x nv` micropolygons per segment
 //!   `[t_a, t_b]`: `v` the positions at `t_a`, `speed` the displacement to `t_b`,
 //!   `time = [t_a, t_b]`, `MOVING` if any speed is non-zero or the segment is not the whole
 //!   shutter. Consecutive segments over which a micropolygon does not move are merged; a
@@ -99,7 +101,7 @@ mod split;
 mod spot;
 
 pub use bucket::screen_bound;
-pub use camera::CameraSetup;
+pub use camera::{CameraSetup, Viewer};
 pub use csg::CsgSetup;
 pub use hook::{DiceOptions, VertexContext, VertexShader};
 pub use lazy::Dicer;

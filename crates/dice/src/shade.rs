@@ -9,11 +9,13 @@
 //! models under its own lights (shadowed, area-sampled) without a second copy of them.
 //!
 //! An object lit by a light set (`Object::lights`) is shaded by [`Shader::for_object`] under
-//! those lights only, ambient ones included.
+//! those lights only, ambient ones included; the viewing vector comes from a [`Viewer`] (the
+//! eye, or an orthographic camera's view direction).
 
 use glam::Vec3;
 use reyes_scene::{Light, Material, Object};
 
+use crate::camera::Viewer;
 use crate::spot::SpotLight;
 
 /// A light after setup: the ambient ones are summed into [`Shader`]'s ambient term.
@@ -48,7 +50,7 @@ pub struct Shader {
     /// Sum of the ambient lights.
     ambient: Vec3,
     lights: Vec<DirectLight>,
-    eye_world: Vec3,
+    viewer: Viewer,
 }
 
 /// `d^2` below which a point light is taken to sit on the surface and is ignored.
@@ -57,22 +59,22 @@ const MIN_DIST2: f32 = 1e-20;
 impl Shader {
     /// Set up the shading of `material` under `lights`, seen from `eye_world`.
     pub fn new(material: &Material, lights: &[Light], eye_world: Vec3) -> Shader {
-        Shader::with_lights(material, lights.iter(), eye_world)
+        Shader::with_lights(material, lights.iter(), Viewer::Eye(eye_world))
     }
 
     /// Set up the shading of `object`'s material under the lights of the scene's `lights`
-    /// that illuminate it ([`Object::lit_by`]: all of them without a light set), seen from
-    /// `eye_world`.
-    pub fn for_object(object: &Object, lights: &[Light], eye_world: Vec3) -> Shader {
+    /// that illuminate it ([`Object::lit_by`]: all of them without a light set), seen by
+    /// `viewer`.
+    pub fn for_object(object: &Object, lights: &[Light], viewer: Viewer) -> Shader {
         let lit = lights.iter().enumerate().filter(|(i, _)| object.lit_by(*i)).map(|(_, l)| l);
-        Shader::with_lights(&object.material, lit, eye_world)
+        Shader::with_lights(&object.material, lit, viewer)
     }
 
-    /// Set up the shading of `material` under `lights`, in order, seen from `eye_world`.
+    /// Set up the shading of `material` under `lights`, in order, seen by `viewer`.
     fn with_lights<'l>(
         material: &Material,
         lights: impl Iterator<Item = &'l Light>,
-        eye_world: Vec3,
+        viewer: Viewer,
     ) -> Shader {
         let (model, cs, os) = match *material {
             Material::Constant { color, opacity } => (Model::Constant, color, opacity),
@@ -136,7 +138,7 @@ impl Shader {
                 Light::Area { .. } => {}
             }
         }
-        Shader { model, cs: Vec3::from(cs), os: Vec3::from(os), ambient, lights: direct, eye_world }
+        Shader { model, cs: Vec3::from(cs), os: Vec3::from(os), ambient, lights: direct, viewer }
     }
 
     /// True if the material is fully opaque in every channel.
@@ -209,7 +211,7 @@ impl Shader {
         let ci = if self.unlit() {
             cs
         } else {
-            let (n, v) = facing(p_world, n_world, self.eye_world);
+            let (n, v) = facing(p_world, n_world, self.viewer.seen_from(p_world));
             let lights = self.lights.iter().filter_map(|light| match *light {
                 DirectLight::Distant { l, cl } => Some((l, cl)),
                 DirectLight::Point { from, cl } => {
@@ -464,18 +466,48 @@ mod tests {
         let object =
             |set: Option<Vec<u32>>| Object { lights: set, ..Object::new(shape.clone(), m.clone()) };
         let shade = |set: Option<Vec<u32>>| {
-            Shader::for_object(&object(set), &lights, EYE)
+            Shader::for_object(&object(set), &lights, Viewer::Eye(EYE))
                 .shade(Vec3::ZERO, Vec3::NEG_Z, Vec3::ONE)
                 .0[0]
         };
         assert!((shade(None) - 1.75).abs() < 1e-6, "every light: {}", shade(None));
         assert_eq!(
-            Shader::for_object(&object(None), &lights, EYE),
+            Shader::for_object(&object(None), &lights, Viewer::Eye(EYE)),
             Shader::new(&m, &lights, EYE),
             "no light set is every light"
         );
         assert!((shade(Some(vec![1])) - 1.0).abs() < 1e-6, "the distant light only");
         assert!((shade(Some(vec![2, 0])) - 0.75).abs() < 1e-6, "the ambient lights only");
         assert_eq!(shade(Some(vec![])), 0.0, "an empty set lights nothing");
+    }
+
+    #[test]
+    fn an_orthographic_viewer_sees_along_its_view_direction() {
+        let m = Material::Plastic {
+            color: [0.0; 3],
+            opacity: [1.0; 3],
+            ka: 0.0,
+            kd: 0.0,
+            ks: 1.0,
+            roughness: 0.1,
+            specular_color: [1.0; 3],
+        };
+        // Light and view both along -z: the highlight peaks wherever the surface faces -z,
+        // however far off the axis (a perspective eye would see those points obliquely).
+        let lights = [distant([0.0, 0.0, -1.0])];
+        let viewer = Viewer::Along { eye: EYE, forward: Vec3::Z };
+        let object = Object::new(
+            reyes_scene::Shape::Sphere { radius: 1.0, zmin: None, zmax: None, thetamax: 360.0 },
+            m.clone(),
+        );
+        let ortho = Shader::for_object(&object, &lights, viewer);
+        let persp = Shader::new(&m, &lights, EYE);
+        for x in [0.0f32, 3.0, -8.0] {
+            let p = Vec3::new(x, 2.0, 1.0);
+            let (c, _) = ortho.shade(p, Vec3::NEG_Z, Vec3::ONE);
+            assert!((c[0] - 1.0).abs() < 1e-5, "x {x}: {c:?}");
+        }
+        let (c, _) = persp.shade(Vec3::new(-8.0, 2.0, 1.0), Vec3::NEG_Z, Vec3::ONE);
+        assert!(c[0] < 0.5, "the perspective eye sees it obliquely: {c:?}");
     }
 }

@@ -129,6 +129,8 @@ fn the_document_covers_every_variant() {
         "striped: true",
         "roll: Some(",
         "steps:",
+        "projection: Orthographic",
+        "screen_window: Some(",
         "Spot(",
         "cone_delta:",
         "beam_distribution:",

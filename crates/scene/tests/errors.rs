@@ -183,6 +183,13 @@ const CASES: &[Case] = &[
     Case { name: "operand name without quotes", from: "  ],\n)", to: "    (name: \"hole\", shape: Cylinder(radius: 0.5, zmin: -2.0, zmax: 2.0), material: Matte(color: (0.5, 0.5, 0.5))),\n    (name: \"plate\", shape: Disk(radius: 2.0), material: Matte(color: (0.5, 0.5, 0.5))),\n  ],\n  solids: [(tree: Difference(Object(ball), Object(\"hole\")))],\n)", field: "solids[0].tree[0]", at: Some((11, 37)) },
     Case { name: "solid without a tree", from: "  ],\n)", to: "    (name: \"hole\", shape: Cylinder(radius: 0.5, zmin: -2.0, zmax: 2.0), material: Matte(color: (0.5, 0.5, 0.5))),\n  ],\n  solids: [(name: \"nothing\")],\n)", field: "solids[0].tree", at: Some((10, 28)) },
     Case { name: "unknown field in a solid", from: "  ],\n)", to: "    (name: \"hole\", shape: Cylinder(radius: 0.5, zmin: -2.0, zmax: 2.0), material: Matte(color: (0.5, 0.5, 0.5))),\n  ],\n  solids: [(tree: Difference(Object(\"ball\"), Object(\"hole\")), op: 3)],\n)", field: "solids[0].op", at: Some((10, 63)) },
+    Case { name: "screen window right not above left", from: "fov: 35.0", to: "fov: 35.0, screen_window: Some((-1.0, -2.0, -1.0, 1.0))", field: "camera.screen_window[1]", at: Some((3, 100)) },
+    Case { name: "screen window top equal to bottom", from: "fov: 35.0", to: "fov: 35.0, screen_window: Some((-1.0, 1.0, 1.0, 1.0))", field: "camera.screen_window[3]", at: Some((3, 110)) },
+    Case { name: "screen window NaN", from: "fov: 35.0", to: "fov: 35.0, screen_window: Some((NaN, 1.0, -1.0, 1.0))", field: "camera.screen_window[0]", at: Some((3, 94)) },
+    Case { name: "screen window inf", from: "fov: 35.0", to: "fov: 35.0, screen_window: Some((-1.0, inf, -1.0, 1.0))", field: "camera.screen_window[1]", at: Some((3, 100)) },
+    Case { name: "screen window with 3 values", from: "fov: 35.0", to: "fov: 35.0, screen_window: Some((-1.0, 1.0, -1.0))", field: "camera.screen_window", at: Some((3, 109)) },
+    Case { name: "screen window without Some", from: "fov: 35.0", to: "fov: 35.0, screen_window: (-1.0, 1.0, -1.0, 1.0)", field: "camera.screen_window", at: Some((3, 88)) },
+    Case { name: "unknown projection", from: "fov: 35.0", to: "projection: Fisheye, fov: 35.0", field: "camera.projection", at: Some((3, 74)) },
     Case { name: "object shading rate 0", from: "material:", to: "shading_rate: Some(0.0), material:", field: "objects[0].shading_rate", at: Some((7, 62)) },
     Case { name: "object shading rate negative", from: "material:", to: "shading_rate: Some(-0.5), material:", field: "objects[0].shading_rate", at: Some((7, 62)) },
     Case { name: "object shading rate NaN", from: "material:", to: "shading_rate: Some(NaN), material:", field: "objects[0].shading_rate", at: Some((7, 62)) },
@@ -317,6 +324,13 @@ fn the_catalogue_covers_the_required_inputs() {
         "glass above 1",
         "glass negative",
         "glass NaN",
+        "screen window right not above left",
+        "screen window top equal to bottom",
+        "screen window NaN",
+        "screen window inf",
+        "screen window with 3 values",
+        "screen window without Some",
+        "unknown projection",
         "object shading rate 0",
         "object shading rate negative",
         "object shading rate NaN",
@@ -639,8 +653,8 @@ fn positions_survive_comments_and_strings() {
     );
 }
 
-/// The exact text of the errors of an object's shading rate and light set, the spot light and
-/// the metal material.
+/// The exact text of the errors of the camera's screen window, an object's shading rate and
+/// light set, the spot light and the metal material.
 #[test]
 fn exact_messages_of_the_renderman_fields() {
     let shown = |name: &str| {
@@ -648,6 +662,14 @@ fn exact_messages_of_the_renderman_fields() {
             CASES.iter().find(|c| c.name == name).unwrap_or_else(|| panic!("no case {name}"));
         run(case).to_string()
     };
+    assert_eq!(
+        shown("screen window right not above left"),
+        "scenes/bad.ron:3:100: camera.screen_window[1]: must be > left (-1), got -2"
+    );
+    assert_eq!(
+        shown("screen window top equal to bottom"),
+        "scenes/bad.ron:3:110: camera.screen_window[3]: must be > bottom (1), got 1"
+    );
     assert_eq!(
         shown("object shading rate 0"),
         "scenes/bad.ron:7:62: objects[0].shading_rate: must be > 0, got 0"

@@ -88,7 +88,7 @@ pub use sample::{concentric_disk, disperse};
 pub use vertex::RayVertexShader;
 
 use glam::Vec3;
-use reyes_dice::{Shader, facing};
+use reyes_dice::{Shader, Viewer, facing};
 use reyes_sampling::Strata;
 use reyes_scene::{Light, Object, Scene, Shape};
 use reyes_trace::{Hit, Ray, Tracer};
@@ -202,7 +202,7 @@ impl<'a> Shading<'a> {
             .objects
             .iter()
             .map(|o| ObjectShading {
-                shader: Shader::for_object(o, &scene.lights, Vec3::ZERO),
+                shader: Shader::for_object(o, &scene.lights, Viewer::Eye(Vec3::ZERO)),
                 tints: mesh_tints(o),
             })
             .collect();

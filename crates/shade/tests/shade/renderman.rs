@@ -1,14 +1,15 @@
-//! RenderMan's standard spot light and metal and per-object light sets in the ray-traced
-//! shading, against closed forms and against the dicer's local
+//! RenderMan's standard spot light and metal, per-object light sets and orthographic viewing
+//! in the ray-traced shading, against closed forms and against the dicer's local
 //! illumination (both shading paths must agree).
 
 use glam::Vec3;
-use reyes_dice::{Shader, smoothstep};
-use reyes_sampling::Strata;
+use reyes_dice::{Shader, VertexShader, Viewer, smoothstep};
+use reyes_sampling::{ShutterShape, Strata};
 use reyes_scene::Scene;
-use reyes_shade::{Shading, SurfacePoint};
+use reyes_shade::{RayVertexShader, Shading, SurfacePoint};
+use reyes_trace::Ray;
 
-use crate::common::{floor_point, patch, scene, shade_mean, tracer};
+use crate::common::{floor_point, patch, scene, shade_mean, trace_one, tracer};
 
 /// A white matte floor `y = 0` (ka 0) lit by a spot light 6 units above the origin aimed
 /// straight down (cone 30, penumbra 8 degrees, beam 2), with a shadow ray when `shadows`,
@@ -237,8 +238,8 @@ fn an_object_outside_a_lights_set_is_not_lit_by_it() {
         }
         // The dicer's local illumination honours the set too (no shadows, no area lights).
         let eye = Vec3::new(0.0, 20.0, -20.0);
-        let dicer = Shader::for_object(&s.objects[1], &s.lights, eye);
-        let dicer_all = Shader::for_object(&all.objects[1], &all.lights, eye);
+        let dicer = Shader::for_object(&s.objects[1], &s.lights, Viewer::Eye(eye));
+        let dicer_all = Shader::for_object(&all.objects[1], &all.lights, Viewer::Eye(eye));
         let p = Vec3::new(2.0, 0.0, 0.5);
         let (c, _) = dicer.shade(p, Vec3::Y, Vec3::ONE);
         let (c_all, _) = dicer_all.shade(p, Vec3::Y, Vec3::ONE);
@@ -248,5 +249,46 @@ fn an_object_outside_a_lights_set_is_not_lit_by_it() {
             // Area lights are the ray-traced shading's; the dicer has nothing left.
             _ => assert_eq!(c, [0.0; 3], "{set}"),
         }
+    }
+}
+
+#[test]
+fn ray_traced_vertices_under_an_orthographic_camera_are_seen_along_the_view() {
+    // A glossy plate facing the camera (camera looks down +z): with light and view along -z,
+    // the highlight covers the whole plate under an orthographic camera; every vertex shades
+    // as the dicer's orthographic shader does, bit for bit.
+    let text = "Scene(image: (width: 8, height: 8), \
+        camera: (eye: (0.0, 0.0, -10.0), look_at: (0.0, 0.0, 0.0), projection: Orthographic), \
+        lights: [Distant(from: (0.0, 0.0, -1.0), shadows: true)], \
+        objects: [(shape: Disk(radius: 5.0), transform: [Rotate(angle: 180.0, axis: (0.0, 1.0, 0.0))], \
+                   material: Plastic(color: (0.0, 0.0, 0.0), kd: 0.0, ks: 1.0))])";
+    let s = reyes_scene::parse(text, std::path::Path::new("ortho.ron")).expect("parses");
+    let t = tracer(&s);
+    let shading = Shading::new(&s, &t);
+    let vertex = RayVertexShader::new(&s, &shading, ShutterShape::Uniform);
+    let camera = reyes_dice::CameraSetup::new(&s);
+    let dicer = Shader::for_object(&s.objects[0], &s.lights, camera.viewer());
+    for (x, y) in [(0.0f32, 0.0f32), (3.0, 1.0), (-4.0, -2.5)] {
+        let p = Vec3::new(x, y, 0.0);
+        let ctx = reyes_dice::VertexContext {
+            object: 0,
+            surface: 0,
+            patch_u: [0.0, 1.0],
+            patch_v: [0.0, 1.0],
+            i: 0,
+            j: 0,
+            nu: 1,
+            nv: 1,
+            p_world: p,
+            n_world: Vec3::NEG_Z,
+            p_object: p,
+            tint: Vec3::ONE,
+        };
+        let (c, _) = VertexShader::shade(&vertex, &ctx);
+        assert!((c[0] - 1.0).abs() < 1e-5, "({x}, {y}): the peak of the highlight, {c:?}");
+        assert_eq!((c, [0.0; 3]), dicer.shade(p, Vec3::NEG_Z, Vec3::ONE), "({x}, {y})");
+        // The ray-tracing hider's ray along the view sees the same highlight.
+        let h = trace_one(&shading, &Ray::new(Vec3::new(x, y, -9.0), Vec3::Z, 0.0));
+        assert!((h.rgba[0] - 1.0).abs() < 1e-5, "({x}, {y}): {h:?}");
     }
 }
