@@ -2,14 +2,21 @@
 //!
 //! Invariants: camera space is +x right, +y up, +z forward (eye depth), built from an
 //! orthonormal basis; raster space is pixels with y down, pixel (x, y) covering
-//! `[x, x+1) x [y, y+1)`, and the field of view spans the shorter image side. Projection
-//! is only meaningful for `z > 0`; callers never project a point with `z <= 0`. A moving
-//! camera (`camera.motion`) changes only the view (eye, look-at point, up vector); the
-//! projection, clipping depths and lens are the same at every time.
+//! `[x, x+1) x [y, y+1)`. Screen space is RenderMan's: a perspective camera puts a point at
+//! `(x/z, y/z) / tan(fov/2)`, an orthographic one at `(x, y)`, and the screen window
+//! `[left, right, bottom, top]` fills the image (left to right, top to bottom), so
+//! `raster = centre + (kx sx, -ky sy)` for screen `(sx, sy)`. Without a screen window the
+//! window is RenderMan's default (the shorter side spans [-1, 1]: the field of view spans
+//! the shorter image side) and the mapping is computed exactly as it was before screen
+//! windows existed (`centre = size / 2`, `kx = ky = (S/2) / tan(fov/2)`), bit for bit.
+//! Perspective projection is only meaningful for `z > 0`; callers never project a point
+//! with `z <= 0`. An orthographic camera has no depth of field: its lens is ignored. A
+//! moving camera (`camera.motion`) changes only the view (eye, look-at point, up vector);
+//! the projection, screen window, clipping depths and lens are the same at every time.
 
-use glam::{Mat4, Vec2, Vec3, Vec4};
+use glam::{DVec2, Mat4, Vec2, Vec3, Vec4};
 use reyes_hider::LensSetup;
-use reyes_scene::{Camera, Lens, Scene};
+use reyes_scene::{Camera, Lens, Projection, Scene};
 
 use crate::DiceError;
 
@@ -90,6 +97,37 @@ pub(crate) fn check_camera(camera: &Camera) -> Result<(), DiceError> {
     }
 }
 
+/// Where shaded points are seen from: what gives the viewing vector `V` of the illumination
+/// models.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Viewer {
+    /// A perspective camera's eye (or any single point): every point is seen from it.
+    Eye(Vec3),
+    /// An orthographic camera on the plane through `eye`, looking along the unit `forward`:
+    /// every point is seen straight along its line of sight, `V = -forward`.
+    Along {
+        /// A point of the camera's eye plane.
+        eye: Vec3,
+        /// The unit view direction.
+        forward: Vec3,
+    },
+}
+
+impl Viewer {
+    /// A point `p_world` is seen from: the eye, or (orthographic) the point
+    /// `p_world - forward * max(depth, 1)` on its line of sight on the camera's side (at least
+    /// a unit away, so that the direction to it is accurate), `depth` its eye depth.
+    #[inline]
+    pub fn seen_from(&self, p_world: Vec3) -> Vec3 {
+        match *self {
+            Viewer::Eye(eye) => eye,
+            Viewer::Along { eye, forward } => {
+                p_world - forward * (p_world - eye).dot(forward).max(1.0)
+            }
+        }
+    }
+}
+
 /// World-to-camera transform and raster projection of a scene's camera.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CameraSetup {
@@ -99,11 +137,42 @@ pub struct CameraSetup {
     width: f32,
     /// Image height in pixels.
     height: f32,
-    /// Raster pixels per unit of `x/z` (and `y/z`): `(S/2) / tan(fov/2)`, `S` the shorter side.
-    pixels_per_unit: f32,
+    projection: Projection,
+    /// Raster position of screen `(0, 0)`.
+    centre: Vec2,
+    /// Raster pixels per unit of screen-space `x/z` and `y/z` (perspective) or camera-space
+    /// `x` and `y` (orthographic): without a screen window both are `(S/2) / tan(fov/2)`
+    /// (perspective) or `S/2` (orthographic), `S` the shorter side.
+    scale: Vec2,
     hither: f32,
     yon: f32,
     lens: Option<Lens>,
+}
+
+/// The raster mapping `(centre, scale)` of `cam` on a `width x height` image (see the module
+/// documentation).
+fn raster_mapping(cam: &Camera, width: f32, height: f32) -> (Vec2, Vec2) {
+    let perspective = cam.projection == Projection::Perspective;
+    let Some([left, right, bottom, top]) = cam.screen_window else {
+        // RenderMan's default window; the arithmetic of the renderer before screen windows.
+        let half_short = 0.5 * width.min(height);
+        let k =
+            if perspective { half_short / (0.5 * cam.fov.to_radians()).tan() } else { half_short };
+        return (Vec2::new(0.5 * width, 0.5 * height), Vec2::splat(k));
+    };
+    // Screen x = left at raster 0 and right at `width`; y = top at raster 0, bottom at
+    // `height`. In f64, where the window's extent is exact and nothing overflows.
+    let (left, right, bottom, top) =
+        (f64::from(left), f64::from(right), f64::from(bottom), f64::from(top));
+    let per_screen =
+        DVec2::new(f64::from(width) / (right - left), f64::from(height) / (top - bottom));
+    let centre = DVec2::new(-left * per_screen.x, top * per_screen.y);
+    let scale = if perspective {
+        per_screen / (0.5 * f64::from(cam.fov).to_radians()).tan()
+    } else {
+        per_screen
+    };
+    (centre.as_vec2(), scale.as_vec2())
 }
 
 impl CameraSetup {
@@ -119,17 +188,19 @@ impl CameraSetup {
         let basis = basis(&view).unwrap_or_else(|_| fallback_basis(&view));
         let width = scene.image.width as f32;
         let height = scene.image.height as f32;
-        let half_short = 0.5 * width.min(height);
-        let pixels_per_unit = half_short / (0.5 * cam.fov.to_radians()).tan();
+        let (centre, scale) = raster_mapping(cam, width, height);
         CameraSetup {
             eye_world: view.eye,
             basis,
             width,
             height,
-            pixels_per_unit,
+            projection: cam.projection,
+            centre,
+            scale,
             hither: cam.hither,
             yon: cam.yon,
-            lens: cam.lens,
+            // RenderMan ignores depth of field under an orthographic projection.
+            lens: cam.lens.filter(|_| cam.projection == Projection::Perspective),
         }
     }
 
@@ -164,19 +235,28 @@ impl CameraSetup {
     /// raster y pointing down): the lens point is `(-lx x_a/k, ly y_a/k, 0)` = `-R (lx, ly)`
     /// in eye space, and at the focal distance the line passes through the pinhole point of
     /// `raster` (the plane of focus is the plane `z = focal_distance`). A pinhole camera (or
-    /// `lens == (0, 0)`) gives the ray from the eye through the pinhole point.
+    /// `lens == (0, 0)`) gives the ray from the eye through the pinhole point. (`k` stands for
+    /// the raster scale `kx` across and `ky` down, `(cx, cy)` for the raster centre.)
+    ///
+    /// An orthographic camera's ray leaves the eye plane at the camera-space point
+    /// `((X - cx)/kx, (cy - Y)/ky, 0)` along the view direction (`dir` = forward), which
+    /// holds every point the hider draws at `raster`; it has no lens.
     pub fn primary_ray(&self, raster: Vec2, lens: (f32, f32)) -> (Vec3, Vec3) {
-        let k = self.pixels_per_unit;
-        let (cx, cy) = (0.5 * self.width, 0.5 * self.height);
+        let (kx, ky) = (self.scale.x, self.scale.y);
+        let (cx, cy) = (self.centre.x, self.centre.y);
         let (lx, ly) = lens;
+        let Basis { right, up, forward } = self.basis;
+        if self.projection == Projection::Orthographic {
+            let o = Vec2::new((raster.x - cx) / kx, (cy - raster.y) / ky);
+            return (self.eye_world + right * o.x + up * o.y, forward);
+        }
         let (o, d) = match self.lens() {
             Some(l) => (
-                Vec2::new(-lx * l.x_a / k, ly * l.y_a / k),
-                Vec2::new((raster.x - cx - lx * l.x_b) / k, (cy - raster.y + ly * l.y_b) / k),
+                Vec2::new(-lx * l.x_a / kx, ly * l.y_a / ky),
+                Vec2::new((raster.x - cx - lx * l.x_b) / kx, (cy - raster.y + ly * l.y_b) / ky),
             ),
-            None => (Vec2::ZERO, Vec2::new((raster.x - cx) / k, (cy - raster.y) / k)),
+            None => (Vec2::ZERO, Vec2::new((raster.x - cx) / kx, (cy - raster.y) / ky)),
         };
-        let Basis { right, up, forward } = self.basis;
         let origin = self.eye_world + right * o.x + up * o.y;
         let dir = right * d.x + up * d.y + forward;
         (origin, dir)
@@ -194,17 +274,36 @@ impl CameraSetup {
         )
     }
 
-    /// Appendix A's `EyeToScreenXY`: raster position of a camera-space point with `z > 0`.
+    /// Appendix A's `EyeToScreenXY`: raster position of a camera-space point with `z > 0`
+    /// (perspective: `centre + (kx x/z, -ky y/z)`; orthographic: `centre + (kx x, -ky y)`).
     #[inline]
     pub fn eye_to_raster(&self, p_camera: Vec3) -> Vec2 {
-        let k = self.pixels_per_unit;
-        Vec2::new(
-            0.5 * self.width + k * p_camera.x / p_camera.z,
-            0.5 * self.height - k * p_camera.y / p_camera.z,
-        )
+        let (c, k) = (self.centre, self.scale);
+        match self.projection {
+            Projection::Perspective => {
+                Vec2::new(c.x + k.x * p_camera.x / p_camera.z, c.y - k.y * p_camera.y / p_camera.z)
+            }
+            Projection::Orthographic => Vec2::new(c.x + k.x * p_camera.x, c.y - k.y * p_camera.y),
+        }
     }
 
-    /// Port of `VisCameraSetup`: the depth-of-field constants, or `None` for a pinhole camera.
+    /// Where this camera sees shaded points from (its eye, or along its view direction).
+    pub fn viewer(&self) -> Viewer {
+        match self.projection {
+            Projection::Perspective => Viewer::Eye(self.eye_world),
+            Projection::Orthographic => {
+                Viewer::Along { eye: self.eye_world, forward: self.basis.forward }
+            }
+        }
+    }
+
+    /// The projection.
+    pub fn projection(&self) -> Projection {
+        self.projection
+    }
+
+    /// Port of `VisCameraSetup`: the depth-of-field constants, or `None` for a pinhole camera
+    /// (and for any orthographic camera).
     pub fn lens(&self) -> Option<LensSetup> {
         let lens = self.lens?;
         let radius = 0.5 * lens.focal_length / lens.f_stop;
@@ -233,9 +332,24 @@ impl CameraSetup {
         self.yon
     }
 
-    /// Raster pixels per unit of `x/z`: `(min(width, height)/2) / tan(fov/2)`.
+    /// Raster pixels per unit of `x/z` (perspective) or of camera-space `x` (orthographic),
+    /// across: without a screen window `(min(width, height)/2) / tan(fov/2)` or
+    /// `min(width, height)/2`, the same down. See [`CameraSetup::raster_scale`] for both.
     pub fn pixels_per_unit(&self) -> f32 {
-        self.pixels_per_unit
+        self.scale.x
+    }
+
+    /// Raster pixels per unit of screen `x/z` and `y/z` (perspective) or camera-space `x`
+    /// and `y` (orthographic): `(kx, ky)`, different when the screen window's aspect is not
+    /// the image's.
+    pub fn raster_scale(&self) -> Vec2 {
+        self.scale
+    }
+
+    /// Raster position of the screen-space origin (the view axis): the image centre
+    /// without a screen window.
+    pub fn raster_centre(&self) -> Vec2 {
+        self.centre
     }
 
     /// Image size in pixels, `(width, height)`.

@@ -19,7 +19,7 @@ use glam::{Mat3, Vec3};
 use reyes_hider::{Micropolygon, flags};
 
 use crate::bucket::{BucketRange, Bucketer};
-use crate::camera::CameraSetup;
+use crate::camera::{CameraSetup, Viewer};
 use crate::hook::{VertexContext, VertexShader};
 use crate::motion::{Placement, Pose};
 use crate::shade::Shader;
@@ -302,7 +302,7 @@ impl<'b> Emitter<'b> {
                             }),
                         };
                         if object.cull_back {
-                            let to_eye = camera.eye_world() - p_world;
+                            let to_eye = camera.viewer().seen_from(p_world) - p_world;
                             cosines.push(
                                 n_world.dot(to_eye)
                                     / (n_world.length() * to_eye.length()).max(f32::MIN_POSITIVE),
@@ -538,17 +538,17 @@ pub(crate) fn cull_back_faces(
         && placements_affine
 }
 
-/// Per-object setup: shading (seen from `eye_world`, with the object placed by `open`, its
-/// placement at shutter open), flags, and the CSG label `csg` (`(tree index, slot id)` of
-/// a CSG operand, from [`crate::CsgSetup::leaf`]).
+/// Per-object setup: shading (under the object's light set, seen by `viewer`, with the object
+/// placed by `open`, its placement at shutter open), flags, and the CSG label `csg`
+/// (`(tree index, slot id)` of a CSG operand, from [`crate::CsgSetup::leaf`]).
 pub(crate) fn object_context(
     object: &reyes_scene::Object,
     lights: &[reyes_scene::Light],
-    eye_world: Vec3,
+    viewer: Viewer,
     open: &Placement,
     csg: Option<(u16, u16)>,
 ) -> ObjectContext<'static> {
-    let shader = Shader::new(&object.material, lights, eye_world);
+    let shader = Shader::for_object(object, lights, viewer);
     let mut flags = 0;
     if shader.opaque() {
         flags |= flags::OPAQUE;

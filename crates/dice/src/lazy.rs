@@ -100,10 +100,19 @@ impl Wave {
     }
 }
 
-/// One object's motion and shading.
+/// One object's motion, shading and split decisions.
 struct ObjectSetup<'a> {
     motion: ObjectMotion,
     ctx: ObjectContext<'a>,
+    /// The decisions at the object's own shading rate; `None`: the dicer's (the scene's rate).
+    splitter: Option<Splitter>,
+}
+
+impl ObjectSetup<'_> {
+    /// The split and dice decisions for this object, `scene` being the dicer's.
+    fn splitter<'s>(&'s self, scene: &'s Splitter) -> &'s Splitter {
+        self.splitter.as_ref().unwrap_or(scene)
+    }
 }
 
 /// A grid kept for the buckets that still need it.
@@ -206,7 +215,7 @@ impl<'a> Dicer<'a> {
             let mut ctx = dice::object_context(
                 object,
                 &scene.lights,
-                dicer.camera.eye_world(),
+                dicer.camera.viewer(),
                 &open.place,
                 leaf,
             );
@@ -219,11 +228,17 @@ impl<'a> Dicer<'a> {
                     leaf.is_some(),
                     dicer.camera.lens().is_none(),
                 );
+            // RenderMan's ShadingRate is an attribute: an object may dice at its own rate.
+            let splitter = object
+                .shading_rate
+                .filter(|&rate| rate != hider.shading_rate)
+                .map(|rate| dicer.splitter.with_shading_rate(rate));
+            let decide = splitter.as_ref().unwrap_or(&dicer.splitter);
             for surface in 0..motion.surface_count() {
                 dicer.stats.primitives += 1;
                 let poses = motion.poses(surface);
                 let patch = Patch::root();
-                let (decision, top) = dicer.splitter.decide_bound(&poses, &patch);
+                let (decision, top) = decide.decide_bound(&poses, &patch);
                 if decision == Decision::Cull {
                     dicer.stats.patches_culled += 1;
                     continue;
@@ -232,7 +247,7 @@ impl<'a> Dicer<'a> {
                 let row = dicer.row_of(top, 0);
                 dicer.pending[row as usize].push(Task { key, patch, decision });
             }
-            dicer.objects.push(Some(ObjectSetup { motion, ctx }));
+            dicer.objects.push(Some(ObjectSetup { motion, ctx, splitter }));
         }
         dicer.csg_trees = csg.trees;
         Ok(dicer)
@@ -405,7 +420,8 @@ impl<'a> Dicer<'a> {
                 let mut now = Vec::with_capacity(2);
                 for (k, patch) in task.patch.split(along_u, hither).into_iter().enumerate() {
                     let key = task.key.child(task.patch.depth, k == 1);
-                    let (decision, top) = self.splitter.decide_bound(poses, &patch);
+                    let (decision, top) =
+                        object.splitter(&self.splitter).decide_bound(poses, &patch);
                     if decision == Decision::Cull {
                         out.stats.patches_culled += 1;
                         continue;

@@ -31,7 +31,8 @@
 //!   nearer than `hither / 2` (its micropolygons would all be dropped), or (when all are in
 //!   front of the eye) the union over the breakpoints of its projected bounds misses the
 //!   bucket grid, or (pinhole camera, some points at or behind the eye) at every breakpoint
-//!   all points lie outside the same side plane of the view frustum. Micropolygons move
+//!   all points lie outside the same side plane of the view frustum (through the eye for a
+//!   perspective camera, parallel to the view for an orthographic one). Micropolygons move
 //!   linearly in raster space between breakpoints, so these unions hold them at every time.
 //!   Every bound is grown by a safety margin, 25% of its extent plus 2 pixels, because test
 //!   points do not bound a curved surface: between samples it bulges outward by up to its
@@ -42,16 +43,19 @@
 //!   is halved along its longer camera-space direction, at most 20 times; then it is diced
 //!   anyway. Otherwise the longest projected row and column over all breakpoints give
 //!   `nu = ceil(len_u / sqrt(rate))`, `nv` likewise (so the grid is near the shading rate at
-//!   every time); above `max_grid_size` micropolygons the patch is halved along the longer
-//!   projected direction (at most 40 splits deep, beyond which the grid is shrunk). One
-//!   decision holds for every breakpoint, so all times share one grid topology.
+//!   every time), `rate` the object's own `shading_rate` or else `hider.shading_rate`;
+//!   above `max_grid_size` micropolygons the patch is halved along the longer projected
+//!   direction (at most 40 splits deep, beyond which the grid is shrunk). One decision holds
+//!   for every breakpoint, so all times share one grid topology.
 //! * **Dice.** The `(nu+1) x (nv+1)` vertex grid is evaluated and projected at every
-//!   breakpoint, shaded once in world space at shutter open (t = 0), and emitted as `nu x nv`
-//!   micropolygons per segment `[t_a, t_b]`: `v` the positions at `t_a`, `speed` the
-//!   displacement to `t_b`, `time = [t_a, t_b]`, `MOVING` if any speed is non-zero or the
-//!   segment is not the whole shutter. Consecutive segments over which a micropolygon does
-//!   not move are merged; a micropolygon still over the whole shutter is one record with
-//!   time `[0, 1]` and zero speed, so a still scene diced exactly as before motion existed.
+//!   breakpoint (perspective or orthographic, through the screen window: see `camera.rs`),
+//!   shaded once in world space at shutter open (t = 0) under the object's light set, and
+//!   emitted as `nu x nv` micropolygons per segment
+//!   `[t_a, t_b]`: `v` the positions at `t_a`, `speed` the displacement to `t_b`,
+//!   `time = [t_a, t_b]`, `MOVING` if any speed is non-zero or the segment is not the whole
+//!   shutter. Consecutive segments over which a micropolygon does not move are merged; a
+//!   micropolygon still over the whole shutter is one record with time `[0, 1]` and zero
+//!   speed, so a still scene diced exactly as before motion existed.
 //!
 //! Eye plane: no vertex with `z <= 0` is projected. A micropolygon with a vertex nearer
 //! than `hither / 2` (at either end of its segment) is dropped for that segment: the hider's `bounddof` assumes nothing nearer, splitting
@@ -97,13 +101,15 @@ mod motion;
 mod shade;
 mod shapes;
 mod split;
+mod spot;
 
 pub use bucket::screen_bound;
-pub use camera::CameraSetup;
+pub use camera::{CameraSetup, Viewer};
 pub use csg::CsgSetup;
 pub use hook::{DiceOptions, VertexContext, VertexShader};
 pub use lazy::Dicer;
 pub use shade::{Shader, facing};
+pub use spot::{SpotLight, smoothstep};
 
 use reyes_hider::{CsgTree, Frame, Micropolygon};
 use reyes_scene::Scene;

@@ -5,11 +5,18 @@
 //! is finite for finite input (a point light at the shaded point contributes nothing).
 //!
 //! The illumination models themselves ([`Shader::illuminate`]) are public so that the
-//! ray-traced shading (reyes-shade) evaluates the same Constant, Matte and Plastic models
-//! under its own lights (shadowed, area-sampled) without a second copy of them.
+//! ray-traced shading (reyes-shade) evaluates the same Constant, Matte, Plastic and Metal
+//! models under its own lights (shadowed, area-sampled) without a second copy of them.
+//!
+//! An object lit by a light set (`Object::lights`) is shaded by [`Shader::for_object`] under
+//! those lights only, ambient ones included; the viewing vector comes from a [`Viewer`] (the
+//! eye, or an orthographic camera's view direction).
 
 use glam::Vec3;
-use reyes_scene::{Light, Material};
+use reyes_scene::{Light, Material, Object};
+
+use crate::camera::Viewer;
+use crate::spot::SpotLight;
 
 /// A light after setup: the ambient ones are summed into [`Shader`]'s ambient term.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -18,6 +25,8 @@ enum DirectLight {
     Distant { l: Vec3, cl: Vec3 },
     /// Point light: position and `intensity * color` (divided by d^2 at the surface).
     Point { from: Vec3, cl: Vec3 },
+    /// RenderMan's spotlight.
+    Spot(SpotLight),
 }
 
 /// The illumination model of a material.
@@ -26,10 +35,12 @@ enum Model {
     Constant,
     Matte { ka: f32, kd: f32 },
     Plastic { ka: f32, kd: f32, ks: f32, exponent: f32, specular: Vec3 },
+    Metal { ka: f32, ks: f32, exponent: f32 },
+    Headlight { ka: f32, kd: f32 },
 }
 
 /// Shades points of one object: its material's illumination model, colour and opacity,
-/// and the scene's ambient, distant and point lights.
+/// and the scene's (or the object's light set's) ambient, distant, point and spot lights.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Shader {
     model: Model,
@@ -40,7 +51,7 @@ pub struct Shader {
     /// Sum of the ambient lights.
     ambient: Vec3,
     lights: Vec<DirectLight>,
-    eye_world: Vec3,
+    viewer: Viewer,
 }
 
 /// `d^2` below which a point light is taken to sit on the surface and is ignored.
@@ -49,6 +60,23 @@ const MIN_DIST2: f32 = 1e-20;
 impl Shader {
     /// Set up the shading of `material` under `lights`, seen from `eye_world`.
     pub fn new(material: &Material, lights: &[Light], eye_world: Vec3) -> Shader {
+        Shader::with_lights(material, lights.iter(), Viewer::Eye(eye_world))
+    }
+
+    /// Set up the shading of `object`'s material under the lights of the scene's `lights`
+    /// that illuminate it ([`Object::lit_by`]: all of them without a light set), seen by
+    /// `viewer`.
+    pub fn for_object(object: &Object, lights: &[Light], viewer: Viewer) -> Shader {
+        let lit = lights.iter().enumerate().filter(|(i, _)| object.lit_by(*i)).map(|(_, l)| l);
+        Shader::with_lights(&object.material, lit, viewer)
+    }
+
+    /// Set up the shading of `material` under `lights`, in order, seen by `viewer`.
+    fn with_lights<'l>(
+        material: &Material,
+        lights: impl Iterator<Item = &'l Light>,
+        viewer: Viewer,
+    ) -> Shader {
         let (model, cs, os) = match *material {
             Material::Constant { color, opacity } => (Model::Constant, color, opacity),
             Material::Matte { color, opacity, ka, kd } => (Model::Matte { ka, kd }, color, opacity),
@@ -65,6 +93,12 @@ impl Shader {
                 color,
                 opacity,
             ),
+            Material::Metal { color, opacity, ka, ks, roughness } => {
+                (Model::Metal { ka, ks, exponent: 8.0 / roughness }, color, opacity)
+            }
+            Material::DefaultSurface { color, opacity, ka, kd } => {
+                (Model::Headlight { ka, kd }, color, opacity)
+            }
         };
         let mut ambient = Vec3::ZERO;
         let mut direct = Vec::new();
@@ -81,11 +115,34 @@ impl Shader {
                     from: Vec3::from(from),
                     cl: intensity * Vec3::from(color),
                 }),
+                Light::Spot {
+                    from,
+                    to,
+                    color,
+                    intensity,
+                    cone_angle,
+                    cone_delta,
+                    beam_distribution,
+                    ..
+                } => {
+                    // A spot light with from == to has no axis and lights nothing.
+                    if let Some(spot) = SpotLight::new(
+                        from,
+                        to,
+                        color,
+                        intensity,
+                        cone_angle,
+                        cone_delta,
+                        beam_distribution,
+                    ) {
+                        direct.push(DirectLight::Spot(spot));
+                    }
+                }
                 // Area lights are sampled by the ray-traced shading (reyes-shade).
                 Light::Area { .. } => {}
             }
         }
-        Shader { model, cs: Vec3::from(cs), os: Vec3::from(os), ambient, lights: direct, eye_world }
+        Shader { model, cs: Vec3::from(cs), os: Vec3::from(os), ambient, lights: direct, viewer }
     }
 
     /// True if the material is fully opaque in every channel.
@@ -124,7 +181,11 @@ impl Shader {
     /// * Matte: `cs * (ka * ambient + kd * sum Cl max(0, N.L))`;
     /// * Plastic: the Matte terms with its `ka`, `kd`, plus
     ///   `specular_color * ks * sum Cl max(0, N.H)^(8/roughness)`, `H = normalize(L + V)`,
-    ///   over the lights with `N.L > 0`.
+    ///   over the lights with `N.L > 0`;
+    /// * Metal: `cs * (ka * ambient + ks * sum Cl max(0, N.H)^(8/roughness))`, the same
+    ///   specular sum coloured by the surface (RenderMan's `metal`);
+    /// * DefaultSurface: `cs * (ka + kd * (N.V)^2)`, a headlight at the eye (RenderMan's
+    ///   `defaultsurface`; the lights are not read).
     pub fn illuminate(
         &self,
         cs: Vec3,
@@ -142,6 +203,14 @@ impl Shader {
                 let (diffuse, spec) = direct(n, Some((v, exponent)), lights);
                 cs * (ka * self.ambient + kd * diffuse) + specular * ks * spec
             }
+            Model::Metal { ka, ks, exponent } => {
+                let (_, spec) = direct(n, Some((v, exponent)), lights);
+                cs * (ka * self.ambient + ks * spec)
+            }
+            Model::Headlight { ka, kd } => {
+                let d = n.dot(v);
+                cs * (ka + kd * d * d)
+            }
         }
     }
 
@@ -152,7 +221,7 @@ impl Shader {
         let ci = if self.unlit() {
             cs
         } else {
-            let (n, v) = facing(p_world, n_world, self.eye_world);
+            let (n, v) = facing(p_world, n_world, self.viewer.seen_from(p_world));
             let lights = self.lights.iter().filter_map(|light| match *light {
                 DirectLight::Distant { l, cl } => Some((l, cl)),
                 DirectLight::Point { from, cl } => {
@@ -163,6 +232,7 @@ impl Shader {
                     }
                     Some((d / d2.sqrt(), cl / d2))
                 }
+                DirectLight::Spot(spot) => spot.arriving(p_world),
             });
             self.illuminate(cs, n, v, lights)
         };
@@ -303,5 +373,151 @@ mod tests {
         let s = Shader::new(&m, &behind, EYE);
         let (c, _) = s.shade(Vec3::ZERO, Vec3::NEG_Z, Vec3::ONE);
         assert!(close3(c, Vec3::ZERO), "{c:?}");
+    }
+
+    #[test]
+    fn metal_is_specular_in_the_surface_colour() {
+        let m = Material::Metal {
+            color: [0.9, 0.6, 0.3],
+            opacity: [0.5, 1.0, 1.0],
+            ka: 0.5,
+            ks: 0.8,
+            roughness: 0.2,
+        };
+        let lights =
+            [Light::Ambient { color: [0.4; 3], intensity: 0.5 }, distant([0.0, 1.0, -1.0])];
+        let s = Shader::new(&m, &lights, EYE);
+        // Ci = Os * Cs * (Ka ambient + Ks specular); no diffuse term.
+        let n_dot_h = 22.5_f32.to_radians().cos();
+        let spec = n_dot_h.powf(8.0 / 0.2);
+        let ci = Vec3::new(0.9, 0.6, 0.3) * (0.5 * 0.2 + 0.8 * spec);
+        let (c, t) = s.shade(Vec3::ZERO, Vec3::NEG_Z, Vec3::ONE);
+        assert!(close3(c, Vec3::new(0.5, 1.0, 1.0) * ci), "{c:?} vs {ci}");
+        assert!(close3(t, Vec3::new(0.5, 0.0, 0.0)), "{t:?}");
+        // The specular term is Plastic's: with ka = kd = 0 and a white surface, the same.
+        let plastic = Material::Plastic {
+            color: [1.0; 3],
+            opacity: [1.0; 3],
+            ka: 0.0,
+            kd: 0.0,
+            ks: 0.8,
+            roughness: 0.2,
+            specular_color: [1.0; 3],
+        };
+        let metal = Material::Metal {
+            color: [1.0; 3],
+            opacity: [1.0; 3],
+            ka: 0.0,
+            ks: 0.8,
+            roughness: 0.2,
+        };
+        for from in [[0.0, 1.0, -1.0], [0.3, 0.2, -1.0], [-1.0, 0.5, -0.2]] {
+            let lights = [distant(from)];
+            let a = Shader::new(&plastic, &lights, EYE).shade(Vec3::ZERO, Vec3::NEG_Z, Vec3::ONE);
+            let b = Shader::new(&metal, &lights, EYE).shade(Vec3::ZERO, Vec3::NEG_Z, Vec3::ONE);
+            assert_eq!(a, b, "light from {from:?}");
+        }
+    }
+
+    #[test]
+    fn spot_light_shades_by_the_specifications_falloff() {
+        let m = Material::Matte { color: [1.0; 3], opacity: [1.0; 3], ka: 1.0, kd: 1.0 };
+        // Aimed straight down at the origin from 4 units above; the surface faces up.
+        let spot = |to: [f32; 3], cone: f32, delta: f32| Light::Spot {
+            from: [0.0, 4.0, 0.0],
+            to,
+            color: [1.0; 3],
+            intensity: 16.0,
+            cone_angle: cone,
+            cone_delta: delta,
+            beam_distribution: 2.0,
+            shadows: false,
+        };
+        let s = Shader::new(&m, &[spot([0.0; 3], 30.0, 5.0)], Vec3::new(0.0, 10.0, -1.0));
+        for x in [0.0f32, 1.0, 1.8, 2.0, 2.2, 2.5, 3.0] {
+            let p = Vec3::new(x, 0.0, 0.0);
+            let d2 = 16.0 + x * x;
+            let cos = 4.0 / d2.sqrt();
+            let step = smoothstep_f64(30.0, 25.0, f64::from(cos));
+            // Lambert: N.L = cos as well.
+            let want = 16.0 * cos * cos / d2 * step as f32 * cos;
+            let (c, _) = s.shade(p, Vec3::Y, Vec3::ONE);
+            assert!((c[0] - want).abs() < 1e-5, "x {x}: {} vs {want}", c[0]);
+        }
+        // From the light with from == to nothing arrives.
+        let aimless = spot([0.0, 4.0, 0.0], 30.0, 5.0);
+        let (c, _) = Shader::new(&m, &[aimless], EYE).shade(Vec3::ZERO, Vec3::Y, Vec3::ONE);
+        assert_eq!(c, [0.0; 3]);
+    }
+
+    /// The Shading Language's smoothstep between the cosines of two angles in degrees.
+    fn smoothstep_f64(outer: f64, inner: f64, x: f64) -> f64 {
+        let (e0, e1) = (outer.to_radians().cos(), inner.to_radians().cos());
+        if x < e0 {
+            0.0
+        } else if x >= e1 {
+            1.0
+        } else {
+            let t = (x - e0) / (e1 - e0);
+            t * t * (3.0 - 2.0 * t)
+        }
+    }
+
+    #[test]
+    fn an_objects_light_set_selects_its_lights_ambient_included() {
+        let lights = [
+            Light::Ambient { color: [1.0; 3], intensity: 0.25 },
+            distant([0.0, 0.0, -1.0]),
+            Light::Ambient { color: [1.0; 3], intensity: 0.5 },
+        ];
+        let shape =
+            reyes_scene::Shape::Sphere { radius: 1.0, zmin: None, zmax: None, thetamax: 360.0 };
+        let m = Material::Matte { color: [1.0; 3], opacity: [1.0; 3], ka: 1.0, kd: 1.0 };
+        let object =
+            |set: Option<Vec<u32>>| Object { lights: set, ..Object::new(shape.clone(), m.clone()) };
+        let shade = |set: Option<Vec<u32>>| {
+            Shader::for_object(&object(set), &lights, Viewer::Eye(EYE))
+                .shade(Vec3::ZERO, Vec3::NEG_Z, Vec3::ONE)
+                .0[0]
+        };
+        assert!((shade(None) - 1.75).abs() < 1e-6, "every light: {}", shade(None));
+        assert_eq!(
+            Shader::for_object(&object(None), &lights, Viewer::Eye(EYE)),
+            Shader::new(&m, &lights, EYE),
+            "no light set is every light"
+        );
+        assert!((shade(Some(vec![1])) - 1.0).abs() < 1e-6, "the distant light only");
+        assert!((shade(Some(vec![2, 0])) - 0.75).abs() < 1e-6, "the ambient lights only");
+        assert_eq!(shade(Some(vec![])), 0.0, "an empty set lights nothing");
+    }
+
+    #[test]
+    fn an_orthographic_viewer_sees_along_its_view_direction() {
+        let m = Material::Plastic {
+            color: [0.0; 3],
+            opacity: [1.0; 3],
+            ka: 0.0,
+            kd: 0.0,
+            ks: 1.0,
+            roughness: 0.1,
+            specular_color: [1.0; 3],
+        };
+        // Light and view both along -z: the highlight peaks wherever the surface faces -z,
+        // however far off the axis (a perspective eye would see those points obliquely).
+        let lights = [distant([0.0, 0.0, -1.0])];
+        let viewer = Viewer::Along { eye: EYE, forward: Vec3::Z };
+        let object = Object::new(
+            reyes_scene::Shape::Sphere { radius: 1.0, zmin: None, zmax: None, thetamax: 360.0 },
+            m.clone(),
+        );
+        let ortho = Shader::for_object(&object, &lights, viewer);
+        let persp = Shader::new(&m, &lights, EYE);
+        for x in [0.0f32, 3.0, -8.0] {
+            let p = Vec3::new(x, 2.0, 1.0);
+            let (c, _) = ortho.shade(p, Vec3::NEG_Z, Vec3::ONE);
+            assert!((c[0] - 1.0).abs() < 1e-5, "x {x}: {c:?}");
+        }
+        let (c, _) = persp.shade(Vec3::new(-8.0, 2.0, 1.0), Vec3::NEG_Z, Vec3::ONE);
+        assert!(c[0] < 0.5, "the perspective eye sees it obliquely: {c:?}");
     }
 }

@@ -16,6 +16,7 @@
 
 use glam::{Vec2, Vec3};
 use reyes_hider::{Frame, LensSetup};
+use reyes_scene::Projection;
 
 use crate::camera::CameraSetup;
 use crate::motion::Pose;
@@ -111,9 +112,11 @@ pub(crate) struct Splitter {
     /// Raster extent of the bucket grid (what `Frame::buckets_touched` accepts).
     screen_lo: Vec2,
     screen_hi: Vec2,
-    /// Outward unit normals of the four side planes of the (extended) view frustum, through
-    /// the eye; `None` with a lens, whose blur the planes do not include.
-    frustum: Option<[Vec3; 4]>,
+    /// The four side planes of the (extended) view volume, as outward unit normals `n` and
+    /// offsets `d`: a camera-space point `p` is off that side where `n.p + d > 0`. Through
+    /// the eye (`d = 0`) for a perspective camera, parallel to the view for an orthographic
+    /// one; `None` with a lens, whose blur the planes do not include.
+    frustum: Option<[(Vec3, f32); 4]>,
     /// Micropolygon side length in pixels: `sqrt(shading_rate)`.
     step: f32,
     max_grid: u64,
@@ -139,18 +142,27 @@ impl Splitter {
         );
         let lens = camera.lens();
         let frustum = lens.is_none().then(|| {
-            let k = camera.pixels_per_unit();
-            let centre = 0.5 * camera.image_size();
+            let k = camera.raster_scale();
+            let centre = camera.raster_centre();
             let lo = screen_lo - MARGIN_PIXELS;
             let hi = screen_hi + MARGIN_PIXELS;
-            // raster_x > hi.x  <=>  k*x + (w/2 - hi.x)*z > 0 for z > 0, and so on.
-            [
-                Vec3::new(k, 0.0, centre.x - hi.x),
-                Vec3::new(-k, 0.0, lo.x - centre.x),
-                Vec3::new(0.0, k, lo.y - centre.y),
-                Vec3::new(0.0, -k, centre.y - hi.y),
-            ]
-            .map(|n| n.normalize_or_zero())
+            // Perspective: raster_x > hi.x  <=>  kx*x + (cx - hi.x)*z > 0 for z > 0, and so
+            // on. Orthographic: raster_x > hi.x  <=>  kx*x + (cx - hi.x) > 0.
+            let planes = [
+                (Vec3::new(k.x, 0.0, 0.0), centre.x - hi.x),
+                (Vec3::new(-k.x, 0.0, 0.0), lo.x - centre.x),
+                (Vec3::new(0.0, k.y, 0.0), lo.y - centre.y),
+                (Vec3::new(0.0, -k.y, 0.0), centre.y - hi.y),
+            ];
+            match camera.projection() {
+                Projection::Perspective => {
+                    planes.map(|(n, d)| (Vec3::new(n.x, n.y, d).normalize_or_zero(), 0.0))
+                }
+                Projection::Orthographic => planes.map(|(n, d)| {
+                    let len = n.length();
+                    if len > 0.0 { (n / len, d / len) } else { (Vec3::ZERO, 0.0) }
+                }),
+            }
         });
         let hither = camera.hither();
         Splitter {
@@ -162,9 +174,14 @@ impl Splitter {
             screen_lo,
             screen_hi,
             frustum,
-            step: shading_rate.max(1e-6).sqrt(),
+            step: step(shading_rate),
             max_grid: u64::from(max_grid_size.max(1)),
         }
+    }
+
+    /// The same decisions at another shading rate (an object's own `shading_rate`).
+    pub fn with_shading_rate(&self, shading_rate: f32) -> Splitter {
+        Splitter { step: step(shading_rate), ..self.clone() }
     }
 
     /// The depth below which a micropolygon vertex is not kept (`hither / 2`).
@@ -385,10 +402,10 @@ impl Splitter {
         // off that side of the screen, and a micropolygon moving linearly between two
         // positions off one side stays off it.
         match (&self.frustum, a.all_finite && b.all_finite) {
-            (Some(planes), true) => planes.iter().any(|n| {
+            (Some(planes), true) => planes.iter().any(|(n, d)| {
                 [a, b].iter().all(|f| {
                     let m3 = MARGIN_FRACTION * (f.hi - f.lo).max_element();
-                    f.grid.iter().flatten().chain(f.hull).all(|p| n.dot(*p) > m3)
+                    f.grid.iter().flatten().chain(f.hull).all(|p| n.dot(*p) + d > m3)
                 })
             }),
             _ => false,
@@ -414,6 +431,11 @@ impl Splitter {
         let (nu, nv) = clamp_grid(nu, nv, self.max_grid);
         Decision::Dice { nu, nv, limited: true }
     }
+}
+
+/// Micropolygon side length in pixels at `shading_rate` pixels per micropolygon.
+fn step(shading_rate: f32) -> f32 {
+    shading_rate.max(1e-6).sqrt()
 }
 
 /// What the decisions need to know of one breakpoint's test grid.

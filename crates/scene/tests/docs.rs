@@ -140,6 +140,15 @@ fn the_document_covers_every_variant() {
         "steps:",
         "height: Some(",
         "kind: RiGaussian",
+        "projection: Orthographic",
+        "screen_window: Some(",
+        "Spot(",
+        "cone_delta:",
+        "beam_distribution:",
+        "Metal(",
+        "DefaultSurface(",
+        "shading_rate: Some(",
+        "lights: Some([",
     ] {
         assert!(ron_blocks().iter().any(|b| b.contains(name)), "no ```ron example uses {name}");
     }

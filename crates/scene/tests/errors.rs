@@ -219,6 +219,33 @@ const CASES: &[Case] = &[
     Case { name: "hyperboloid operand", from: "  ],\n)", to: "    (name: \"hyp\", shape: Hyperboloid(point1: (1.0, 0.0, -1.0), point2: (1.0, 0.0, 1.0)), material: Matte(color: (0.5, 0.5, 0.5))),\n  ],\n  solids: [(tree: Union([Object(\"ball\"), Object(\"hyp\")]))],\n)", field: "solids[0].tree[1]", at: Some((10, 42)) },
     Case { name: "wrapped patch mesh operand", from: "  ],\n)", to: "    (name: \"tube\", shape: PatchMesh(kind: Bilinear, nu: 3, nv: 2, uwrap: Periodic, points: [(1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (-1.0, 0.0, 0.0), (1.0, 0.0, 1.0), (0.0, 1.0, 1.0), (-1.0, 0.0, 1.0)]), material: Matte(color: (0.5, 0.5, 0.5))),\n  ],\n  solids: [(tree: Union([Object(\"ball\"), Object(\"tube\")]))],\n)", field: "solids[0].tree[1]", at: Some((10, 42)) },
     Case { name: "nurbs operand", from: "  ],\n)", to: "    (name: \"sheet\", shape: NuPatch(nu: 2, uorder: 2, uknot: [0.0, 0.0, 1.0, 1.0], umin: 0.0, umax: 1.0, nv: 2, vorder: 2, vknot: [0.0, 0.0, 1.0, 1.0], vmin: 0.0, vmax: 1.0, points: [(0.0, 0.0, 0.0, 1.0), (1.0, 0.0, 0.0, 1.0), (0.0, 1.0, 0.0, 1.0), (1.0, 1.0, 0.0, 1.0)]), material: Matte(color: (0.5, 0.5, 0.5))),\n  ],\n  solids: [(tree: Union([Object(\"ball\"), Object(\"sheet\")]))],\n)", field: "solids[0].tree[1]", at: Some((10, 42)) },
+    Case { name: "screen window right not above left", from: "fov: 35.0", to: "fov: 35.0, screen_window: Some((-1.0, -2.0, -1.0, 1.0))", field: "camera.screen_window[1]", at: Some((3, 100)) },
+    Case { name: "screen window top equal to bottom", from: "fov: 35.0", to: "fov: 35.0, screen_window: Some((-1.0, 1.0, 1.0, 1.0))", field: "camera.screen_window[3]", at: Some((3, 110)) },
+    Case { name: "screen window NaN", from: "fov: 35.0", to: "fov: 35.0, screen_window: Some((NaN, 1.0, -1.0, 1.0))", field: "camera.screen_window[0]", at: Some((3, 94)) },
+    Case { name: "screen window inf", from: "fov: 35.0", to: "fov: 35.0, screen_window: Some((-1.0, inf, -1.0, 1.0))", field: "camera.screen_window[1]", at: Some((3, 100)) },
+    Case { name: "screen window with 3 values", from: "fov: 35.0", to: "fov: 35.0, screen_window: Some((-1.0, 1.0, -1.0))", field: "camera.screen_window", at: Some((3, 109)) },
+    Case { name: "screen window without Some", from: "fov: 35.0", to: "fov: 35.0, screen_window: (-1.0, 1.0, -1.0, 1.0)", field: "camera.screen_window", at: Some((3, 88)) },
+    Case { name: "unknown projection", from: "fov: 35.0", to: "projection: Fisheye, fov: 35.0", field: "camera.projection", at: Some((3, 74)) },
+    Case { name: "object shading rate 0", from: "material:", to: "shading_rate: Some(0.0), material:", field: "objects[0].shading_rate", at: Some((7, 62)) },
+    Case { name: "object shading rate negative", from: "material:", to: "shading_rate: Some(-0.5), material:", field: "objects[0].shading_rate", at: Some((7, 62)) },
+    Case { name: "object shading rate NaN", from: "material:", to: "shading_rate: Some(NaN), material:", field: "objects[0].shading_rate", at: Some((7, 62)) },
+    Case { name: "light set index out of range", from: "material:", to: "lights: Some([0, 2]), material:", field: "objects[0].lights[1]", at: Some((7, 65)) },
+    Case { name: "light set with a light twice", from: "material:", to: "lights: Some([1, 0, 1]), material:", field: "objects[0].lights[2]", at: Some((7, 68)) },
+    Case { name: "light set without Some", from: "material:", to: "lights: [0], material:", field: "objects[0].lights", at: Some((7, 56)) },
+    Case { name: "spot at its target", from: "Distant(from: (1.0, 1.0, -1.0))", to: "Spot(from: (1.0, 1.0, -1.0), to: (1.0, 1.0, -1.0))", field: "lights[1].to", at: Some((5, 70)) },
+    Case { name: "spot without to", from: "Distant(from: (1.0, 1.0, -1.0))", to: "Spot(from: (1.0, 1.0, -1.0))", field: "lights[1].to", at: Some((5, 64)) },
+    Case { name: "spot NaN to", from: "Distant(from: (1.0, 1.0, -1.0))", to: "Spot(from: (1.0, 1.0, -1.0), to: (0.0, NaN, 0.0))", field: "lights[1].to[1]", at: Some((5, 76)) },
+    Case { name: "spot negative intensity", from: "Distant(from: (1.0, 1.0, -1.0))", to: "Spot(from: (1.0, 1.0, -1.0), to: (0.0, 0.0, 0.0), intensity: -2.0)", field: "lights[1].intensity", at: Some((5, 98)) },
+    Case { name: "spot cone angle 0", from: "Distant(from: (1.0, 1.0, -1.0))", to: "Spot(from: (1.0, 1.0, -1.0), to: (0.0, 0.0, 0.0), cone_angle: 0.0)", field: "lights[1].cone_angle", at: Some((5, 99)) },
+    Case { name: "spot cone angle above 180", from: "Distant(from: (1.0, 1.0, -1.0))", to: "Spot(from: (1.0, 1.0, -1.0), to: (0.0, 0.0, 0.0), cone_angle: 190.0)", field: "lights[1].cone_angle", at: Some((5, 99)) },
+    Case { name: "spot cone delta negative", from: "Distant(from: (1.0, 1.0, -1.0))", to: "Spot(from: (1.0, 1.0, -1.0), to: (0.0, 0.0, 0.0), cone_delta: -1.0)", field: "lights[1].cone_delta", at: Some((5, 99)) },
+    Case { name: "spot cone delta above the cone angle", from: "Distant(from: (1.0, 1.0, -1.0))", to: "Spot(from: (1.0, 1.0, -1.0), to: (0.0, 0.0, 0.0), cone_angle: 10.0, cone_delta: 12.0)", field: "lights[1].cone_delta", at: Some((5, 117)) },
+    Case { name: "spot beam distribution negative", from: "Distant(from: (1.0, 1.0, -1.0))", to: "Spot(from: (1.0, 1.0, -1.0), to: (0.0, 0.0, 0.0), beam_distribution: -1.0)", field: "lights[1].beam_distribution", at: Some((5, 106)) },
+    Case { name: "metal without colour", from: "Matte(color: (0.8, 0.1, 0.1))", to: "Metal(roughness: 0.2)", field: "objects[0].material.color", at: Some((7, 78)) },
+    Case { name: "metal roughness 0", from: "Matte(color: (0.8, 0.1, 0.1))", to: "Metal(color: (0.8, 0.1, 0.1), roughness: 0.0)", field: "objects[0].material.roughness", at: Some((7, 99)) },
+    Case { name: "metal colour above 1", from: "Matte(color: (0.8, 0.1, 0.1))", to: "Metal(color: (0.8, 1.5, 0.1))", field: "objects[0].material.color[1]", at: Some((7, 77)) },
+    Case { name: "metal ks negative", from: "Matte(color: (0.8, 0.1, 0.1))", to: "Metal(color: (0.8, 0.1, 0.1), ks: -0.5)", field: "objects[0].material.ks", at: Some((7, 92)) },
+    Case { name: "metal with kd", from: "Matte(color: (0.8, 0.1, 0.1))", to: "Metal(color: (0.8, 0.1, 0.1), kd: 0.5)", field: "objects[0].material.kd", at: Some((7, 88)) },
 ];
 
 /// The text of `case` and the error it must produce.
@@ -336,6 +363,33 @@ fn the_catalogue_covers_the_required_inputs() {
         "glass above 1",
         "glass negative",
         "glass NaN",
+        "screen window right not above left",
+        "screen window top equal to bottom",
+        "screen window NaN",
+        "screen window inf",
+        "screen window with 3 values",
+        "screen window without Some",
+        "unknown projection",
+        "object shading rate 0",
+        "object shading rate negative",
+        "object shading rate NaN",
+        "light set index out of range",
+        "light set with a light twice",
+        "light set without Some",
+        "spot at its target",
+        "spot without to",
+        "spot NaN to",
+        "spot negative intensity",
+        "spot cone angle 0",
+        "spot cone angle above 180",
+        "spot cone delta negative",
+        "spot cone delta above the cone angle",
+        "spot beam distribution negative",
+        "metal without colour",
+        "metal roughness 0",
+        "metal colour above 1",
+        "metal ks negative",
+        "metal with kd",
     ] {
         assert!(CASES.iter().any(|c| c.name == required), "missing case {required}");
     }
@@ -667,5 +721,44 @@ fn new_geometry_messages() {
     assert_eq!(
         shown("hyperboloid operand"),
         "scenes/bad.ron:10:42: solids[0].tree[1]: object \"hyp\" is not closed (Hyperboloid); CSG operands must be closed solids"
+    );
+}
+
+/// The exact text of the errors of the camera's screen window, an object's shading rate and
+/// light set, the spot light and the metal material.
+#[test]
+fn exact_messages_of_the_renderman_fields() {
+    let shown = |name: &str| {
+        let case =
+            CASES.iter().find(|c| c.name == name).unwrap_or_else(|| panic!("no case {name}"));
+        run(case).to_string()
+    };
+    assert_eq!(
+        shown("screen window right not above left"),
+        "scenes/bad.ron:3:100: camera.screen_window[1]: must be > left (-1), got -2"
+    );
+    assert_eq!(
+        shown("screen window top equal to bottom"),
+        "scenes/bad.ron:3:110: camera.screen_window[3]: must be > bottom (1), got 1"
+    );
+    assert_eq!(
+        shown("object shading rate 0"),
+        "scenes/bad.ron:7:62: objects[0].shading_rate: must be > 0, got 0"
+    );
+    assert_eq!(
+        shown("light set index out of range"),
+        "scenes/bad.ron:7:65: objects[0].lights[1]: index 2 is out of range: the scene has 2 lights"
+    );
+    assert_eq!(
+        shown("light set with a light twice"),
+        "scenes/bad.ron:7:68: objects[0].lights[2]: light 1 is listed twice (also at lights[0])"
+    );
+    assert_eq!(
+        shown("spot cone delta above the cone angle"),
+        "scenes/bad.ron:5:117: lights[1].cone_delta: must be <= cone_angle (10), got 12"
+    );
+    assert_eq!(
+        shown("metal roughness 0"),
+        "scenes/bad.ron:7:99: objects[0].material.roughness: must be > 0, got 0"
     );
 }

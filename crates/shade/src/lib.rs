@@ -10,13 +10,16 @@
 //! # Shading a point
 //!
 //! * **Local illumination** is the dicer's ([`reyes_dice::Shader::illuminate`]): Constant,
-//!   Matte and Plastic, two-sided (the normal is face-forwarded toward the viewer), so a
-//!   scene without shadows, area lights, reflection, refraction or patterns shades exactly
+//!   Matte, Plastic and Metal, two-sided (the normal is face-forwarded toward the viewer), so
+//!   a scene without shadows, area lights, reflection, refraction or patterns shades exactly
 //!   (bit for bit) as the dicer does.
 //! * **Colour** `Cs` is the material colour, or the object's pattern ([`pool_ball`]) in its
 //!   place, times the mesh vertex colour interpolated at the point (the dicer's tint).
-//! * **Lights.** Ambient lights as in the dicer. Distant and point lights as in the dicer,
-//!   times the visibility of one shadow ray when `shadows` is on (hard shadows). Each area
+//! * **Lights.** An object with a light set (`Object::lights`) is lit by those lights only,
+//!   as in the dicer; every area light still takes its dimension (below). Ambient lights as
+//!   in the dicer. Distant, point and spot lights as in the dicer (a spot light's cone and
+//!   fall-off are [`reyes_dice::SpotLight`]'s), times the visibility of one shadow ray when
+//!   `shadows` is on (hard shadows). Each area
 //!   light gives one point per shading call, drawn from the stream's next dimension (see
 //!   `lights.rs` for the shapes), contributing `intensity(t) color |cos at the light| / d^2`
 //!   times the visibility of the shadow ray to it; the time `t` is the shading time, and the
@@ -85,7 +88,7 @@ pub use sample::{concentric_disk, disperse};
 pub use vertex::RayVertexShader;
 
 use glam::Vec3;
-use reyes_dice::{Shader, facing};
+use reyes_dice::{Shader, Viewer, facing};
 use reyes_sampling::Strata;
 use reyes_scene::{Light, Object, Scene, Shape};
 use reyes_trace::{Hit, Ray, Tracer};
@@ -181,7 +184,8 @@ pub struct Shading<'a> {
     scene: &'a Scene,
     tracer: &'a Tracer,
     objects: Vec<ObjectShading>,
-    lights: Vec<DirectLight>,
+    /// The direct lights, each with its index in `Scene::lights` (for light sets).
+    lights: Vec<(usize, DirectLight)>,
     /// Number of area lights (dimensions drawn per shaded point).
     area_lights: u32,
     /// Some object attenuates shadow rays instead of blocking them (opacity below 1 and no
@@ -198,14 +202,18 @@ impl<'a> Shading<'a> {
             .objects
             .iter()
             .map(|o| ObjectShading {
-                shader: Shader::new(&o.material, &scene.lights, Vec3::ZERO),
+                shader: Shader::for_object(o, &scene.lights, Viewer::Eye(Vec3::ZERO)),
                 tints: mesh_tints(o),
             })
             .collect();
         let shutter = ShutterNorm::new(scene);
-        let lights: Vec<DirectLight> =
-            scene.lights.iter().filter_map(|l| DirectLight::new(l, &shutter)).collect();
-        let area_lights = lights.iter().filter(|l| matches!(l, DirectLight::Area(_))).count();
+        let lights: Vec<(usize, DirectLight)> = scene
+            .lights
+            .iter()
+            .enumerate()
+            .filter_map(|(i, l)| Some((i, DirectLight::new(l, &shutter)?)))
+            .collect();
+        let area_lights = lights.iter().filter(|(_, l)| matches!(l, DirectLight::Area(_))).count();
         let attenuating = scene
             .objects
             .iter()
@@ -228,7 +236,9 @@ impl<'a> Shading<'a> {
     pub fn needed(scene: &Scene) -> bool {
         let lights = scene.lights.iter().any(|l| match l {
             Light::Ambient { .. } => false,
-            Light::Distant { shadows, .. } | Light::Point { shadows, .. } => *shadows,
+            Light::Distant { shadows, .. }
+            | Light::Point { shadows, .. }
+            | Light::Spot { shadows, .. } => *shadows,
             Light::Area { .. } => true,
         });
         lights
@@ -389,7 +399,14 @@ impl<'a> Shading<'a> {
         let ci = if shader.unlit() {
             cs
         } else {
-            let lights = self.lights.iter().filter_map(|light| {
+            let lights = self.lights.iter().filter_map(|(index, light)| {
+                if !object.lit_by(*index) {
+                    // Not in the object's light set; an area light still uses its dimension.
+                    if matches!(light, DirectLight::Area(_)) {
+                        light_strata.next_2d();
+                    }
+                    return None;
+                }
                 self.light(light, p, at.n_world, n, at.time, &mut light_strata, counts)
             });
             shader.illuminate(cs, n, v, lights)
@@ -472,6 +489,10 @@ impl<'a> Shading<'a> {
                     return None;
                 }
                 (d / d2.sqrt(), *cl / d2, shadows.then_some(Toward::Point(*from)))
+            }
+            DirectLight::Spot { spot, shadows } => {
+                let (l, cl) = spot.arriving(p)?;
+                (l, cl, shadows.then_some(Toward::Point(spot.from())))
             }
             DirectLight::Area(area) => {
                 let u = light_strata.next_2d();

@@ -1,5 +1,6 @@
-//! The scene's direct lights set up for shading: distant and point lights (with optional
-//! hard shadows) and area lights, whose shape is sampled at one point per shading call.
+//! The scene's direct lights set up for shading: distant, point and spot lights (with
+//! optional hard shadows) and area lights, whose shape is sampled at one point per shading
+//! call.
 //!
 //! Invariants: light directions are unit; an area light's motion keys have normalised,
 //! strictly increasing times (normalised over the camera shutter exactly as the tracer and
@@ -7,6 +8,7 @@
 //! key when the shutter is closed) and are held before the first and after the last.
 
 use glam::Vec3;
+use reyes_dice::SpotLight;
 use reyes_scene::{AreaShape, Light, Scene};
 
 use crate::sample::concentric_disk;
@@ -22,6 +24,8 @@ pub(crate) enum DirectLight {
     Distant { l: Vec3, cl: Vec3, shadows: bool },
     /// Point light: position, `intensity * color` (divided by `d^2` at the surface).
     Point { from: Vec3, cl: Vec3, shadows: bool },
+    /// RenderMan's spotlight (the dicer's, so both shading paths light alike).
+    Spot { spot: SpotLight, shadows: bool },
     /// Area light (always shadows).
     Area(AreaLight),
 }
@@ -96,8 +100,8 @@ impl ShutterNorm {
 }
 
 impl DirectLight {
-    /// The direct light of `light`, or `None` for ambient lights and distant lights without
-    /// a direction (`from == to`: they light nothing, as in the dicer).
+    /// The direct light of `light`, or `None` for ambient lights and distant and spot lights
+    /// without a direction (`from == to`: they light nothing, as in the dicer).
     pub fn new(light: &Light, shutter: &ShutterNorm) -> Option<DirectLight> {
         match light {
             Light::Ambient { .. } => None,
@@ -112,6 +116,27 @@ impl DirectLight {
             Light::Point { from, color, intensity, shadows } => Some(DirectLight::Point {
                 from: Vec3::from(*from),
                 cl: *intensity * Vec3::from(*color),
+                shadows: *shadows,
+            }),
+            Light::Spot {
+                from,
+                to,
+                color,
+                intensity,
+                cone_angle,
+                cone_delta,
+                beam_distribution,
+                shadows,
+            } => Some(DirectLight::Spot {
+                spot: SpotLight::new(
+                    *from,
+                    *to,
+                    *color,
+                    *intensity,
+                    *cone_angle,
+                    *cone_delta,
+                    *beam_distribution,
+                )?,
                 shadows: *shadows,
             }),
             Light::Area { shape, color, intensity, motion } => {

@@ -11,7 +11,8 @@
 //! pixel's samples in the ray-tracing hider.
 //!
 //! The dicer shades once, at shutter open (REYES shades before motion): the point is seen
-//! from the camera eye at shutter open. A vertex of a still object (no `motion`, `roll` or
+//! from the camera eye at shutter open (an orthographic camera sees it along its view
+//! direction: [`Viewer::seen_from`], as the dicer's own shading). A vertex of a still object (no `motion`, `roll` or
 //! `deform`) is where it is at every time, so its secondary rays sample the shutter: each
 //! ray's time is one more stratified dimension of its set, warped by the shutter's shape
 //! like the hider's sample times. The shadow of a moving ball on a still table is then
@@ -25,8 +26,7 @@
 
 use std::sync::atomic::{AtomicU64, Ordering};
 
-use glam::Vec3;
-use reyes_dice::{CameraSetup, VertexContext, VertexShader};
+use reyes_dice::{CameraSetup, VertexContext, VertexShader, Viewer};
 use reyes_sampling::{ShutterShape, Strata, hash};
 use reyes_scene::Scene;
 
@@ -41,8 +41,8 @@ const TILE: u32 = 4;
 /// Shades grid vertices with the distributed rays of [`Shading::shade_surface`].
 pub struct RayVertexShader<'a> {
     shading: &'a Shading<'a>,
-    /// The camera eye at shutter open.
-    eye: Vec3,
+    /// The camera at shutter open, as a viewer.
+    viewer: Viewer,
     seed: u64,
     /// Rays per effect per vertex (>= 1).
     rays: u32,
@@ -65,7 +65,7 @@ impl<'a> RayVertexShader<'a> {
     ) -> RayVertexShader<'a> {
         RayVertexShader {
             shading,
-            eye: CameraSetup::new(scene).eye_world(),
+            viewer: CameraSetup::new(scene).viewer(),
             seed: scene.hider.seed,
             rays: scene.raytrace.vertex_rays.max(1),
             still: scene
@@ -105,7 +105,7 @@ impl VertexShader for RayVertexShader<'_> {
             n_world: v.n_world,
             p_object: v.p_object,
             tint: v.tint,
-            from: self.eye,
+            from: self.viewer.seen_from(v.p_world),
             time: 0.0,
         };
         let (set, first) = self.set_of(v);
@@ -152,6 +152,7 @@ impl RayVertexShader<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::Vec3;
     use reyes_trace::Tracer;
 
     fn context(i: u32, j: u32) -> VertexContext {

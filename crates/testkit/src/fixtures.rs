@@ -6,7 +6,8 @@ use std::path::Path;
 
 pub use reyes_render::frame_for;
 use reyes_scene::{
-    Camera, Hider, Image, Lens, Light, Material, Object, Scene, Shape, Shutter, Transform,
+    Camera, Hider, Image, Lens, Light, Material, Object, Projection, Scene, Shape, Shutter,
+    Transform,
 };
 
 /// Parse and validate RON scene text, panicking with the error (tests only).
@@ -17,13 +18,15 @@ pub fn parse(text: &str) -> Scene {
     }
 }
 
-/// A camera at `eye` looking at `look_at` with +y up.
+/// A perspective camera at `eye` looking at `look_at` with +y up (default screen window).
 pub fn camera(eye: [f32; 3], look_at: [f32; 3], fov: f32, lens: Option<Lens>) -> Camera {
     Camera {
         eye,
         look_at,
         up: [0.0, 1.0, 0.0],
+        projection: Projection::Perspective,
         fov,
+        screen_window: None,
         hither: 0.1,
         yon: 1000.0,
         shutter: Shutter::default(),

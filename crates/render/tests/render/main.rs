@@ -1,8 +1,9 @@
 //! End-to-end tests of rendering, one test binary (ripgrep's habit): analytic coverage and
 //! determinism through the whole pipeline, the golden images, CSG depths, the thin lens, the
-//! pixel filters, both hiders against each other, and the RenderMan geometry (hyperboloids,
-//! patch meshes, NURBS).
+//! pixel filters, both hiders against each other, the RenderMan geometry (hyperboloids, patch
+//! meshes, NURBS), and RenderMan's cameras, lights and materials.
 
+mod camera;
 mod csg;
 mod filters;
 mod geometry;

@@ -22,7 +22,7 @@ fn render_film(scene: &Scene, threads: Option<usize>) -> Film {
 /// An opaque scene lit without shadows (so nothing needs a secondary ray): spheres (one cut
 /// and partly swept), a bilinear patch, a mesh and a torus, with extra camera fields, moving
 /// objects when `moving`, and the hider `method`.
-fn opaque_scene(camera: &str, moving: bool, method: &str) -> Scene {
+pub(crate) fn opaque_scene(camera: &str, moving: bool, method: &str) -> Scene {
     let (sphere_motion, torus_motion) = if moving {
         (
             "motion: [(time: 0.0, transform: [Translate((-1.3, 0.2, 6.0))]),

@@ -200,7 +200,9 @@ impl FrameBuild {
                 _ => None,
             })
             .collect();
-        let Some(ix) = index.iter().copied().collect::<Option<Vec<usize>>>() else { return children };
+        let Some(ix) = index.iter().copied().collect::<Option<Vec<usize>>>() else {
+            return children;
+        };
         let first = &self.objects[ix[0]];
         let same_place = ix.iter().all(|&i| {
             let o = &self.objects[i];
@@ -231,7 +233,10 @@ impl FrameBuild {
             let caps = caps_of(&self.objects[q].shape);
             let all_caps = ix.iter().filter(|&&i| i != q).all(|&i| match self.objects[i].shape {
                 Shape::Disk { height, radius, thetamax } => {
-                    thetamax >= 360.0 && caps.iter().any(|&(h, r)| h == height && (r - radius).abs() <= 1e-6 * r.max(1.0))
+                    thetamax >= 360.0
+                        && caps
+                            .iter()
+                            .any(|&(h, r)| h == height && (r - radius).abs() <= 1e-6 * r.max(1.0))
                 }
                 _ => false,
             });
@@ -251,8 +256,7 @@ impl FrameBuild {
         mut self,
         warnings: &mut Vec<Warning>,
     ) -> Result<(Scene, Vec<Display>), RibError> {
-        let o = &self.options;
-        let (open, close) = o.shutter;
+        let (open, close) = self.options.shutter;
         let camera = self.camera(warnings)?;
         // Objects: motion fitted to the shutter.
         for (object, (to_world, deform)) in self.objects.iter_mut().zip(&self.object_motion) {
@@ -284,7 +288,8 @@ impl FrameBuild {
             retain_kept(&mut self.object_attributes, &dropped);
             retain_kept(&mut self.object_names, &dropped);
         }
-        let shading_rate = self.shared_attributes(warnings);
+        let shading_rate = self.shared_attributes();
+        let o = &self.options;
         let hider = Hider {
             shading_rate,
             pixel_samples: o.pixel_samples,
@@ -314,19 +319,30 @@ impl FrameBuild {
     /// sits at the origin looking down +z; a moving camera gets keys relative to that pose.
     fn camera(&self, warnings: &mut Vec<Warning>) -> Result<Camera, RibError> {
         let o = &self.options;
-        let fov = match o.projection {
-            Projection::Perspective { fov } => fov,
-            Projection::Orthographic => {
+        let (projection, fov) = match o.projection {
+            Projection::Perspective { fov } => (reyes_scene::Projection::Perspective, fov),
+            Projection::Orthographic => (reyes_scene::Projection::Orthographic, 90.0),
+        };
+        // The screen window: as given, else the default for the frame aspect ratio (which
+        // defaults to the image's).
+        let screen_window = match (o.screen_window, o.frame_aspect) {
+            (Some(w), _) => Some(w),
+            (None, Some(a)) if a > 0.0 && a.is_finite() => {
+                Some(if a >= 1.0 { [-a, a, -1.0, 1.0] } else { [-1.0, 1.0, -1.0 / a, 1.0 / a] })
+            }
+            (None, Some(a)) => {
                 return Err(self.option_error(
-                    "camera.projection",
-                    "the orthographic projection is not supported yet: use Projection \"perspective\"",
+                    "camera.screen_window",
+                    &format!("the frame aspect ratio must be > 0, got {a}"),
                 ));
             }
+            (None, None) => None,
         };
-        if o.screen_window.is_some() || o.frame_aspect.is_some() {
+        if o.depth_of_field.is_some() && projection == reyes_scene::Projection::Orthographic {
             warnings.push(Warning {
                 at: self.at.clone(),
-                message: "ScreenWindow and FrameAspectRatio are not supported yet: the default screen window is used".into(),
+                message: "WorldBegin: depth of field is ignored by the orthographic projection"
+                    .into(),
             });
         }
         let (open, close) = o.shutter;
@@ -339,6 +355,8 @@ impl FrameBuild {
             eye: [0.0; 3],
             look_at: [0.0, 0.0, 1.0],
             up: [0.0, 1.0, 0.0],
+            projection,
+            screen_window,
             fov,
             hither: o.hither,
             yon: o.yon,
@@ -365,35 +383,21 @@ impl FrameBuild {
         Ok(camera)
     }
 
-    /// The shading rate of the scene: the objects' own when they share one. Objects with
-    /// another rate, or lit by a subset of the lights, are named in a warning (the model
-    /// has one rate and one light set per scene).
-    fn shared_attributes(&self, warnings: &mut Vec<Warning>) -> f32 {
+    /// The scene's shading rate (the first object's) and, per object, its own rate where it
+    /// differs and its light set where it is not every light (RenderMan's ShadingRate and
+    /// light sources are attributes; the model keeps them per object).
+    fn shared_attributes(&mut self) -> f32 {
         let first = self.object_attributes.first().map_or(1.0, |a| a.shading_rate);
-        if let Some(i) = self.object_attributes.iter().position(|a| a.shading_rate != first) {
-            warnings.push(Warning {
-                at: self.object_origins[i].at.clone(),
-                message: format!(
-                    "{}: ShadingRate {} differs from the first object's {first}: one rate per scene is used",
-                    self.object_origins[i].request, self.object_attributes[i].shading_rate
-                ),
-            });
-        }
         let all: Vec<usize> = (0..self.lights.len()).collect();
-        if let Some(i) = self.object_attributes.iter().position(|a| {
-            let mut l = a.lights.clone();
-            l.sort_unstable();
-            l != all
-        }) {
-            warnings.push(Warning {
-                at: self.object_origins[i].at.clone(),
-                message: format!(
-                    "{}: lit by {} of the {} lights, but per-object light sets are not supported yet: every light shines on it",
-                    self.object_origins[i].request,
-                    self.object_attributes[i].lights.len(),
-                    self.lights.len()
-                ),
-            });
+        for (o, a) in self.objects.iter_mut().zip(&self.object_attributes) {
+            if a.shading_rate != first {
+                o.shading_rate = Some(a.shading_rate);
+            }
+            let mut lights = a.lights.clone();
+            lights.sort_unstable();
+            if lights != all {
+                o.lights = Some(lights.iter().map(|&l| l as u32).collect());
+            }
         }
         first
     }
@@ -497,11 +501,16 @@ fn fit_points(keys: &[(f32, Vec<[f32; 3]>)], open: f32, close: f32) -> PointKeys
 }
 
 /// Replaces the control points of a shape that has them.
-fn set_points(shape: &mut reyes_scene::Shape, new: Vec<[f32; 3]>) {
+fn set_points(shape: &mut Shape, new: Vec<[f32; 3]>) {
     match shape {
-        reyes_scene::Shape::Mesh { points, .. } => *points = new,
-        reyes_scene::Shape::BilinearPatch { points } if new.len() == 4 => {
+        Shape::Mesh { points, .. } | Shape::PatchMesh { points, .. } => *points = new,
+        Shape::BilinearPatch { points } if new.len() == 4 => {
             *points = [new[0], new[1], new[2], new[3]];
+        }
+        Shape::NuPatch { points, .. } => {
+            for (p, q) in points.iter_mut().zip(new) {
+                *p = [q[0] * p[3], q[1] * p[3], q[2] * p[3], p[3]];
+            }
         }
         _ => {}
     }
@@ -533,7 +542,9 @@ fn weld<'a>(objects: impl Iterator<Item = &'a Object>) -> (Shape, Material) {
     let color_of = |m: &Material| match *m {
         Material::Constant { color, .. }
         | Material::Matte { color, .. }
-        | Material::Plastic { color, .. } => color,
+        | Material::Plastic { color, .. }
+        | Material::Metal { color, .. }
+        | Material::DefaultSurface { color, .. } => color,
     };
     let base = objects[0].material.clone();
     let one_color = objects.iter().all(|o| color_of(&o.material) == color_of(&base));
@@ -560,7 +571,9 @@ fn weld<'a>(objects: impl Iterator<Item = &'a Object>) -> (Shape, Material) {
                 })
             })
             .collect();
-        faces.extend(f.iter().map(|face| face.iter().map(|&k| remap[k as usize]).collect::<Vec<u32>>()));
+        faces.extend(
+            f.iter().map(|face| face.iter().map(|&k| remap[k as usize]).collect::<Vec<u32>>()),
+        );
     }
     let material = if one_color { base } else { with_color(base, [1.0; 3]) };
     (Shape::Mesh { points, faces, colors: any_colors.then_some(colors) }, material)
@@ -573,6 +586,12 @@ fn with_color(m: Material, color: [f32; 3]) -> Material {
         Material::Matte { opacity, ka, kd, .. } => Material::Matte { color, opacity, ka, kd },
         Material::Plastic { opacity, ka, kd, ks, roughness, specular_color, .. } => {
             Material::Plastic { color, opacity, ka, kd, ks, roughness, specular_color }
+        }
+        Material::Metal { opacity, ka, ks, roughness, .. } => {
+            Material::Metal { color, opacity, ka, ks, roughness }
+        }
+        Material::DefaultSurface { opacity, ka, kd, .. } => {
+            Material::DefaultSurface { color, opacity, ka, kd }
         }
     }
 }

@@ -8,7 +8,7 @@
 use std::collections::HashMap;
 
 use glam::DMat4;
-use reyes_scene::Light;
+use reyes_scene::{Basis, Light};
 
 use super::build::FrameBuild;
 use super::state::{Attributes, FrameOptions, SurfaceShader};
@@ -719,27 +719,26 @@ impl Machine {
     }
 
     fn basis(&mut self, r: &Request) -> Result<(), RibError> {
-        use super::geometry::BasisSpec;
-        let spec = |i: usize| match r.args.get(i) {
-            Some(Value::String(s)) => Some(BasisSpec::Named(s.clone())),
-            Some(Value::Floats(v)) if v.len() == 16 => Some(BasisSpec::Matrix(v.clone())),
-            _ => None,
-        };
-        let (Some(u), Some(v)) = (spec(0), spec(2)) else {
-            return Err(r.error("each basis must be a name or 16 numbers"));
-        };
-        for b in [&u, &v] {
-            if let BasisSpec::Named(n) = b
-                && !matches!(
-                    n.as_str(),
-                    "bezier" | "b-spline" | "catmull-rom" | "hermite" | "power"
-                )
-            {
-                return Err(r.error(format!(
-                    "unknown basis \"{n}\" (bezier, b-spline, catmull-rom, hermite, power, or 16 numbers)"
-                )));
+        let basis = |i: usize| -> Result<Basis, RibError> {
+            match r.args.get(i) {
+                Some(Value::String(s)) => match s.as_str() {
+                    "bezier" => Ok(Basis::Bezier),
+                    "b-spline" => Ok(Basis::BSpline),
+                    "catmull-rom" => Ok(Basis::CatmullRom),
+                    "hermite" => Ok(Basis::Hermite),
+                    "power" => Ok(Basis::Power),
+                    other => Err(r.error(format!(
+                        "unknown basis \"{other}\" (bezier, b-spline, catmull-rom, hermite, power, or 16 numbers)"
+                    ))),
+                },
+                // RtBasis as written: M[row][col], row by row.
+                Some(Value::Floats(v)) if v.len() == 16 => {
+                    Ok(Basis::Matrix(std::array::from_fn(|row| std::array::from_fn(|col| v[4 * row + col]))))
+                }
+                _ => Err(r.error("each basis must be a name or 16 numbers")),
             }
-        }
+        };
+        let (u, v) = (basis(0)?, basis(2)?);
         let step = |i: usize| -> Result<u32, RibError> {
             let s = r.int(i).unwrap_or(3);
             u32::try_from(s)

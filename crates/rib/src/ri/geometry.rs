@@ -12,15 +12,6 @@ use reyes_scene::{Rgb, Shape, V3};
 
 use crate::{Class, Param, Request, RibError, Warning};
 
-/// A `Basis` as written: a standard name or an explicit matrix.
-#[derive(Debug, Clone, PartialEq)]
-pub(crate) enum BasisSpec {
-    /// `"bezier"`, `"b-spline"`, `"catmull-rom"`, `"hermite"`, `"power"`.
-    Named(String),
-    /// 16 numbers.
-    Matrix(Vec<f32>),
-}
-
 /// Where a primitive variable's values go: one per primitive, per face, per vertex, or per
 /// face-vertex.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -7,7 +7,7 @@
 //! takes its parameters at shutter open (a warning says so); nothing is emitted for a frame
 //! that is not wanted, but every request is still checked.
 
-use reyes_scene::{Object, Shape};
+use reyes_scene::{Object, PatchType, Shape, Wrap};
 
 use super::build::{ObjectAttributes, Origin};
 use super::frame::Machine;
@@ -188,26 +188,75 @@ impl Machine {
                 self.mesh(r, &nl, &nv, r.ints(2))?
             }
             K::Patch => {
-                let kind = r.string(0).unwrap_or_default();
-                match kind {
-                    "bilinear" => {
-                        let p = geometry::positions(r, 4)?;
-                        geometry::unused_primvars(r, &["P", "Pw"], &mut self.warnings);
-                        Shape::BilinearPatch { points: [p[0], p[1], p[2], p[3]] }
-                    }
-                    "bicubic" => {
-                        return self.unsupported(r, "bicubic patches are not supported yet");
-                    }
-                    other => {
-                        return Err(r.error(format!(
-                            "type must be \"bilinear\" or \"bicubic\", got \"{other}\""
-                        )));
-                    }
+                let kind = patch_type(r, 0)?;
+                let n = if kind == PatchType::Bilinear { 2 } else { 4 };
+                let points = self.patch_points(r, n * n)?;
+                if kind == PatchType::Bilinear {
+                    Shape::BilinearPatch { points: [points[0], points[1], points[2], points[3]] }
+                } else {
+                    let n = n as u32;
+                    self.patch_mesh(kind, n, Wrap::Nonperiodic, n, Wrap::Nonperiodic, points)
                 }
             }
-            K::PatchMesh => return self.unsupported(r, "patch meshes are not supported yet"),
-            K::NuPatch => return self.unsupported(r, "NURBS patches are not supported yet"),
-            K::Hyperboloid => return self.unsupported(r, "hyperboloids are not supported yet"),
+            K::PatchMesh => {
+                let kind = patch_type(r, 0)?;
+                let count = |i: usize| -> Result<u32, RibError> {
+                    let n = r.int(i).unwrap_or(0);
+                    u32::try_from(n).ok().filter(|&n| n >= 1).ok_or_else(|| {
+                        r.error(format!(
+                            "{} must be at least 1, got {n}",
+                            if i == 1 { "nu" } else { "nv" }
+                        ))
+                    })
+                };
+                let (nu, nv) = (count(1)?, count(3)?);
+                let (uwrap, vwrap) = (wrap(r, 2)?, wrap(r, 4)?);
+                let points = self.patch_points(r, nu as usize * nv as usize)?;
+                self.patch_mesh(kind, nu, uwrap, nv, vwrap, points)
+            }
+            K::NuPatch => {
+                let int = |i: usize| r.int(i).unwrap_or(0).max(0) as u32;
+                let (nu, uorder, nv, vorder) = (int(0), int(1), int(5), int(6));
+                let n = nu as usize * nv as usize;
+                let points: Vec<[f32; 4]> = match (r.param("Pw"), r.param("P")) {
+                    (Some(p), _) => {
+                        let v = p.floats().filter(|v| v.len() == 4 * n).ok_or_else(|| {
+                            r.param_error(p, format!("needs nu x nv = {n} points of 4 numbers"))
+                        })?;
+                        v.chunks_exact(4).map(|c| [c[0], c[1], c[2], c[3]]).collect()
+                    }
+                    (None, Some(_)) => geometry::positions(r, n)?
+                        .into_iter()
+                        .map(|p| [p[0], p[1], p[2], 1.0])
+                        .collect(),
+                    (None, None) => return Err(r.error("needs \"P\" or \"Pw\" positions")),
+                };
+                geometry::unused_primvars(r, &["P", "Pw"], &mut self.warnings);
+                Shape::NuPatch {
+                    nu,
+                    uorder,
+                    uknot: r.floats(2).unwrap_or(&[]).to_vec(),
+                    umin: r.float(3).unwrap_or(0.0),
+                    umax: r.float(4).unwrap_or(1.0),
+                    nv,
+                    vorder,
+                    vknot: r.floats(7).unwrap_or(&[]).to_vec(),
+                    vmin: r.float(8).unwrap_or(0.0),
+                    vmax: r.float(9).unwrap_or(1.0),
+                    points,
+                }
+            }
+            K::Hyperboloid => {
+                let p = |i: usize| {
+                    let v = r.floats(i).unwrap_or(&[0.0; 3]);
+                    [v[0], v[1], v[2]]
+                };
+                Shape::Hyperboloid {
+                    point1: p(0),
+                    point2: p(1),
+                    thetamax: r.float(2).unwrap_or(360.0),
+                }
+            }
             K::SubdivisionMesh => {
                 return self.unsupported(
                     r,
@@ -217,6 +266,50 @@ impl Machine {
             _ => return self.unsupported(r, "this primitive is not supported"),
         };
         Ok(Some(shape))
+    }
+
+    /// The control points of a patch request: `P`, or `Pw` of weight 1 (rational patch
+    /// meshes are not in the model).
+    fn patch_points(&mut self, r: &Request, n: usize) -> Result<Vec<[f32; 3]>, RibError> {
+        if let Some(p) = r.param("Pw")
+            && p.floats().is_some_and(|v| v.chunks_exact(4).any(|c| c[3] != 1.0))
+        {
+            return Err(r.param_error(
+                p,
+                "rational patches are not supported (weights other than 1); use NuPatch",
+            ));
+        }
+        if let Some(p) = r.param("Pz") {
+            return Err(r.param_error(p, "height-field patches are not supported; give \"P\""));
+        }
+        let points = geometry::positions(r, n)?;
+        geometry::unused_primvars(r, &["P", "Pw"], &mut self.warnings);
+        Ok(points)
+    }
+
+    /// A patch mesh under the current `Basis`.
+    fn patch_mesh(
+        &self,
+        kind: PatchType,
+        nu: u32,
+        uwrap: Wrap,
+        nv: u32,
+        vwrap: Wrap,
+        points: Vec<[f32; 3]>,
+    ) -> Shape {
+        let (ubasis, ustep, vbasis, vstep) = self.attributes.basis;
+        Shape::PatchMesh {
+            kind,
+            nu,
+            nv,
+            uwrap,
+            vwrap,
+            points,
+            ubasis,
+            ustep: Some(ustep),
+            vbasis,
+            vstep: Some(vstep),
+        }
     }
 
     fn unsupported(&mut self, r: &Request, why: &str) -> Result<Option<Shape>, RibError> {
@@ -255,20 +348,64 @@ fn polygon_vertices(r: &Request) -> Result<usize, RibError> {
     Ok(n / per)
 }
 
-/// The control points of a shape that deforms through them.
+/// `Patch` and `PatchMesh`'s type argument.
+fn patch_type(r: &Request, i: usize) -> Result<PatchType, RibError> {
+    match r.string(i).unwrap_or_default() {
+        "bilinear" => Ok(PatchType::Bilinear),
+        "bicubic" => Ok(PatchType::Bicubic),
+        other => Err(r.error(format!("type must be \"bilinear\" or \"bicubic\", got \"{other}\""))),
+    }
+}
+
+/// `PatchMesh`'s wrap arguments.
+fn wrap(r: &Request, i: usize) -> Result<Wrap, RibError> {
+    match r.string(i).unwrap_or_default() {
+        "nonperiodic" => Ok(Wrap::Nonperiodic),
+        "periodic" => Ok(Wrap::Periodic),
+        other => Err(r.error(format!(
+            "{} must be \"periodic\" or \"nonperiodic\", got \"{other}\"",
+            if i == 2 { "uwrap" } else { "vwrap" }
+        ))),
+    }
+}
+
+/// The control points of a shape that deforms through them (NURBS: the points, weights
+/// divided out; the shape keeps its weights).
 fn control_points(shape: &Option<Shape>) -> Option<Vec<[f32; 3]>> {
     match shape.as_ref()? {
-        Shape::Mesh { points, .. } => Some(points.clone()),
+        Shape::Mesh { points, .. } | Shape::PatchMesh { points, .. } => Some(points.clone()),
         Shape::BilinearPatch { points } => Some(points.to_vec()),
+        Shape::NuPatch { points, .. } => {
+            Some(points.iter().map(|p| [p[0] / p[3], p[1] / p[3], p[2] / p[3]]).collect())
+        }
         _ => None,
     }
 }
 
-/// Two shapes of one kind with the same connectivity.
+/// Two shapes of one kind with the same connectivity (everything but their points equal).
 fn same_topology(a: &Option<Shape>, b: &Option<Shape>) -> bool {
+    let strip = |s: &Shape| -> Shape {
+        let mut s = s.clone();
+        match &mut s {
+            Shape::Mesh { points, colors, .. } => {
+                points.clear();
+                *colors = None;
+            }
+            Shape::PatchMesh { points, .. } => points.clear(),
+            Shape::BilinearPatch { points } => *points = [[0.0; 3]; 4],
+            Shape::NuPatch { points, .. } => {
+                for p in points.iter_mut() {
+                    p[0] = 0.0;
+                    p[1] = 0.0;
+                    p[2] = 0.0;
+                }
+            }
+            _ => {}
+        }
+        s
+    };
     match (a, b) {
-        (Some(Shape::Mesh { faces: fa, .. }), Some(Shape::Mesh { faces: fb, .. })) => fa == fb,
-        (Some(Shape::BilinearPatch { .. }), Some(Shape::BilinearPatch { .. })) => true,
+        (Some(a), Some(b)) => strip(a) == strip(b),
         _ => false,
     }
 }

@@ -96,9 +96,28 @@ pub(crate) fn material(
     };
     match surface.name.as_deref() {
         None | Some("defaultsurface") => {
-            // No shader: the renderer's own default, which in Aqsis and Pixie is a matte
-            // surface lit by the scene's lights (docs/rib.md).
-            SurfaceResult::Material(Material::Matte { color: cs, opacity: os, ka: 1.0, kd: 1.0 })
+            // No shader: RenderMan's defaultsurface, a headlight at the eye.
+            check("defaultsurface", &[("Ka", 1), ("Kd", 1)]);
+            SurfaceResult::Material(Material::DefaultSurface {
+                color: cs,
+                opacity: os,
+                ka: f("Ka", 0.2),
+                kd: f("Kd", 0.8),
+            })
+        }
+        Some(name @ ("metal" | "shinymetal")) => {
+            let mut known = vec![("Ka", 1), ("Ks", 1), ("roughness", 1)];
+            if name == "shinymetal" {
+                known.extend([("Kr", 1), ("texturename", 1)]);
+            }
+            check(name, &known);
+            SurfaceResult::Material(Material::Metal {
+                color: cs,
+                opacity: os,
+                ka: f("Ka", 1.0),
+                ks: f("Ks", 1.0),
+                roughness: f("roughness", 0.1),
+            })
         }
         Some("constant") => {
             check("constant", &[]);
@@ -177,6 +196,38 @@ pub(crate) fn light(
             unused(name, params, &[("intensity", 1), ("lightcolor", 3), ("from", 3)], at, warnings);
             let from = point(&m, point_param(params, "from").unwrap_or([0.0; 3]));
             LightResult::Light(Light::Point { from, color: lightcolor, intensity, shadows: false })
+        }
+        "spotlight" => {
+            unused(
+                name,
+                params,
+                &[
+                    ("intensity", 1),
+                    ("lightcolor", 3),
+                    ("from", 3),
+                    ("to", 3),
+                    ("coneangle", 1),
+                    ("conedeltaangle", 1),
+                    ("beamdistribution", 1),
+                ],
+                at,
+                warnings,
+            );
+            let from = point(&m, point_param(params, "from").unwrap_or([0.0; 3]));
+            let to = point(&m, point_param(params, "to").unwrap_or([0.0, 0.0, 1.0]));
+            // The Specification's angles are radians (defaults 30 and 5 degrees).
+            let degrees =
+                |name: &str, default: f32| float(params, name).map_or(default, |r| r.to_degrees());
+            LightResult::Light(Light::Spot {
+                from,
+                to,
+                color: lightcolor,
+                intensity,
+                cone_angle: degrees("coneangle", 30.0),
+                cone_delta: degrees("conedeltaangle", 5.0),
+                beam_distribution: float(params, "beamdistribution").unwrap_or(2.0),
+                shadows: false,
+            })
         }
         other => LightResult::Unknown(other.to_string()),
     }

@@ -6,7 +6,7 @@
 //! `AttributeBegin`/`AttributeEnd` (and the implicit blocks of `FrameBegin`, `WorldBegin`,
 //! `SolidBegin` and `ObjectInstance`).
 
-use reyes_scene::{Filter, FilterKind, HiderMethod};
+use reyes_scene::{Basis, Filter, FilterKind, HiderMethod};
 
 use crate::Location;
 use crate::ri::xform::Xform;
@@ -128,12 +128,11 @@ pub(crate) struct Attributes {
     /// Lights on for the primitives of this block: indices into the frame's lights.
     pub lights_on: Vec<usize>,
     /// `Basis` for bicubic patches: `(u basis, u step, v basis, v step)`.
-    pub basis: (crate::ri::geometry::BasisSpec, u32, crate::ri::geometry::BasisSpec, u32),
+    pub basis: (Basis, u32, Basis, u32),
 }
 
 impl Default for Attributes {
     fn default() -> Self {
-        use crate::ri::geometry::BasisSpec;
         Attributes {
             color: [1.0; 3],
             opacity: [1.0; 3],
@@ -144,7 +143,7 @@ impl Default for Attributes {
             matte: false,
             name: None,
             lights_on: Vec::new(),
-            basis: (BasisSpec::Named("bezier".into()), 3, BasisSpec::Named("bezier".into()), 3),
+            basis: (Basis::Bezier, 3, Basis::Bezier, 3),
         }
     }
 }

@@ -186,10 +186,11 @@ fn colours_of_every_class() {
         }
         other => panic!("{other:?}"),
     }
-    match &s.objects[2].material {
-        Material::Matte { color, .. } => assert_eq!(*color, [0.2, 0.3, 0.4]),
-        other => panic!("{other:?}"),
-    }
+    // No Surface: RenderMan's defaultsurface, on the constant colour.
+    assert_eq!(
+        s.objects[2].material,
+        Material::DefaultSurface { color: [0.2, 0.3, 0.4], opacity: [1.0; 3], ka: 0.2, kd: 0.8 }
+    );
 }
 
 #[test]

@@ -1,8 +1,9 @@
-//! The view: output resolution ([`Image`]), the [`Camera`] with its motion keys, the
-//! [`Shutter`] and the thin [`Lens`].
+//! The view: output resolution ([`Image`]), the [`Camera`] with its [`Projection`], screen
+//! window and motion keys, the [`Shutter`] and the thin [`Lens`].
 //!
 //! Invariant: field defaults here are the serde defaults of the RON file (`up` is +y,
-//! `fov` 45 degrees, `hither` 0.1, `yon` 1000, shutter `[0, 1]` uniform, pinhole).
+//! `fov` 45 degrees, `hither` 0.1, `yon` 1000, shutter `[0, 1]` uniform, pinhole,
+//! perspective, RenderMan's default screen window).
 
 use serde::{Deserialize, Serialize};
 
@@ -18,7 +19,7 @@ pub struct Image {
     pub height: u32,
 }
 
-/// A perspective camera. Camera space has +x right, +y up, +z forward (eye depth).
+/// The camera. Camera space has +x right, +y up, +z forward (eye depth).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Camera {
@@ -29,9 +30,20 @@ pub struct Camera {
     /// Up direction (need not be perpendicular to the view direction).
     #[serde(default = "default_up")]
     pub up: V3,
-    /// Field of view in degrees across the shorter image side, in (0, 180).
+    /// How camera space maps to screen space (RenderMan's `Projection`).
+    #[serde(default)]
+    pub projection: Projection,
+    /// Field of view in degrees, in (0, 180): with the default screen window it spans the
+    /// shorter image side. A perspective camera maps `tan(fov / 2)` in `x/z` (and `y/z`) to 1
+    /// in screen space; an orthographic camera ignores it.
     #[serde(default = "default_fov")]
     pub fov: f32,
+    /// RenderMan's `ScreenWindow`: `[left, right, bottom, top]`, the part of screen space that
+    /// fills the image (left edge to right edge, bottom edge to top edge), with
+    /// `left < right` and `bottom < top`. `None`: RenderMan's default, `[-a, a, -1, 1]` for a
+    /// frame aspect `a = width / height >= 1`, else `[-1, 1, -1/a, 1/a]`.
+    #[serde(default)]
+    pub screen_window: Option<[f32; 4]>,
     /// Near clipping depth (eye-space z), > 0.
     #[serde(default = "default_hither")]
     pub hither: f32,
@@ -50,6 +62,19 @@ pub struct Camera {
     /// interpolated linearly, and before the first or after the last key it is held.
     #[serde(default)]
     pub motion: Vec<CameraKey>,
+}
+
+/// How camera space maps to screen space (RenderMan's `Projection`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub enum Projection {
+    /// Screen position `(x/z, y/z) / tan(fov/2)` of a camera-space point (RenderMan's
+    /// `"perspective"` with its `fov`).
+    #[default]
+    Perspective,
+    /// Screen position `(x, y)`: camera-space units, parallel to the view direction, whatever
+    /// the depth (RenderMan's `"orthographic"`). Depth of field does not apply: a `lens` is
+    /// ignored, as RenderMan ignores `DepthOfField` under an orthographic projection.
+    Orthographic,
 }
 
 /// The camera at one time.

@@ -50,6 +50,37 @@ pub enum Light {
         #[serde(default)]
         shadows: bool,
     },
+    /// RenderMan's standard `spotlight`: a point light at `from` shining toward `to` in a
+    /// cone. At a point where the unit vector from the light is `L/|L|` and
+    /// `cosangle = L.A / |L|` (`A` the unit axis from `from` to `to`), the light arriving is
+    /// `intensity * color * cosangle^beam_distribution / (L.L) *
+    /// smoothstep(cos(cone_angle), cos(cone_angle - cone_delta), cosangle)`, and nothing
+    /// outside the cone (`cosangle < cos(cone_angle)`). Angles are in degrees here (the
+    /// shader's parameters are radians).
+    Spot {
+        /// Position in world space.
+        from: V3,
+        /// A point on the axis of the cone (!= `from`).
+        to: V3,
+        /// Colour.
+        #[serde(default = "white")]
+        color: Rgb,
+        /// Scale on colour.
+        #[serde(default = "one")]
+        intensity: f32,
+        /// Half-angle of the cone in degrees, in (0, 180].
+        #[serde(default = "default_cone_angle")]
+        cone_angle: f32,
+        /// Width in degrees of the penumbra inside the cone's edge, in [0, cone_angle].
+        #[serde(default = "default_cone_delta")]
+        cone_delta: f32,
+        /// Exponent of the fall-off of `cosangle` across the beam (>= 0).
+        #[serde(default = "default_beam_distribution")]
+        beam_distribution: f32,
+        /// Cast hard shadows (traced shadow rays).
+        #[serde(default)]
+        shadows: bool,
+    },
     /// A light with extent: a point light of `intensity` spread evenly over `shape`. Each
     /// shading sample sends a shadow ray to a pseudo-randomly chosen, stratified point of
     /// the shape, so a partly hidden light gives a penumbra (FIG. 22). Always shadows.
@@ -115,4 +146,14 @@ pub struct LightKey {
     /// Intensity at that time (>= 0).
     #[serde(default = "one")]
     pub intensity: f32,
+}
+
+fn default_cone_angle() -> f32 {
+    30.0
+}
+fn default_cone_delta() -> f32 {
+    5.0
+}
+fn default_beam_distribution() -> f32 {
+    2.0
 }

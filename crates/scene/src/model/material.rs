@@ -56,6 +56,49 @@ pub enum Material {
         #[serde(default = "white")]
         specular_color: Rgb,
     },
+    /// RenderMan's `metal`: `Ci = Os * Cs * (ka * ambient + ks * specular)`, with the
+    /// specular term of `Plastic` (`N.H` raised to `8 / roughness`) coloured by the surface.
+    Metal {
+        /// Colour.
+        color: Rgb,
+        /// Opacity per channel.
+        #[serde(default = "white")]
+        opacity: Rgb,
+        /// Ambient coefficient.
+        #[serde(default = "one")]
+        ka: f32,
+        /// Specular coefficient.
+        #[serde(default = "one")]
+        ks: f32,
+        /// Specular roughness (> 0): the exponent is `8 / roughness`, RenderMan's `specular()`.
+        #[serde(default = "tenth")]
+        roughness: f32,
+    },
+    /// RenderMan's `defaultsurface`, what a renderer shades with when no surface shader is
+    /// given: lit by a headlight at the eye, not by the scene's lights,
+    /// `Ci = Os * Cs * (ka + kd * (N.I)^2)` with `N.I` the cosine between the unit normal and
+    /// the unit viewing direction.
+    DefaultSurface {
+        /// Colour.
+        color: Rgb,
+        /// Opacity per channel.
+        #[serde(default = "white")]
+        opacity: Rgb,
+        /// Constant term (default 0.2).
+        #[serde(default = "fifth")]
+        ka: f32,
+        /// Headlight term (default 0.8).
+        #[serde(default = "four_fifths")]
+        kd: f32,
+    },
+}
+
+fn fifth() -> f32 {
+    0.2
+}
+
+fn four_fifths() -> f32 {
+    0.8
 }
 
 fn half() -> f32 {

@@ -58,12 +58,22 @@ pub struct Object {
     /// expanded at load time into `motion` keys. Excludes `motion`.
     #[serde(default)]
     pub roll: Option<Roll>,
+    /// RenderMan's `ShadingRate` as an attribute of this object: target micropolygon area in
+    /// pixels (> 0) for its split and dice decisions. `None`: the scene's `hider.shading_rate`.
+    #[serde(default)]
+    pub shading_rate: Option<f32>,
+    /// The lights that illuminate this object (RenderMan's `Illuminate` and attribute-scoped
+    /// lights): indices into `Scene::lights`, each at most once, ambient lights included.
+    /// `None`: every light of the scene.
+    #[serde(default)]
+    pub lights: Option<Vec<u32>>,
 }
 
 impl Object {
     /// An object of `shape` and `material` with every other field at the value parsing
     /// gives when it is absent: no name, no transform, not a matte, no motion or deformation,
-    /// `Flat` interpolation, no glass, reflection, refraction, pattern or roll.
+    /// `Flat` interpolation, no glass, reflection, refraction, pattern or roll, the scene's
+    /// shading rate and every light.
     ///
     /// ```
     /// use reyes_scene::{Material, Object, Shape, Transform};
@@ -92,7 +102,20 @@ impl Object {
             refract: None,
             pattern: None,
             roll: None,
+            shading_rate: None,
+            lights: None,
         }
+    }
+
+    /// Whether `light` (an index into `Scene::lights`) illuminates this object: always
+    /// without a light set, else when the set lists it.
+    pub fn lit_by(&self, light: usize) -> bool {
+        self.lights.as_ref().is_none_or(|set| set.iter().any(|&i| i as usize == light))
+    }
+
+    /// The object's shading rate: its own, or `scene_rate` (the scene's `hider.shading_rate`).
+    pub fn shading_rate_or(&self, scene_rate: f32) -> f32 {
+        self.shading_rate.unwrap_or(scene_rate)
     }
 
     /// The same object named `name` (the name CSG leaves and messages use).

@@ -1,4 +1,5 @@
-//! The rules of the view: `image` size, then `camera` in field order, its motion keys last.
+//! The rules of the view: `image` size, then `camera` in field order (the screen window
+//! after `fov`), its motion keys last.
 //!
 //! Invariant: every `f32` is checked finite before it is compared; the orientation test is
 //! done in `f64`.
@@ -21,6 +22,9 @@ pub(super) fn camera(cam: &Camera) -> Check {
     finite_all("camera.look_at", &cam.look_at)?;
     finite_all("camera.up", &cam.up)?;
     within("camera.fov", cam.fov, Interval::open(0.0, 180.0), " degrees")?;
+    if let Some(window) = &cam.screen_window {
+        screen_window("camera.screen_window", window)?;
+    }
     positive("camera.hither", cam.hither)?;
     finite("camera.yon", cam.yon)?;
     above("camera.yon", cam.yon, "hither", cam.hither)?;
@@ -54,6 +58,14 @@ pub(super) fn camera(cam: &Camera) -> Check {
             orientation(&at, &key.eye, &key.look_at, &key.up)
         },
     )
+}
+
+/// A screen window `[left, right, bottom, top]`: finite, `left < right`, `bottom < top`.
+fn screen_window(at: &str, w: &[f32; 4]) -> Check {
+    finite_all(at, w)?;
+    let [left, right, bottom, top] = *w;
+    above(&format!("{at}[1]"), right, "left", left)?;
+    above(&format!("{at}[3]"), top, "bottom", bottom)
 }
 
 /// The camera rules on `eye`, `look_at` and `up` (all finite), reported under `at`.

@@ -1,18 +1,20 @@
-//! The rules of one light: its position or shape, then colour and intensity, then an area
-//! light's motion keys.
+//! The rules of one light: its position or shape, then colour and intensity, then a spot
+//! light's cone or an area light's motion keys.
 //!
 //! Invariant: every check reports under the light's own path (`lights[i]`).
 
 use super::keys::keys;
 use super::primitives::{
-    Check, dvec, each, fail, finite_all, non_negative, nonzero_vector, parallel, positive,
+    Check, Interval, dvec, each, fail, finite_all, non_negative, nonzero_vector, parallel,
+    positive, within,
 };
 use crate::model::{AreaShape, Light, Shutter};
 
 pub(super) fn light(at: &str, light: &Light, shutter: &Shutter) -> Check {
     let (color, intensity) = match light {
         Light::Ambient { color, intensity } => (color, intensity),
-        Light::Distant { from, to, color, intensity, .. } => {
+        Light::Distant { from, to, color, intensity, .. }
+        | Light::Spot { from, to, color, intensity, .. } => {
             finite_all(&format!("{at}.from"), from)?;
             finite_all(&format!("{at}.to"), to)?;
             if from == to {
@@ -31,6 +33,16 @@ pub(super) fn light(at: &str, light: &Light, shutter: &Shutter) -> Check {
     };
     each(&format!("{at}.color"), color, non_negative)?;
     non_negative(&format!("{at}.intensity"), *intensity)?;
+    if let Light::Spot { cone_angle, cone_delta, beam_distribution, .. } = light {
+        let cone = format!("{at}.cone_angle");
+        within(&cone, *cone_angle, Interval::open_closed(0.0, 180.0), " degrees")?;
+        let delta = format!("{at}.cone_delta");
+        non_negative(&delta, *cone_delta)?;
+        if cone_delta > cone_angle {
+            return fail(delta, format!("must be <= cone_angle ({cone_angle}), got {cone_delta}"));
+        }
+        non_negative(&format!("{at}.beam_distribution"), *beam_distribution)?;
+    }
     if let Light::Area { motion, .. } = light {
         let at = format!("{at}.motion");
         keys(

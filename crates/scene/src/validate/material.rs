@@ -28,5 +28,18 @@ pub(super) fn material(at: &str, m: &Material) -> Check {
             positive(&field("roughness"), *roughness)?;
             unit_rgb(&field("specular_color"), specular_color)
         }
+        Material::Metal { color, opacity, ka, ks, roughness } => {
+            unit_rgb(&field("color"), color)?;
+            unit_rgb(&field("opacity"), opacity)?;
+            non_negative(&field("ka"), *ka)?;
+            non_negative(&field("ks"), *ks)?;
+            positive(&field("roughness"), *roughness)
+        }
+        Material::DefaultSurface { color, opacity, ka, kd } => {
+            unit_rgb(&field("color"), color)?;
+            unit_rgb(&field("opacity"), opacity)?;
+            non_negative(&field("ka"), *ka)?;
+            non_negative(&field("kd"), *kd)
+        }
     }
 }

@@ -64,7 +64,7 @@ fn check_scene(scene: &Scene) -> Check {
         light::light(&format!("lights[{i}]"), light, shutter)?;
     }
     for (i, object) in scene.objects.iter().enumerate() {
-        object::object(&format!("objects[{i}]"), object, shutter)?;
+        object::object(&format!("objects[{i}]"), object, shutter, scene.lights.len())?;
     }
     solid::solids(scene)?;
     raytrace::raytrace(&scene.raytrace, scene)

@@ -1,5 +1,6 @@
 //! The rules of one object, in field order: shape, transforms, material, motion and
-//! deformation keys, glass, reflection, refraction, pattern, then a rolling ball.
+//! deformation keys, glass, reflection, refraction, pattern, a rolling ball, then its shading
+//! rate and light set.
 //!
 //! Invariant: every check reports under the object's own path (`objects[i]`); the shape and
 //! transforms are valid before any motion key is judged against them.
@@ -14,7 +15,7 @@ use super::shape::{shape, transforms};
 use crate::model::{Object, Pattern, Roll, Shape, Shutter, Transform};
 use crate::roll;
 
-pub(super) fn object(at: &str, object: &Object, shutter: &Shutter) -> Check {
+pub(super) fn object(at: &str, object: &Object, shutter: &Shutter, lights: usize) -> Check {
     shape(&format!("{at}.shape"), &object.shape)?;
     transforms(&format!("{at}.transform"), &object.transform)?;
     material(&format!("{at}.material"), &object.material)?;
@@ -37,6 +38,30 @@ pub(super) fn object(at: &str, object: &Object, shutter: &Shutter) -> Check {
     }
     if let Some(r) = &object.roll {
         self::roll(at, r, object, shutter)?;
+    }
+    if let Some(rate) = object.shading_rate {
+        positive(&format!("{at}.shading_rate"), rate)?;
+    }
+    if let Some(set) = &object.lights {
+        light_set(&format!("{at}.lights"), set, lights)?;
+    }
+    Ok(())
+}
+
+/// A light set: every index names one of the scene's `count` lights, none twice.
+fn light_set(at: &str, set: &[u32], count: usize) -> Check {
+    for (k, &light) in set.iter().enumerate() {
+        let here = format!("{at}[{k}]");
+        if light as usize >= count {
+            let lights = if count == 1 { "light" } else { "lights" };
+            return fail(
+                here,
+                format!("index {light} is out of range: the scene has {count} {lights}"),
+            );
+        }
+        if let Some(first) = set.iter().take(k).position(|&l| l == light) {
+            return fail(here, format!("light {light} is listed twice (also at lights[{first}])"));
+        }
     }
     Ok(())
 }

@@ -9,4 +9,5 @@ mod mirror;
 mod motion;
 mod penumbra;
 mod recursion;
+mod renderman;
 mod shapes;
