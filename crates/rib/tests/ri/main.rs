@@ -5,6 +5,7 @@
 mod errors;
 mod mapping;
 mod peers;
+mod renderman;
 
 use reyes_rib::{Loaded, RiOptions, RibError, Source, load};
 
