@@ -3,7 +3,6 @@
 //! formula, and quadric silhouettes rendered under an orthographic camera against their exact
 //! areas.
 
-use glam::{DMat4, DVec3, DVec4};
 use reyes_render::{RenderOptions, render};
 use reyes_scene::{Basis, Light, Material, Projection, Shape};
 
