@@ -439,3 +439,18 @@ fn the_same_scene_from_ron_and_from_rib_is_the_same_model() {
     a.objects[0].transform = from_ron.objects[0].transform.clone();
     assert_eq!(a, from_ron);
 }
+
+#[test]
+fn the_worked_example_of_docs_rib_md_loads_without_a_warning() {
+    let doc = include_str!("../../../../docs/rib.md");
+    let example = doc.split("### A worked example").nth(1).expect("the worked example");
+    let block = example.split("```rib\n").nth(1).and_then(|b| b.split("```").next()).unwrap();
+    let loaded = rib(block).unwrap();
+    assert!(loaded.warnings.is_empty(), "{:?}", loaded.warnings);
+    let s = &loaded.frames[0].scene;
+    assert_eq!((s.objects.len(), s.lights.len()), (2, 2));
+    match s.lights[1] {
+        Light::Spot { cone_angle, .. } => assert!((cone_angle - 22.918).abs() < 1e-3),
+        ref other => panic!("{other:?}"),
+    }
+}
