@@ -126,14 +126,55 @@ fn memory_report(bytes: &[u8]) {
     }
 }
 
+/// The whole front-end: the same text into a validated scene (one mesh of a million quads).
+fn load_scene(bytes: Vec<u8>) -> usize {
+    let loaded = reyes_rib::load(Source::from_bytes("grid.rib", bytes), &Default::default())
+        .expect("the generated RIB is a valid scene");
+    match &loaded.frames[0].scene.objects[0].shape {
+        reyes_scene::Shape::Mesh { faces, .. } => {
+            assert_eq!(faces.len(), N * N);
+            faces.len()
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
+/// One timed, measured load into the scene model, as [`memory_report`] measures the parse.
+fn scene_report(bytes: &[u8]) {
+    let geometry = 4 * (N * N + 4 * N * N + 3 * (N + 1) * (N + 1));
+    let reset = std::fs::write("/proc/self/clear_refs", "5").is_ok();
+    let input = bytes.to_vec();
+    let copied = status_kib("VmRSS:");
+    let t = Instant::now();
+    load_scene(input);
+    let secs = t.elapsed().as_secs_f64();
+    let peak = status_kib("VmHWM:");
+    eprintln!(
+        "grid to scene: loaded and validated once in {:.3} s = {:.1} MB/s",
+        secs,
+        bytes.len() as f64 / 1e6 / secs
+    );
+    if let (true, Some(copied), Some(peak)) = (reset, copied, peak) {
+        eprintln!(
+            "grid to scene: peak RSS added {:.1} MB = {:.2}x the geometry",
+            (peak.saturating_sub(copied)) as f64 * 1024.0 / 1e6,
+            (peak.saturating_sub(copied)) as f64 * 1024.0 / geometry as f64
+        );
+    }
+}
+
 fn main() {
     let bytes = grid_rib();
     memory_report(&bytes);
+    scene_report(&bytes);
     let mut c = Criterion::default().configure_from_args().sample_size(10);
     let mut g = c.benchmark_group("rib");
     g.throughput(Throughput::Bytes(bytes.len() as u64));
     g.bench_function("points_polygons_1m_quads", |b| {
         b.iter_batched(|| bytes.clone(), parse, criterion::BatchSize::PerIteration)
+    });
+    g.bench_function("points_polygons_1m_quads_to_scene", |b| {
+        b.iter_batched(|| bytes.clone(), load_scene, criterion::BatchSize::PerIteration)
     });
     let small = spheres_rib();
     g.throughput(Throughput::Bytes(small.len() as u64));

@@ -71,8 +71,18 @@ fn groups<'a>(
 pub(crate) struct PolyMesh {
     /// Vertex positions.
     pub points: Vec<V3>,
-    /// Each face: its loops (the first the outline, the others holes) of vertex indices.
-    pub faces: Vec<Vec<Vec<u32>>>,
+    /// Each face's outline: vertex indices.
+    pub faces: Vec<Vec<u32>>,
+    /// The holes of the faces that have them: `(face, loops)`, in face order.
+    pub holes: Vec<(usize, Vec<Vec<u32>>)>,
+}
+
+impl PolyMesh {
+    /// The vertex count of every loop of every face (the face-vertices).
+    fn corners(&self) -> usize {
+        self.faces.iter().map(Vec::len).sum::<usize>()
+            + self.holes.iter().flat_map(|(_, h)| h).map(Vec::len).sum::<usize>()
+    }
 }
 
 /// The positions `P` (or `Pw`, divided through) of a primitive with `vertices` vertices.
@@ -152,18 +162,22 @@ pub(crate) fn poly_mesh(
     let npoints = index.iter().map(|&k| k as usize + 1).max().unwrap_or(0);
     let points = positions(r, npoints)?;
     let mut faces = Vec::with_capacity(nloops.len());
+    let mut holes = Vec::new();
     let (mut l, mut k) = (0usize, 0usize);
-    for &nl in nloops {
-        let mut face = Vec::with_capacity(nl as usize);
-        for _ in 0..nl {
+    for (f, &nl) in nloops.iter().enumerate() {
+        let mut take = || {
             let n = nvertices[l] as usize;
-            face.push(index[k..k + n].to_vec());
+            let lp = index[k..k + n].to_vec();
             k += n;
             l += 1;
+            lp
+        };
+        faces.push(take());
+        if nl > 1 {
+            holes.push((f, (1..nl).map(|_| take()).collect()));
         }
-        faces.push(face);
     }
-    Ok(PolyMesh { points, faces })
+    Ok(PolyMesh { points, faces, holes })
 }
 
 /// Colours `Cs` of a mesh, as the model needs them: one per vertex. Constant colours come
@@ -177,7 +191,7 @@ pub(crate) fn mesh_colors(
     let counts = Counts {
         uniform: mesh.faces.len(),
         vertex: mesh.points.len(),
-        facevarying: mesh.faces.iter().flatten().map(Vec::len).sum(),
+        facevarying: mesh.corners(),
     };
     let (class, v) = groups(r, p, 3, counts)?;
     let rgb: Vec<Rgb> = v.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
@@ -185,12 +199,20 @@ pub(crate) fn mesh_colors(
         Class::Constant => Ok((Some(rgb[0]), None)),
         Class::Varying | Class::Vertex => Ok((None, Some(rgb))),
         Class::Uniform | Class::FaceVarying | Class::FaceVertex => {
-            // One vertex per face-vertex, so each face carries its own colours.
+            // One vertex per face-vertex, so each face carries its own colours. Face-vertices
+            // run face by face: a face's outline, then its holes.
             let mut points = Vec::with_capacity(counts.facevarying);
             let mut colors = Vec::with_capacity(counts.facevarying);
             let mut fv = 0usize;
-            for (f, face) in mesh.faces.iter_mut().enumerate() {
-                for lp in face.iter_mut() {
+            let mut holes = mesh.holes.iter_mut().peekable();
+            for (f, outline) in mesh.faces.iter_mut().enumerate() {
+                let mut loops: Vec<&mut Vec<u32>> = vec![outline];
+                if holes.peek().is_some_and(|(hf, _)| *hf == f)
+                    && let Some((_, h)) = holes.next()
+                {
+                    loops.extend(h.iter_mut());
+                }
+                for lp in loops {
                     for k in lp.iter_mut() {
                         points.push(mesh.points[*k as usize]);
                         colors.push(if class == Class::Uniform { rgb[f] } else { rgb[fv] });
@@ -229,17 +251,25 @@ pub(crate) fn unused_primvars(r: &Request, used: &[&str], warnings: &mut Vec<War
 /// triangulated by ear clipping (holes bridged into the outline first).
 pub(crate) fn to_model_mesh(
     r: &Request,
-    mesh: &PolyMesh,
+    mesh: PolyMesh,
     colors: Option<Vec<Rgb>>,
 ) -> Result<Shape, RibError> {
-    let mut faces = Vec::with_capacity(mesh.faces.len());
-    for (f, face) in mesh.faces.iter().enumerate() {
-        if face.len() == 1 && face[0].len() <= 4 {
-            faces.push(face[0].clone());
+    let PolyMesh { points, mut faces, holes } = mesh;
+    let mut holes = holes.into_iter().peekable();
+    let mut out = Vec::with_capacity(faces.len());
+    for (f, outline) in faces.drain(..).enumerate() {
+        let face_holes = match holes.peek() {
+            Some((hf, _)) if *hf == f => holes.next().map(|(_, h)| h).unwrap_or_default(),
+            _ => Vec::new(),
+        };
+        if face_holes.is_empty() && outline.len() <= 4 {
+            out.push(outline);
             continue;
         }
-        match crate::ri::triangulate::face(&mesh.points, face) {
-            Some(tris) => faces.extend(tris.into_iter().map(|t| t.to_vec())),
+        let mut loops = vec![outline];
+        loops.extend(face_holes);
+        match crate::ri::triangulate::face(&points, &loops) {
+            Some(tris) => out.extend(tris.into_iter().map(|t| t.to_vec())),
             None => {
                 return Err(r.error(format!(
                     "face {f} cannot be triangulated (degenerate, or its loops cross)"
@@ -247,7 +277,7 @@ pub(crate) fn to_model_mesh(
             }
         }
     }
-    Ok(Shape::Mesh { points: mesh.points.clone(), faces, colors })
+    Ok(Shape::Mesh { points, faces: out, colors })
 }
 
 /// A quadric's shape, with its optional `zmin`/`zmax` cuts in the model's form.

@@ -328,7 +328,7 @@ impl Machine {
         let mut mesh: PolyMesh = geometry::poly_mesh(r, nloops, nvertices, vertices)?;
         let (_, colors) = geometry::mesh_colors(r, &mut mesh)?;
         geometry::unused_primvars(r, &["P", "Pw", "Cs"], &mut self.warnings);
-        geometry::to_model_mesh(r, &mesh, colors)
+        geometry::to_model_mesh(r, mesh, colors)
     }
 }
 
