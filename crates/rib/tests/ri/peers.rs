@@ -93,3 +93,39 @@ fn rib_and_ron_versions_of_the_bench_scenes_agree_within_golden_tolerance() {
         );
     }
 }
+
+#[test]
+fn csg_from_rib_renders_as_its_ron_port() {
+    // csg.rib's solids written by hand in RON: the same spheres, translations and shader.
+    let ron = "Scene(image: (width: 320, height: 240),
+        camera: (eye: (0.0, 0.0, 0.0), look_at: (0.0, 0.0, 1.0), fov: 45.0, hither: 0.001, yon: 1e30,
+                 shutter: (open: 0.0, close: 0.0)),
+        hider: (pixel_samples: (4, 4), filter: (kind: RiGaussian, width: 2.0, height: Some(2.0))),
+        lights: [Ambient(intensity: 0.15), Distant(from: (-1.0, 1.0, -1.0), to: (0.0, 0.0, 0.0), intensity: 1.0)],
+        objects: [
+          (name: \"big\", shape: Sphere(radius: 1.4), transform: [Translate((-1.6, 0.0, 8.0))],
+           material: Plastic(color: (0.9, 0.5, 0.3))),
+          (name: \"bite\", shape: Sphere(radius: 1.0), transform: [Translate((0.5, 0.5, -1.0)), Translate((-1.6, 0.0, 8.0))],
+           material: Plastic(color: (0.9, 0.5, 0.3))),
+          (name: \"left\", shape: Sphere(radius: 1.2), transform: [Translate((-0.6, 0.0, 0.0)), Translate((1.6, 0.0, 8.0))],
+           material: Plastic(color: (0.9, 0.5, 0.3))),
+          (name: \"right\", shape: Sphere(radius: 1.2), transform: [Translate((0.6, 0.0, 0.0)), Translate((1.6, 0.0, 8.0))],
+           material: Plastic(color: (0.9, 0.5, 0.3))),
+        ],
+        solids: [(tree: Difference(Object(\"big\"), Object(\"bite\"))),
+                 (tree: Intersection([Object(\"left\"), Object(\"right\")]))])";
+    let scene = reyes_scene::parse(ron, std::path::Path::new("csg.ron")).unwrap();
+    let from_ron = render(&scene, &RenderOptions::default()).unwrap().film;
+    let from_rib = render_rib("csg");
+    let table = reyes_render::settings::Stages::new(&scene, |h| h).unwrap().table;
+    let w_max = table.weights().iter().fold(0.0f32, |m, &w| m.max(w.abs()));
+    let c = reyes_testkit::golden::compare(&from_ron, &from_rib, w_max).unwrap();
+    assert!(
+        c.passed(),
+        "mean {:?} max {:?} (tolerance {} / {})",
+        c.mean,
+        c.max,
+        c.mean_tolerance,
+        c.max_tolerance
+    );
+}
