@@ -11,6 +11,7 @@
 //! [`reyes_scene::validate`], and a validation failure is reported at the RIB request that
 //! produced the offending value.
 
+mod attributes;
 mod build;
 mod frame;
 pub(crate) mod geometry;

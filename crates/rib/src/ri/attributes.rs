@@ -1,0 +1,134 @@
+//! Attribute requests of the RI state machine (Spec 3.2, 4.2) that need more than a field
+//! set: `Attribute`, the light sources and `Illuminate`, and `Basis`.
+//!
+//! Invariant: each changes only the current attribute block (and, for a light, adds it to
+//! the frame's lights), so `AttributeEnd` undoes it.
+
+use reyes_scene::{Basis, Light};
+
+use super::frame::{Machine, handle};
+use crate::{Request, RibError, Value, Warning};
+
+impl Machine {
+    pub(super) fn attribute(&mut self, r: &Request) -> Result<(), RibError> {
+        let name = r.string(0).unwrap_or_default();
+        for p in &r.params {
+            match (name, p.name.as_str()) {
+                ("identifier", "name") => {
+                    self.attributes.name = p.strings().and_then(|s| s.first()).cloned();
+                }
+                _ => {
+                    let w = Warning {
+                        at: r.param_location(p),
+                        message: format!(
+                            "Attribute: \"{name}\" \"{}\" is not supported: ignored",
+                            p.name
+                        ),
+                    };
+                    self.warn_once(format!("attribute {name} {}", p.name), w);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    pub(super) fn light_source(&mut self, r: &Request) -> Result<(), RibError> {
+        let name = r.string(0).unwrap_or_default().to_string();
+        let h = handle(r, 1).ok_or_else(|| r.error("expected a light handle"))?;
+        let to_world = self.to_world();
+        let made = super::shaders::light(&name, &r.params, &to_world, &r.at, &mut self.warnings);
+        let light = match made {
+            super::shaders::LightResult::Light(l) => l,
+            super::shaders::LightResult::Unknown(n) => {
+                if self.options.strict {
+                    return Err(r.error(format!("unknown light shader \"{n}\" (--strict)")));
+                }
+                let w = r.warning(format!(
+                    "unknown light shader \"{n}\": stands in as a pointlight of its \"intensity\" and \"lightcolor\" at its \"from\""
+                ));
+                self.warn_once(format!("light {n}"), w);
+                match super::shaders::light(
+                    "pointlight",
+                    &r.params,
+                    &to_world,
+                    &r.at,
+                    &mut Vec::new(),
+                ) {
+                    super::shaders::LightResult::Light(l) => l,
+                    super::shaders::LightResult::Unknown(_) => {
+                        Light::Ambient { color: [0.0; 3], intensity: 0.0 }
+                    }
+                }
+            }
+        };
+        match &mut self.build {
+            Some(b) => {
+                let index = b.add_light(h, light, r.at.clone());
+                if !self.attributes.lights_on.contains(&index) {
+                    self.attributes.lights_on.push(index);
+                }
+            }
+            // A light before WorldBegin is placed in camera space and shines in every frame
+            // that follows until the frame ends.
+            None => self.pending_lights.push((h, light, r.at.clone())),
+        }
+        Ok(())
+    }
+
+    pub(super) fn area_light_source(&mut self, r: &Request) -> Result<(), RibError> {
+        let w = r.warning(
+            "area lights from geometry are not supported: the light is ignored (use an Area light in RON)",
+        );
+        self.warn_once("arealightsource", w);
+        Ok(())
+    }
+
+    pub(super) fn illuminate(&mut self, r: &Request) -> Result<(), RibError> {
+        let h = handle(r, 0).ok_or_else(|| r.error("expected a light handle"))?;
+        let on = r.int(1).unwrap_or(1) != 0;
+        let b =
+            self.build.as_ref().ok_or_else(|| r.error("Illuminate must be inside the world"))?;
+        let Some(index) = b.light_index(&h) else {
+            return Err(r.error(format!("no light with handle {h}")));
+        };
+        let lights = &mut self.attributes.lights_on;
+        if on && !lights.contains(&index) {
+            lights.push(index);
+        } else if !on {
+            lights.retain(|&k| k != index);
+        }
+        Ok(())
+    }
+
+    pub(super) fn basis(&mut self, r: &Request) -> Result<(), RibError> {
+        let basis = |i: usize| -> Result<Basis, RibError> {
+            match r.args.get(i) {
+                Some(Value::String(s)) => match s.as_str() {
+                    "bezier" => Ok(Basis::Bezier),
+                    "b-spline" => Ok(Basis::BSpline),
+                    "catmull-rom" => Ok(Basis::CatmullRom),
+                    "hermite" => Ok(Basis::Hermite),
+                    "power" => Ok(Basis::Power),
+                    other => Err(r.error(format!(
+                        "unknown basis \"{other}\" (bezier, b-spline, catmull-rom, hermite, power, or 16 numbers)"
+                    ))),
+                },
+                // RtBasis as written: M[row][col], row by row.
+                Some(Value::Floats(v)) if v.len() == 16 => {
+                    Ok(Basis::Matrix(std::array::from_fn(|row| std::array::from_fn(|col| v[4 * row + col]))))
+                }
+                _ => Err(r.error("each basis must be a name or 16 numbers")),
+            }
+        };
+        let (u, v) = (basis(0)?, basis(2)?);
+        let step = |i: usize| -> Result<u32, RibError> {
+            let s = r.int(i).unwrap_or(3);
+            u32::try_from(s)
+                .ok()
+                .filter(|&s| s >= 1)
+                .ok_or_else(|| r.error(format!("steps must be at least 1, got {s}")))
+        };
+        self.attributes.basis = (u, step(1)?, v, step(3)?);
+        Ok(())
+    }
+}
