@@ -29,6 +29,7 @@ mod number;
 #[cfg(test)]
 mod tests;
 
+use number::{DELIM, is_number_start};
 pub(crate) use number::{NumError, not_an_int, parse_number};
 
 /// Longest name or number accepted, in bytes (strings are not limited).
@@ -158,27 +159,6 @@ pub(crate) enum AnyArray {
     Floats(Vec<f32>),
     /// Strings.
     Strings(Vec<String>),
-}
-
-/// Byte classes: delimiters end names and numbers.
-const fn delimiters() -> [bool; 256] {
-    let mut t = [false; 256];
-    let mut b = 0;
-    while b < 256 {
-        t[b] = matches!(
-            b as u8,
-            b' ' | b'\t' | b'\r' | b'\n' | 0x0b | 0x0c | b'[' | b']' | b'"' | b'#'
-        ) || b >= 0x80
-            || b < 0x20
-            || b == 0x7f;
-        b += 1;
-    }
-    t
-}
-static DELIM: [bool; 256] = delimiters();
-
-fn is_number_start(b: u8) -> bool {
-    b.is_ascii_digit() || matches!(b, b'+' | b'-' | b'.')
 }
 
 /// The RIB tokenizer over one source.

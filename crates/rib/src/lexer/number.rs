@@ -1,4 +1,4 @@
-//! RIB numbers (Spec 3.2 Appendix C.2): an optional sign, digits with an embedded period, a
+//! RIB numbers (Spec 3.2 Appendix C.2), and the byte classes that end names and numbers: an optional sign, digits with an embedded period, a
 //! trailing exponent, or both, converted to `f32` (and `i32` for the integer forms) without
 //! allocating.
 //!
@@ -6,6 +6,28 @@
 //! before any conversion.
 
 use super::Num;
+
+/// Byte classes: delimiters end names and numbers.
+const fn delimiters() -> [bool; 256] {
+    let mut t = [false; 256];
+    let mut b = 0;
+    while b < 256 {
+        t[b] = matches!(
+            b as u8,
+            b' ' | b'\t' | b'\r' | b'\n' | 0x0b | 0x0c | b'[' | b']' | b'"' | b'#'
+        ) || b >= 0x80
+            || b < 0x20
+            || b == 0x7f;
+        b += 1;
+    }
+    t
+}
+pub(super) static DELIM: [bool; 256] = delimiters();
+
+/// True if `b` can start a number.
+pub(super) fn is_number_start(b: u8) -> bool {
+    b.is_ascii_digit() || matches!(b, b'+' | b'-' | b'.')
+}
 
 /// Why a number's text was rejected.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
