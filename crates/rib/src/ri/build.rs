@@ -576,7 +576,7 @@ fn weld<'a>(objects: impl Iterator<Item = &'a Object>) -> (Shape, Material) {
         );
     }
     let material = if one_color { base } else { with_color(base, [1.0; 3]) };
-    (Shape::Mesh { points, faces, colors: any_colors.then_some(colors) }, material)
+    (Shape::Mesh { points, faces: faces.into(), colors: any_colors.then_some(colors) }, material)
 }
 
 /// `m` with its surface colour replaced.

@@ -277,7 +277,7 @@ pub(crate) fn to_model_mesh(
             }
         }
     }
-    Ok(Shape::Mesh { points, faces: out, colors })
+    Ok(Shape::Mesh { points, faces: out.into(), colors })
 }
 
 /// A quadric's shape, with its optional `zmin`/`zmax` cuts in the model's form.

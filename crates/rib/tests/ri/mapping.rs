@@ -4,7 +4,7 @@
 
 use glam::{DVec3, Vec3};
 use reyes_scene::{
-    Csg, FilterKind, HiderMethod, Light, Material, Object, Scene, Shape, object_to_world,
+    Csg, Faces, FilterKind, HiderMethod, Light, Material, Object, Scene, Shape, object_to_world,
 };
 
 use super::{rib, scene, world};
@@ -151,7 +151,7 @@ fn polygons_of_any_shape_become_triangles_and_quads_over_their_own_points() {
          PointsPolygons [3 3] [0 1 2  0 2 3] \"P\" [0 0 0 1 0 0 1 1 0 0 1 0]",
     ));
     let faces = |o: &Object| match &o.shape {
-        Shape::Mesh { faces, points, .. } => (faces.clone(), points.len()),
+        Shape::Mesh { faces, points, .. } => (Vec::<Vec<u32>>::from(faces), points.len()),
         other => panic!("{other:?}"),
     };
     assert_eq!(faces(&s.objects[0]), (vec![vec![0, 1, 2, 3]], 4));
@@ -181,7 +181,10 @@ fn colours_of_every_class() {
     match &s.objects[1].shape {
         // Per-face colours: each face gets its own three vertices.
         Shape::Mesh { colors: Some(c), points, faces } => {
-            assert_eq!((points.len(), faces.clone()), (6, vec![vec![0, 1, 2], vec![3, 4, 5]]));
+            assert_eq!(
+                (points.len(), faces),
+                (6, &Faces::from(vec![vec![0, 1, 2], vec![3, 4, 5]]))
+            );
             assert_eq!((c[0], c[5]), ([1.0, 0.0, 0.0], [0.0, 0.0, 1.0]));
         }
         other => panic!("{other:?}"),

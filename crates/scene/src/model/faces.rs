@@ -105,6 +105,16 @@ impl Faces {
         self.close_face();
     }
 
+    /// Appends the face whose indices `face` yields, without a slice to copy from.
+    ///
+    /// # Panics
+    ///
+    /// If the faces would hold more than `u32::MAX` indices in all.
+    pub fn push_iter(&mut self, face: impl IntoIterator<Item = u32>) {
+        self.indices.extend(face);
+        self.close_face();
+    }
+
     /// Removes every face, keeping the allocations.
     pub fn clear(&mut self) {
         self.ends.clear();
@@ -395,7 +405,8 @@ mod tests {
             face.reverse();
         }
         f.indices_mut()[0] = 8;
-        assert_eq!(format!("{f:?}"), "[[8, 1, 2, 3], [9, 2, 4], [], [7, 6, 5]]");
+        f.push_iter((10..13).rev());
+        assert_eq!(format!("{f:?}"), "[[8, 1, 2, 3], [9, 2, 4], [], [7, 6, 5], [12, 11, 10]]");
         f.clear();
         assert!(f.is_empty() && f.indices().is_empty());
     }
