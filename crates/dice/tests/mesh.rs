@@ -6,12 +6,12 @@ use common::*;
 use glam::Vec3;
 use reyes_dice::CameraSetup;
 use reyes_hider::flags;
-use reyes_scene::{Material, Object, Shape};
+use reyes_scene::{Faces, Material, Object, Shape};
 
 fn mesh_object(material: Material, matte: bool) -> Object {
     let shape = Shape::Mesh {
         points: quad_and_triangle(),
-        faces: vec![vec![0, 1, 2, 3], vec![1, 4, 2]],
+        faces: Faces::from(vec![vec![0, 1, 2, 3], vec![1, 4, 2]]),
         colors: Some(vec![
             [1.0, 0.0, 0.0],
             [0.0, 1.0, 0.0],

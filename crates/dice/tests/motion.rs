@@ -8,7 +8,8 @@ use glam::{Mat4, Vec3};
 use reyes_dice::{CameraSetup, Diced, dice_scene, screen_bound};
 use reyes_hider::{Micropolygon, flags};
 use reyes_scene::{
-    CameraKey, Lens, Material, Object, PointsKey, Scene, Shape, Shutter, Transform, TransformKey,
+    CameraKey, Faces, Lens, Material, Object, PointsKey, Scene, Shape, Shutter, Transform,
+    TransformKey,
 };
 
 /// FNV-1a over the micropolygon bytes, the bucket lists and the counts of `d`.
@@ -57,7 +58,7 @@ fn static_scenes() -> Vec<Scene> {
         object(
             Shape::Mesh {
                 points: [quad_and_triangle(), vec![[3.0, 0.0, 8.5]]].concat(),
-                faces: vec![vec![0, 1, 2, 3], vec![1, 4, 2], vec![1, 4, 5, 2, 3]],
+                faces: Faces::from(vec![vec![0, 1, 2, 3], vec![1, 4, 2], vec![1, 4, 5, 2, 3]]),
                 colors: None,
             },
             vec![Transform::Translate([0.0, -0.5, 2.0])],
@@ -419,7 +420,7 @@ fn a_deforming_mesh_moves_with_its_points_and_odd_keys_do_not_panic() {
     let o = object(
         Shape::Mesh {
             points: points.clone(),
-            faces: vec![vec![0, 1, 2, 3], vec![1, 4, 2], vec![1, 4, 5, 2, 3]],
+            faces: Faces::from(vec![vec![0, 1, 2, 3], vec![1, 4, 2], vec![1, 4, 5, 2, 3]]),
             colors: None,
         },
         vec![Transform::Translate([0.0, 0.0, 1.0])],

@@ -3,7 +3,7 @@
 mod common;
 
 use common::*;
-use reyes_scene::{Lens, Object, Shape, Transform};
+use reyes_scene::{Faces, Lens, Object, Shape, Transform};
 
 fn check_finite(d: &reyes_dice::Diced) {
     for mp in &d.mpolys {
@@ -32,7 +32,7 @@ fn odd_shapes_and_transforms_do_not_panic() {
         Shape::BilinearPatch { points: [[0.0; 3]; 4] },
         Shape::Mesh {
             points: vec![[0.0; 3], [1.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
-            faces: vec![vec![0, 1, 2], vec![0, 1, 2, 3], vec![0, 0, 0]],
+            faces: Faces::from(vec![vec![0, 1, 2], vec![0, 1, 2, 3], vec![0, 0, 0]]),
             colors: None,
         },
     ];

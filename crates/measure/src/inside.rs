@@ -374,7 +374,7 @@ mod tests {
     fn open_meshes_are_named() {
         let mesh = |faces: &[Vec<u32>]| Shape::Mesh {
             points: vec![[0.0; 3]; 4],
-            faces: faces.to_vec(),
+            faces: faces.into(),
             colors: None,
         };
         let tetra = vec![vec![0, 1, 2], vec![0, 3, 1], vec![1, 3, 2], vec![2, 3, 0]];

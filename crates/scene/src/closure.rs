@@ -5,7 +5,7 @@
 
 use std::collections::HashMap;
 
-use crate::model::Shape;
+use crate::model::{Faces, Shape};
 
 /// Whether a (valid) shape bounds a solid.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -78,7 +78,7 @@ struct EdgeUse {
 /// repeated consecutive indices (`[0, 1, 1, 2]` is the triangle `[0, 1, 2]`); one left with
 /// fewer than 3 points has no area and is ignored, one that still repeats a point is an error.
 /// Faces and their edges are visited in order, so the edge reported is the first bad one.
-fn mesh_closure(faces: &[Vec<u32>]) -> Closure {
+fn mesh_closure(faces: &Faces) -> Closure {
     let mut polygons: Vec<(usize, Vec<u32>)> = Vec::with_capacity(faces.len());
     for (f, face) in faces.iter().enumerate() {
         let mut v: Vec<u32> = Vec::with_capacity(face.len());

@@ -10,7 +10,7 @@ use std::path::Path;
 use std::time::Instant;
 
 use glam::Vec3;
-use reyes_scene::{Object, Scene, Shape, Transform};
+use reyes_scene::{Faces, Object, Scene, Shape, Transform};
 use reyes_trace::{Ray, Tracer};
 
 const BASE: &str = "Scene(image: (width: 64, height: 64), \
@@ -52,12 +52,12 @@ fn mesh(template: &Object) -> Vec<Object> {
             points.push([x, y, 0.3 * (x * 0.7).sin() * (y * 0.5).cos()]);
         }
     }
-    let mut faces = Vec::with_capacity(20_000);
+    let mut faces = Faces::with_capacity(20_000, 60_000);
     for j in 0..n - 1 {
         for i in 0..n - 1 {
             let at = |i: u32, j: u32| j * n + i;
-            faces.push(vec![at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
-            faces.push(vec![at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+            faces.push(&[at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+            faces.push(&[at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
         }
     }
     let mut o = template.clone();

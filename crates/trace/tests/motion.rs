@@ -5,7 +5,7 @@ mod common;
 
 use common::{ball, close, close_v, deforming, moving, scene, scene_with_shutter, shoot, slide};
 use glam::Vec3;
-use reyes_scene::{Shape, Transform};
+use reyes_scene::{Faces, Shape, Transform};
 use reyes_trace::{Ray, Tracer};
 
 /// The x of the near side of the unit ball sliding along x, seen from +x at `time`.
@@ -118,7 +118,8 @@ fn deformation_keys_move_the_points() {
 fn deforming_mesh_triangles_follow_their_vertices() {
     let pts = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
     let shifted: Vec<[f32; 3]> = pts.iter().map(|p| [p[0] + 3.0, p[1], p[2]]).collect();
-    let shape = Shape::Mesh { points: pts.clone(), faces: vec![vec![0, 1, 2]], colors: None };
+    let shape =
+        Shape::Mesh { points: pts.clone(), faces: Faces::from(vec![vec![0, 1, 2]]), colors: None };
     let t = Tracer::new(&scene(vec![deforming(shape, vec![(0.0, pts), (1.0, shifted)])]));
     let o = Vec3::new(3.2, 0.2, 1.0);
     assert!(shoot(&t, o, Vec3::NEG_Z, 0.0).is_none());

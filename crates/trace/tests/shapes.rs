@@ -8,7 +8,7 @@ use std::f32::consts::PI;
 use common::{ball, close, close_v, object, placed, scene};
 use glam::{Mat3, Mat4, Vec3};
 use reyes_scene::object_to_world;
-use reyes_scene::{Shape, Transform};
+use reyes_scene::{Faces, Shape, Transform};
 use reyes_trace::{Hit, Tracer};
 
 const REL: f32 = 1e-4;
@@ -390,13 +390,13 @@ fn mesh_quads_and_triangles_follow_the_dicer() {
         [3.0, 2.0, 0.0],
         [2.0, 1.0, 0.0],
     ];
-    let faces = vec![
+    let faces = Faces::from(vec![
         vec![0, 1, 2, 3],    // quad -> patch a, b, d, c (surface 0)
         vec![0, 9, 1],       // bad index: skipped
         vec![1, 4, 2],       // triangle (surface 1)
         vec![0, 1],          // too few: skipped
         vec![4, 5, 6, 7, 8], // pentagon: fan of 3 triangles (surfaces 2, 3, 4)
-    ];
+    ]);
     for xf in placements() {
         let m = object_to_world(&xf);
         let shape = Shape::Mesh { points: points.clone(), faces: faces.clone(), colors: None };
@@ -437,7 +437,11 @@ fn mesh_quads_and_triangles_follow_the_dicer() {
 #[test]
 fn non_planar_quad_is_its_bilinear_patch() {
     let pts = [[0.0, 0.0, 0.0], [1.0, 0.0, 1.0], [1.0, 1.0, 0.0], [0.0, 1.0, 1.0]];
-    let mesh = Shape::Mesh { points: pts.to_vec(), faces: vec![vec![0, 1, 2, 3]], colors: None };
+    let mesh = Shape::Mesh {
+        points: pts.to_vec(),
+        faces: Faces::from(vec![vec![0, 1, 2, 3]]),
+        colors: None,
+    };
     let t = tracer(mesh, vec![]);
     // P0 = a, P1 = b, P2 = d, P3 = c.
     let corners = [pts[0], pts[1], pts[3], pts[2]].map(Vec3::from);

@@ -2,7 +2,7 @@
 //! agree with the parametric orientation, end caps facing out of their solids.
 
 use super::*;
-use reyes_scene::Material;
+use reyes_scene::{Faces, Material};
 
 fn object(shape: Shape) -> Object {
     Object::new(shape, Material::Constant { color: [1.0; 3], opacity: [1.0; 3] })
@@ -163,7 +163,7 @@ fn end_caps_close_the_solids_facing_out() {
             phimax: 360.0,
             thetamax: 360.0,
         },
-        Shape::Mesh { points: vec![], faces: vec![], colors: None },
+        Shape::Mesh { points: vec![], faces: Faces::new(), colors: None },
     ] {
         assert!(end_caps(&closed).is_empty());
     }
@@ -239,7 +239,7 @@ fn mesh_faces_become_patches_with_tints() {
             [0.0, 1.0, 0.0],
             [2.0, 0.0, 0.0],
         ],
-        faces: vec![vec![0, 1, 2, 3], vec![1, 4, 2], vec![0, 1], vec![0, 9, 1]],
+        faces: Faces::from(vec![vec![0, 1, 2, 3], vec![1, 4, 2], vec![0, 1], vec![0, 9, 1]]),
         colors: Some(vec![
             [1.0, 0.0, 0.0],
             [0.0, 1.0, 0.0],
@@ -271,7 +271,7 @@ fn mesh_faces_become_patches_with_tints() {
 fn polygons_with_more_than_four_sides_are_fanned() {
     let obj = object(Shape::Mesh {
         points: vec![[0.0; 3], [1.0, 0.0, 0.0], [1.5, 1.0, 0.0], [0.5, 2.0, 0.0], [-0.5, 1.0, 0.0]],
-        faces: vec![vec![0, 1, 2, 3, 4]],
+        faces: Faces::from(vec![vec![0, 1, 2, 3, 4]]),
         colors: None,
     });
     assert_eq!(surfaces(&obj).len(), 3);

@@ -10,8 +10,8 @@ use std::collections::HashMap;
 
 use glam::{DMat4, DVec3};
 use reyes_scene::{
-    Camera, CameraKey, Csg, Hider, Image, Lens, Light, Material, Object, PointsKey, Scene, Shape,
-    Shutter, Solid, TransformKey,
+    Camera, CameraKey, Csg, Faces, Hider, Image, Lens, Light, Material, Object, PointsKey, Scene,
+    Shape, Shutter, Solid, TransformKey,
 };
 
 use super::state::{Display, FrameOptions, Projection};
@@ -550,7 +550,7 @@ fn weld<'a>(objects: impl Iterator<Item = &'a Object>) -> (Shape, Material) {
     let one_color = objects.iter().all(|o| color_of(&o.material) == color_of(&base));
     let mut points: Vec<[f32; 3]> = Vec::new();
     let mut colors: Vec<[f32; 3]> = Vec::new();
-    let mut faces = Vec::new();
+    let mut faces = Faces::new();
     let mut at: HashMap<[u32; 3], u32> = HashMap::new();
     let mut any_colors = !one_color;
     for o in &objects {
@@ -571,9 +571,9 @@ fn weld<'a>(objects: impl Iterator<Item = &'a Object>) -> (Shape, Material) {
                 })
             })
             .collect();
-        faces.extend(
-            f.iter().map(|face| face.iter().map(|&k| remap[k as usize]).collect::<Vec<u32>>()),
-        );
+        for face in f {
+            faces.push_iter(face.iter().map(|&k| remap[k as usize]));
+        }
     }
     let material = if one_color { base } else { with_color(base, [1.0; 3]) };
     (Shape::Mesh { points, faces, colors: any_colors.then_some(colors) }, material)

@@ -8,7 +8,7 @@
 //! vertices, so neighbouring faces stay welded; when per-face or per-face-vertex colours ask
 //! for it, vertices are duplicated per face (positions unchanged, so no crack opens).
 
-use reyes_scene::{Rgb, Shape, V3};
+use reyes_scene::{Faces, Rgb, Shape, V3};
 
 use crate::{Class, Param, Request, RibError, Warning};
 
@@ -72,7 +72,7 @@ pub(crate) struct PolyMesh {
     /// Vertex positions.
     pub points: Vec<V3>,
     /// Each face's outline: vertex indices.
-    pub faces: Vec<Vec<u32>>,
+    pub faces: Faces,
     /// The holes of the faces that have them: `(face, loops)`, in face order.
     pub holes: Vec<(usize, Vec<Vec<u32>>)>,
 }
@@ -80,7 +80,7 @@ pub(crate) struct PolyMesh {
 impl PolyMesh {
     /// The vertex count of every loop of every face (the face-vertices).
     fn corners(&self) -> usize {
-        self.faces.iter().map(Vec::len).sum::<usize>()
+        self.faces.indices().len()
             + self.holes.iter().flat_map(|(_, h)| h).map(Vec::len).sum::<usize>()
     }
 }
@@ -110,11 +110,12 @@ pub(crate) fn positions(r: &Request, vertices: usize) -> Result<Vec<V3>, RibErro
 }
 
 /// The mesh of `PointsGeneralPolygons` (and, with one loop per face, `PointsPolygons`;
-/// with one face, `Polygon` and `GeneralPolygon`): `nloops` per face, `nvertices` per loop,
-/// `vertices` the indices.
+/// with one face, `Polygon` and `GeneralPolygon`): `nloops` per face (`None`: one loop per
+/// face, each face one entry of `nvertices`), `nvertices` per loop, `vertices` the indices
+/// (`None`: `0, 1, 2, ...`). The faces are built flat, straight from the request's arrays.
 pub(crate) fn poly_mesh(
     r: &Request,
-    nloops: &[i32],
+    nloops: Option<&[i32]>,
     nvertices: &[i32],
     vertices: Option<&[i32]>,
 ) -> Result<PolyMesh, RibError> {
@@ -128,7 +129,10 @@ pub(crate) fn poly_mesh(
         }
         Ok(total)
     };
-    let loops = sum(nloops, "nloops")?;
+    let loops = match nloops {
+        Some(nloops) => sum(nloops, "nloops")?,
+        None => nvertices.len(),
+    };
     if loops != nvertices.len() {
         return Err(r.error(format!(
             "nloops adds up to {loops} loops but nvertices has {} entries",
@@ -141,7 +145,14 @@ pub(crate) fn poly_mesh(
         }
     }
     let corners = sum(nvertices, "nvertices")?;
-    let index: Vec<u32> = match vertices {
+    if u32::try_from(corners).is_err() {
+        return Err(r.error(format!(
+            "nvertices adds up to {corners} vertices, more than a mesh holds ({})",
+            u32::MAX
+        )));
+    }
+    // The number of points the indices reach; every index checked before any is used.
+    let npoints = match vertices {
         Some(v) => {
             if v.len() != corners {
                 return Err(r.error(format!(
@@ -149,32 +160,39 @@ pub(crate) fn poly_mesh(
                     v.len()
                 )));
             }
-            v.iter()
-                .enumerate()
-                .map(|(i, &k)| {
-                    u32::try_from(k)
-                        .map_err(|_| r.error(format!("vertices[{i}] is negative ({k})")))
-                })
-                .collect::<Result<_, _>>()?
+            let mut max = None;
+            for (i, &k) in v.iter().enumerate() {
+                let k = u32::try_from(k)
+                    .map_err(|_| r.error(format!("vertices[{i}] is negative ({k})")))?;
+                max = max.max(Some(k));
+            }
+            max.map_or(0, |k| k as usize + 1)
         }
-        None => (0..corners as u32).collect(),
+        None => corners,
     };
-    let npoints = index.iter().map(|&k| k as usize + 1).max().unwrap_or(0);
     let points = positions(r, npoints)?;
-    let mut faces = Vec::with_capacity(nloops.len());
+    // The loop of `n` vertices from face-vertex `k`: its (checked) indices, or `k, k + 1, ...`.
+    let loop_at =
+        |k: usize, n: usize| (k..k + n).map(move |j| vertices.map_or(j as u32, |v| v[j] as u32));
+    let faces_count = nloops.map_or(nvertices.len(), <[i32]>::len);
+    let mut faces = Faces::with_capacity(faces_count, corners);
     let mut holes = Vec::new();
     let (mut l, mut k) = (0usize, 0usize);
-    for (f, &nl) in nloops.iter().enumerate() {
-        let mut take = || {
-            let n = nvertices[l] as usize;
-            let lp = index[k..k + n].to_vec();
-            k += n;
-            l += 1;
-            lp
-        };
-        faces.push(take());
+    for f in 0..faces_count {
+        let nl = nloops.map_or(1, |nloops| nloops[f] as usize);
+        let n = nvertices[l] as usize;
+        faces.push_iter(loop_at(k, n));
+        k += n;
+        l += 1;
         if nl > 1 {
-            holes.push((f, (1..nl).map(|_| take()).collect()));
+            let mut face_holes = Vec::with_capacity(nl - 1);
+            for _ in 1..nl {
+                let n = nvertices[l] as usize;
+                face_holes.push(loop_at(k, n).collect());
+                k += n;
+                l += 1;
+            }
+            holes.push((f, face_holes));
         }
     }
     Ok(PolyMesh { points, faces, holes })
@@ -205,20 +223,20 @@ pub(crate) fn mesh_colors(
             let mut colors = Vec::with_capacity(counts.facevarying);
             let mut fv = 0usize;
             let mut holes = mesh.holes.iter_mut().peekable();
-            for (f, outline) in mesh.faces.iter_mut().enumerate() {
-                let mut loops: Vec<&mut Vec<u32>> = vec![outline];
-                if holes.peek().is_some_and(|(hf, _)| *hf == f)
-                    && let Some((_, h)) = holes.next()
-                {
-                    loops.extend(h.iter_mut());
-                }
-                for lp in loops {
-                    for k in lp.iter_mut() {
+            for f in 0..mesh.faces.len() {
+                let mut unweld = |lp: &mut [u32]| {
+                    for k in lp {
                         points.push(mesh.points[*k as usize]);
                         colors.push(if class == Class::Uniform { rgb[f] } else { rgb[fv] });
                         *k = (points.len() - 1) as u32;
                         fv += 1;
                     }
+                };
+                unweld(&mut mesh.faces[f]);
+                if holes.peek().is_some_and(|(hf, _)| *hf == f)
+                    && let Some((_, h)) = holes.next()
+                {
+                    h.iter_mut().for_each(|lp| unweld(lp));
                 }
             }
             mesh.points = points;
@@ -248,16 +266,20 @@ pub(crate) fn unused_primvars(r: &Request, used: &[&str], warnings: &mut Vec<War
 
 /// The model mesh of `mesh`: faces of 3 or 4 vertices. Convex faces of more vertices are
 /// fanned into triangles from their first vertex; concave faces and faces with holes are
-/// triangulated by ear clipping (holes bridged into the outline first).
+/// triangulated by ear clipping (holes bridged into the outline first). A mesh of triangles
+/// and quads alone keeps its faces as they are.
 pub(crate) fn to_model_mesh(
     r: &Request,
     mesh: PolyMesh,
     colors: Option<Vec<Rgb>>,
 ) -> Result<Shape, RibError> {
-    let PolyMesh { points, mut faces, holes } = mesh;
+    let PolyMesh { points, faces, holes } = mesh;
+    if holes.is_empty() && faces.iter().all(|outline| outline.len() <= 4) {
+        return Ok(Shape::Mesh { points, faces, colors });
+    }
     let mut holes = holes.into_iter().peekable();
-    let mut out = Vec::with_capacity(faces.len());
-    for (f, outline) in faces.drain(..).enumerate() {
+    let mut out = Faces::with_capacity(faces.len(), faces.indices().len());
+    for (f, outline) in faces.iter().enumerate() {
         let face_holes = match holes.peek() {
             Some((hf, _)) if *hf == f => holes.next().map(|(_, h)| h).unwrap_or_default(),
             _ => Vec::new(),
@@ -266,10 +288,10 @@ pub(crate) fn to_model_mesh(
             out.push(outline);
             continue;
         }
-        let mut loops = vec![outline];
+        let mut loops = vec![outline.to_vec()];
         loops.extend(face_holes);
         match crate::ri::triangulate::face(&points, &loops) {
-            Some(tris) => out.extend(tris.into_iter().map(|t| t.to_vec())),
+            Some(tris) => out.extend(tris),
             None => {
                 return Err(r.error(format!(
                     "face {f} cannot be triangulated (degenerate, or its loops cross)"

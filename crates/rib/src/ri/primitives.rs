@@ -171,21 +171,16 @@ impl Machine {
             }
             K::Polygon => {
                 let n = polygon_vertices(r)?;
-                self.mesh(r, &[1], &[n as i32], None)?
+                self.mesh(r, None, &[n as i32], None)?
             }
             K::GeneralPolygon => {
-                let nv = r.ints(0).unwrap_or(&[]).to_vec();
-                self.mesh(r, &[nv.len() as i32], &nv, None)?
+                let nv = r.ints(0).unwrap_or(&[]);
+                self.mesh(r, Some(&[nv.len() as i32]), nv, None)?
             }
-            K::PointsPolygons => {
-                let nv = r.ints(0).unwrap_or(&[]).to_vec();
-                let ones = vec![1; nv.len()];
-                self.mesh(r, &ones, &nv, r.ints(1))?
-            }
+            K::PointsPolygons => self.mesh(r, None, r.ints(0).unwrap_or(&[]), r.ints(1))?,
             K::PointsGeneralPolygons => {
-                let nl = r.ints(0).unwrap_or(&[]).to_vec();
-                let nv = r.ints(1).unwrap_or(&[]).to_vec();
-                self.mesh(r, &nl, &nv, r.ints(2))?
+                let (nl, nv) = (r.ints(0).unwrap_or(&[]), r.ints(1).unwrap_or(&[]));
+                self.mesh(r, Some(nl), nv, r.ints(2))?
             }
             K::Patch => {
                 let kind = patch_type(r, 0)?;
@@ -318,10 +313,11 @@ impl Machine {
         Ok(None)
     }
 
+    /// A polygon mesh (see [`geometry::poly_mesh`] for the arguments) as a model mesh.
     fn mesh(
         &mut self,
         r: &Request,
-        nloops: &[i32],
+        nloops: Option<&[i32]>,
         nvertices: &[i32],
         vertices: Option<&[i32]>,
     ) -> Result<Shape, RibError> {

@@ -4,7 +4,7 @@
 
 use glam::{DVec3, Vec3};
 use reyes_scene::{
-    Csg, FilterKind, HiderMethod, Light, Material, Object, Scene, Shape, object_to_world,
+    Csg, Faces, FilterKind, HiderMethod, Light, Material, Object, Scene, Shape, object_to_world,
 };
 
 use super::{rib, scene, world};
@@ -151,7 +151,7 @@ fn polygons_of_any_shape_become_triangles_and_quads_over_their_own_points() {
          PointsPolygons [3 3] [0 1 2  0 2 3] \"P\" [0 0 0 1 0 0 1 1 0 0 1 0]",
     ));
     let faces = |o: &Object| match &o.shape {
-        Shape::Mesh { faces, points, .. } => (faces.clone(), points.len()),
+        Shape::Mesh { faces, points, .. } => (Vec::<Vec<u32>>::from(faces), points.len()),
         other => panic!("{other:?}"),
     };
     assert_eq!(faces(&s.objects[0]), (vec![vec![0, 1, 2, 3]], 4));
@@ -181,7 +181,10 @@ fn colours_of_every_class() {
     match &s.objects[1].shape {
         // Per-face colours: each face gets its own three vertices.
         Shape::Mesh { colors: Some(c), points, faces } => {
-            assert_eq!((points.len(), faces.clone()), (6, vec![vec![0, 1, 2], vec![3, 4, 5]]));
+            assert_eq!(
+                (points.len(), faces),
+                (6, &Faces::from(vec![vec![0, 1, 2], vec![3, 4, 5]]))
+            );
             assert_eq!((c[0], c[5]), ([1.0, 0.0, 0.0], [0.0, 0.0, 1.0]));
         }
         other => panic!("{other:?}"),
@@ -191,6 +194,41 @@ fn colours_of_every_class() {
         s.objects[2].material,
         Material::DefaultSurface { color: [0.2, 0.3, 0.4], opacity: [1.0; 3], ka: 0.2, kd: 0.8 }
     );
+}
+
+#[test]
+fn face_varying_colours_unweld_each_face_outline_first_then_its_holes() {
+    // A square with a square hole, then a triangle on two of its corners.
+    let cs: Vec<String> = (0..11).map(|k| format!("{} 0 1", k as f32 / 8.0)).collect();
+    let s = scene(&world(&format!(
+        "Translate 0 0 5
+         PointsGeneralPolygons [2 1] [4 4 3] [0 1 2 3  4 5 6 7  0 1 8]
+           \"P\" [0 0 0 4 0 0 4 4 0 0 4 0  1 1 0 1 3 0 3 3 0 3 1 0  2 -2 0]
+           \"facevarying color Cs\" [{}]
+         PointsGeneralPolygons [1 1] [3 4] [0 1 2  1 3 4 2] \"P\" [0 0 0 1 0 0 1 1 0 2 0 0 2 1 0]",
+        cs.join("  ")
+    )));
+    let Shape::Mesh { points, faces, colors: Some(colors) } = &s.objects[0].shape else {
+        panic!("{:?}", s.objects[0].shape)
+    };
+    let original = [[0, 0], [4, 0], [4, 4], [0, 4], [1, 1], [1, 3], [3, 3], [3, 1], [2, -2]];
+    let corner_of = [0, 1, 2, 3, 4, 5, 6, 7, 0, 1, 8];
+    assert_eq!(points.len(), 11, "one vertex per face-vertex");
+    for (k, &c) in corner_of.iter().enumerate() {
+        let [x, y] = original[c].map(|v| v as f32);
+        assert_eq!((points[k], colors[k]), ([x, y, 0.0], [k as f32 / 8.0, 0.0, 1.0]), "{k}");
+    }
+    // The holed square: eight triangles over its own eight vertices; the triangle as it is.
+    assert_eq!(faces.len(), 9, "{faces:?}");
+    assert!(faces.iter().take(8).all(|f| f.len() == 3 && f.iter().all(|&i| i < 8)), "{faces:?}");
+    assert_eq!(&faces[8], &[8, 9, 10]);
+    // Triangles and quads without holes are kept as they are.
+    match &s.objects[1].shape {
+        Shape::Mesh { faces, colors: None, .. } => {
+            assert_eq!(*faces, Faces::from(vec![vec![0, 1, 2], vec![1, 3, 4, 2]]));
+        }
+        other => panic!("{other:?}"),
+    }
 }
 
 #[test]

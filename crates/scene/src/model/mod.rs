@@ -7,12 +7,13 @@
 //! +x is to the right.
 //!
 //! One submodule per section of the file (camera, hider, lights, objects, shapes, materials,
-//! solids, ray tracing); every type is re-exported here, so `model::X` (and, through the
+//! solids, ray tracing), and one for a mesh's flat [`Faces`]; every type is re-exported here, so `model::X` (and, through the
 //! crate root, `reyes_scene::X`) names it whichever file it lives in.
 
 use serde::{Deserialize, Serialize};
 
 mod camera;
+mod faces;
 mod hider;
 mod light;
 mod material;
@@ -22,6 +23,7 @@ mod shape;
 mod solid;
 
 pub use camera::*;
+pub use faces::{FaceIter, Faces};
 pub use hider::*;
 pub use light::*;
 pub use material::*;

@@ -7,7 +7,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{Rgb, V3};
+use super::{Faces, Rgb, V3};
 
 fn deg360() -> f32 {
     360.0
@@ -173,8 +173,9 @@ pub enum Shape {
     Mesh {
         /// Vertex positions.
         points: Vec<V3>,
-        /// Faces: 3 or 4 indices into `points`, in order around the face.
-        faces: Vec<Vec<u32>>,
+        /// Faces: 3 or 4 indices into `points`, in order around the face (written as a list
+        /// of lists, `[[0, 1, 2, 3], [3, 2, 4]]`; held flat, see [`Faces`]).
+        faces: Faces,
         /// Optional per-vertex colours (same length as `points`), multiplying the material colour.
         #[serde(default)]
         colors: Option<Vec<Rgb>>,
