@@ -297,6 +297,7 @@ impl FrameBuild {
             jitter: o.jitter,
             method: o.method,
             bucket_size: o.bucket_size.unwrap_or(Hider::default().bucket_size),
+            max_grid_size: o.max_grid_size.unwrap_or(Hider::default().max_grid_size),
             ..Hider::default()
         };
         let scene = Scene {

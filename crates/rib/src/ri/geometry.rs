@@ -245,6 +245,22 @@ pub(crate) fn mesh_colors(
     }
 }
 
+/// Checks the counts of the standard primitive variables a polygon mesh may carry, whether or
+/// not the model uses them yet, so a mismatched length is an error naming the parameter.
+pub(crate) fn check_primvars(r: &Request, mesh: &PolyMesh) -> Result<(), RibError> {
+    let counts = Counts {
+        uniform: mesh.faces.len(),
+        vertex: mesh.points.len(),
+        facevarying: mesh.corners(),
+    };
+    for (name, n) in [("N", 3), ("Np", 3), ("Os", 3), ("st", 2), ("s", 1), ("t", 1)] {
+        if let Some(p) = r.param(name) {
+            groups(r, p, n, counts)?;
+        }
+    }
+    Ok(())
+}
+
 /// Warnings for the primitive variables of `r` that the model does not carry yet.
 pub(crate) fn unused_primvars(r: &Request, used: &[&str], warnings: &mut Vec<Warning>) {
     for p in &r.params {

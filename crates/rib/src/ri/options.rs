@@ -180,6 +180,19 @@ impl Machine {
                             o.bucket_size = Some((b[0] as u32, b[1] as u32));
                             o.origin("hider.bucket_size", &r.at, r.name());
                         }
+                        ("limits", "gridsize") => {
+                            let g = p
+                                .ints()
+                                .and_then(|v| v.first().copied())
+                                .or_else(|| p.floats().and_then(|v| v.first()).map(|&f| f as i32));
+                            match g {
+                                Some(g) if g >= 1 => {
+                                    o.max_grid_size = Some(g as u32);
+                                    o.origin("hider.max_grid_size", &r.at, r.name());
+                                }
+                                _ => return Err(r.param_error(p, "must be one size of at least 1")),
+                            }
+                        }
                         ("statistics", _) | ("searchpath", _) => {}
                         _ => {
                             let w = Warning {

@@ -322,6 +322,7 @@ impl Machine {
         vertices: Option<&[i32]>,
     ) -> Result<Shape, RibError> {
         let mut mesh: PolyMesh = geometry::poly_mesh(r, nloops, nvertices, vertices)?;
+        geometry::check_primvars(r, &mesh)?;
         let (_, colors) = geometry::mesh_colors(r, &mut mesh)?;
         geometry::unused_primvars(r, &["P", "Pw", "Cs"], &mut self.warnings);
         geometry::to_model_mesh(r, mesh, colors)

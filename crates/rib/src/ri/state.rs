@@ -59,6 +59,8 @@ pub(crate) struct FrameOptions {
     pub method: HiderMethod,
     pub jitter: bool,
     pub bucket_size: Option<(u32, u32)>,
+    /// `Option "limits" "gridsize"`: most micropolygons in one grid.
+    pub max_grid_size: Option<u32>,
     /// World to camera, set by the transformations before `WorldBegin`.
     pub camera: Xform,
     /// Where each option family was last set, for messages about the values it produced.
@@ -88,6 +90,7 @@ impl Default for FrameOptions {
             method: HiderMethod::Stochastic,
             jitter: true,
             bucket_size: None,
+            max_grid_size: None,
             camera: Xform::default(),
             origins: Vec::new(),
         }

@@ -30,6 +30,7 @@ fn options_land_in_image_camera_and_hider() {
          PixelFilter \"catmull-rom\" 3 2
          Hider \"raytrace\" \"jitter\" [0]
          Option \"limits\" \"bucketsize\" [32 8]
+         Option \"limits\" \"gridsize\" [64]
          WorldBegin Sphere 1 -1 1 360 WorldEnd",
     );
     assert_eq!((s.image.width, s.image.height), (320, 200));
@@ -44,6 +45,7 @@ fn options_land_in_image_camera_and_hider() {
     assert_eq!(s.hider.method, HiderMethod::RayTrace);
     assert!(!s.hider.jitter);
     assert_eq!(s.hider.bucket_size, (32, 8));
+    assert_eq!(s.hider.max_grid_size, 64);
     // The camera is the model's canonical one: RenderMan's camera space is the world.
     assert_eq!(
         (s.camera.eye, s.camera.look_at, s.camera.up),
