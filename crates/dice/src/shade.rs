@@ -115,26 +115,9 @@ impl Shader {
                     from: Vec3::from(from),
                     cl: intensity * Vec3::from(color),
                 }),
-                Light::Spot {
-                    from,
-                    to,
-                    color,
-                    intensity,
-                    cone_angle,
-                    cone_delta,
-                    beam_distribution,
-                    ..
-                } => {
+                Light::Spot { .. } => {
                     // A spot light with from == to has no axis and lights nothing.
-                    if let Some(spot) = SpotLight::new(
-                        from,
-                        to,
-                        color,
-                        intensity,
-                        cone_angle,
-                        cone_delta,
-                        beam_distribution,
-                    ) {
+                    if let Some(spot) = SpotLight::of(light) {
                         direct.push(DirectLight::Spot(spot));
                     }
                 }

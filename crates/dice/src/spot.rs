@@ -7,6 +7,7 @@
 //! own position or where the fall-off is zero.
 
 use glam::Vec3;
+use reyes_scene::Light;
 
 /// `d^2` below which a light is taken to sit on the shaded point and is ignored (the rule of
 /// point lights).
@@ -65,6 +66,25 @@ impl SpotLight {
             cos_inner: (cone_angle - cone_delta).to_radians().cos(),
             beam: beam_distribution,
         })
+    }
+
+    /// The spot light of a scene's `Light::Spot`, or `None` for any other light and for a
+    /// spot light without an axis.
+    pub fn of(light: &Light) -> Option<SpotLight> {
+        let Light::Spot {
+            from,
+            to,
+            color,
+            intensity,
+            cone_angle,
+            cone_delta,
+            beam_distribution,
+            ..
+        } = *light
+        else {
+            return None;
+        };
+        SpotLight::new(from, to, color, intensity, cone_angle, cone_delta, beam_distribution)
     }
 
     /// The light's position.
