@@ -142,12 +142,7 @@ mod tests {
         if cos_angle < e0 {
             return 0.0;
         }
-        let s = if cos_angle >= e1 {
-            1.0
-        } else {
-            let t = (cos_angle - e0) / (e1 - e0);
-            t * t * (3.0 - 2.0 * t)
-        };
+        let s = reyes_testkit::shading::smoothstep(e0, e1, cos_angle);
         intensity * cos_angle.powf(beam) / (len * len) * s
     }
 

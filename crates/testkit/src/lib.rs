@@ -4,6 +4,7 @@
 //! - [`golden`]: the golden-image harness (`golden/manifest.ron`, tolerances, bless);
 //! - [`geometry`]: exact areas of clipped polygons, the analytic truth of coverage tests;
 //! - [`image`]: comparing films (PSNR);
+//! - [`shading`]: closed forms of the Shading Language (smoothstep) for shading tests;
 //! - [`fixtures`]: scenes and objects built in code, and the frame a scene lays out.
 #![deny(missing_docs)]
 
@@ -11,3 +12,4 @@ pub mod fixtures;
 pub mod geometry;
 pub mod golden;
 pub mod image;
+pub mod shading;

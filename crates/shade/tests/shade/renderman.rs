@@ -34,14 +34,7 @@ fn spot_closed_form(r: f64) -> f64 {
     let d2 = 36.0 + r * r;
     let cos = 6.0 / d2.sqrt();
     let (e0, e1) = (30f64.to_radians().cos(), 22f64.to_radians().cos());
-    let step = if cos < e0 {
-        0.0
-    } else if cos >= e1 {
-        1.0
-    } else {
-        let t = (cos - e0) / (e1 - e0);
-        t * t * (3.0 - 2.0 * t)
-    };
+    let step = reyes_testkit::shading::smoothstep(e0, e1, cos);
     36.0 * cos * cos / d2 * step * cos
 }
 
