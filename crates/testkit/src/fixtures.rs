@@ -72,6 +72,12 @@ pub fn sphere(r: f32) -> Shape {
     Shape::Sphere { radius: r, zmin: None, zmax: None, thetamax: 360.0 }
 }
 
+/// Five distinct vertex colours, a mesh's `colors` for its five points: red, green, blue,
+/// yellow and cyan.
+pub fn five_colors() -> Vec<[f32; 3]> {
+    vec![[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 1.0, 0.0], [0.0, 1.0, 1.0]]
+}
+
 /// A nonperiodic patch mesh of `kind` with `nu` x `nv` `points` (bicubic: in the Bezier basis).
 pub fn patch_mesh(kind: PatchType, nu: u32, nv: u32, points: Vec<[f32; 3]>) -> Shape {
     let bezier = (Basis::Bezier, Basis::Bezier);

@@ -241,13 +241,7 @@ fn mesh_faces_become_patches_with_tints() {
             [2.0, 0.0, 0.0],
         ],
         faces: Faces::from(vec![vec![0, 1, 2, 3], vec![1, 4, 2], vec![0, 1], vec![0, 9, 1]]),
-        colors: Some(vec![
-            [1.0, 0.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [0.0, 0.0, 1.0],
-            [1.0, 1.0, 0.0],
-            [0.0, 1.0, 1.0],
-        ]),
+        colors: Some(fixtures::five_colors()),
     });
     let s = surfaces(&obj);
     assert_eq!(s.len(), 2, "the two-index face and the face with a bad index are skipped");
