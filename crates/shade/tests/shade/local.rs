@@ -7,7 +7,7 @@ use reyes_sampling::Strata;
 use reyes_shade::{BLACK, IVORY, Shading, SurfacePoint};
 use reyes_trace::Ray;
 
-use crate::common::{patch, scene, trace_one, tracer};
+use crate::common::{patch, scene, trace_one, tracer, white_floor};
 
 #[test]
 fn local_illumination_is_the_dicers_bit_for_bit() {
@@ -196,12 +196,7 @@ fn matte_holds_out_what_is_behind() {
 #[test]
 fn shadow_rays_are_attenuated_by_transparent_surfaces_and_blocked_by_glass() {
     // Point light at y = 4 over the floor point at the origin; a pane at y = 2.
-    let floor = patch(
-        Vec3::new(-5.0, 0.0, -5.0),
-        Vec3::new(10.0, 0.0, 0.0),
-        Vec3::new(0.0, 0.0, 10.0),
-        "material: Matte(color: (1.0, 1.0, 1.0), ka: 0.0)",
-    );
+    let floor = white_floor(5.0);
     let pane = |rest: &str| {
         patch(Vec3::new(-1.0, 2.0, -1.0), Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 2.0), rest)
     };
