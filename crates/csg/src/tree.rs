@@ -94,42 +94,37 @@ impl CsgTree {
 /// Appendix A also pulls non-CSG points whose `csgtree` happens to match (3.15); harmless
 /// there, and avoided here by testing `csg_node`.
 pub fn extract_csgtree(points: &mut [VisPoint], ntree: u16, list: &mut u32) -> u32 {
-    let (mut inside, mut outside) = (NIL, NIL);
-    let mut i = *list;
-    while i != NIL {
-        let next = points[i as usize].next;
-        let p = &mut points[i as usize];
-        if p.csg_tree == ntree && p.csg_node != 0 {
-            p.next = inside;
-            inside = i;
-        } else {
-            p.next = outside;
-            outside = i;
-        }
-        i = next;
-    }
-    *list = outside;
-    inside
+    unlink_where(points, list, |p| p.csg_tree == ntree && p.csg_node != 0)
 }
 
 /// Port of `extract_csgnode`: unlink every point labelled `id` from `*list` and return them.
 pub fn extract_csgnode(points: &mut [VisPoint], id: u16, list: &mut u32) -> u32 {
-    let (mut this, mut other) = (NIL, NIL);
+    unlink_where(points, list, |p| p.csg_node == id)
+}
+
+/// The loop both extractions share: unlink every point of `*list` that is `wanted` and
+/// return them as a list, both lists in reverse order (as the original).
+fn unlink_where(
+    points: &mut [VisPoint],
+    list: &mut u32,
+    wanted: impl Fn(&VisPoint) -> bool,
+) -> u32 {
+    let (mut taken, mut kept) = (NIL, NIL);
     let mut i = *list;
     while i != NIL {
         let next = points[i as usize].next;
         let p = &mut points[i as usize];
-        if p.csg_node == id {
-            p.next = this;
-            this = i;
+        if wanted(p) {
+            p.next = taken;
+            taken = i;
         } else {
-            p.next = other;
-            other = i;
+            p.next = kept;
+            kept = i;
         }
         i = next;
     }
-    *list = other;
-    this
+    *list = kept;
+    taken
 }
 
 /// Port of `mergelists`: the concatenation `a ++ b` (not a sorted merge).

@@ -398,6 +398,7 @@ mod tests {
     use super::*;
     use reyes_scene::Shutter;
     use reyes_testkit::fixtures;
+    use reyes_testkit::random::Uniform;
 
     /// A `w x h` scene of nothing, with no lights, seen by a pinhole camera (`up` as given,
     /// otherwise the testkit camera).
@@ -502,20 +503,14 @@ mod tests {
         assert!(mid.world_to_camera().is_finite());
     }
 
-    /// Uniform numbers in [0, 1) from a counter.
-    fn rand(n: &mut u64) -> f32 {
-        *n += 1;
-        reyes_sampling::unit(reyes_sampling::hash(0x7e57, &[*n]))
-    }
-
     #[test]
     fn primary_rays_hold_what_the_stochastic_hider_draws() {
         // Random cameras, lenses and eye-space points: the raster position where the hider
         // draws the point for a lens position (pinhole projection plus the lens displacement)
         // must give a ray through the point, reaching it at parameter = its eye depth.
-        let mut n = 0;
+        let mut uniform = Uniform::new(0x7e57);
         for case in 0..200 {
-            let mut r = |lo: f32, hi: f32| lo + (hi - lo) * rand(&mut n);
+            let mut r = |lo: f32, hi: f32| uniform.range(lo, hi);
             let eye = [r(-5.0, 5.0), r(-5.0, 5.0), r(-5.0, 5.0)];
             let look_at = [r(-5.0, 5.0), r(-5.0, 5.0), r(-5.0, 5.0)];
             let up = [r(-1.0, 1.0), r(-1.0, 1.0), r(-1.0, 1.0)];

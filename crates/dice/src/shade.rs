@@ -115,26 +115,9 @@ impl Shader {
                     from: Vec3::from(from),
                     cl: intensity * Vec3::from(color),
                 }),
-                Light::Spot {
-                    from,
-                    to,
-                    color,
-                    intensity,
-                    cone_angle,
-                    cone_delta,
-                    beam_distribution,
-                    ..
-                } => {
+                Light::Spot { .. } => {
                     // A spot light with from == to has no axis and lights nothing.
-                    if let Some(spot) = SpotLight::new(
-                        from,
-                        to,
-                        color,
-                        intensity,
-                        cone_angle,
-                        cone_delta,
-                        beam_distribution,
-                    ) {
+                    if let Some(spot) = SpotLight::of(light) {
                         direct.push(DirectLight::Spot(spot));
                     }
                 }
@@ -274,12 +257,19 @@ fn direct(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use reyes_testkit::fixtures;
 
     fn close3(a: [f32; 3], b: Vec3) -> bool {
         (Vec3::from(a) - b).abs().max_element() < 1e-5
     }
 
     const EYE: Vec3 = Vec3::new(0.0, 0.0, -10.0);
+
+    /// An opaque Plastic with no ambient term and white highlights.
+    fn plastic(color: [f32; 3], kd: f32, ks: f32, roughness: f32) -> Material {
+        let (opacity, specular_color) = ([1.0; 3], [1.0; 3]);
+        Material::Plastic { color, opacity, ka: 0.0, kd, ks, roughness, specular_color }
+    }
 
     /// A white distant light of intensity 1 shining from `from` towards the origin.
     fn distant(from: [f32; 3]) -> Light {
@@ -346,15 +336,7 @@ mod tests {
 
     #[test]
     fn plastic_specular_peak_and_cut_off() {
-        let m = Material::Plastic {
-            color: [1.0, 0.0, 0.0],
-            opacity: [1.0; 3],
-            ka: 0.0,
-            kd: 0.5,
-            ks: 0.5,
-            roughness: 0.1,
-            specular_color: [1.0, 1.0, 1.0],
-        };
+        let m = plastic([1.0, 0.0, 0.0], 0.5, 0.5, 0.1);
         // Light straight along the view: N.L = N.H = 1.
         let lights = [distant([0.0, 0.0, -1.0])];
         let s = Shader::new(&m, &lights, EYE);
@@ -395,15 +377,7 @@ mod tests {
         assert!(close3(c, Vec3::new(0.5, 1.0, 1.0) * ci), "{c:?} vs {ci}");
         assert!(close3(t, Vec3::new(0.5, 0.0, 0.0)), "{t:?}");
         // The specular term is Plastic's: with ka = kd = 0 and a white surface, the same.
-        let plastic = Material::Plastic {
-            color: [1.0; 3],
-            opacity: [1.0; 3],
-            ka: 0.0,
-            kd: 0.0,
-            ks: 0.8,
-            roughness: 0.2,
-            specular_color: [1.0; 3],
-        };
+        let plastic = plastic([1.0; 3], 0.0, 0.8, 0.2);
         let metal = Material::Metal {
             color: [1.0; 3],
             opacity: [1.0; 3],
@@ -452,15 +426,7 @@ mod tests {
 
     /// The Shading Language's smoothstep between the cosines of two angles in degrees.
     fn smoothstep_f64(outer: f64, inner: f64, x: f64) -> f64 {
-        let (e0, e1) = (outer.to_radians().cos(), inner.to_radians().cos());
-        if x < e0 {
-            0.0
-        } else if x >= e1 {
-            1.0
-        } else {
-            let t = (x - e0) / (e1 - e0);
-            t * t * (3.0 - 2.0 * t)
-        }
+        reyes_testkit::shading::smoothstep(outer.to_radians().cos(), inner.to_radians().cos(), x)
     }
 
     #[test]
@@ -470,8 +436,7 @@ mod tests {
             distant([0.0, 0.0, -1.0]),
             Light::Ambient { color: [1.0; 3], intensity: 0.5 },
         ];
-        let shape =
-            reyes_scene::Shape::Sphere { radius: 1.0, zmin: None, zmax: None, thetamax: 360.0 };
+        let shape = fixtures::sphere(1.0);
         let m = Material::Matte { color: [1.0; 3], opacity: [1.0; 3], ka: 1.0, kd: 1.0 };
         let object =
             |set: Option<Vec<u32>>| Object { lights: set, ..Object::new(shape.clone(), m.clone()) };
@@ -493,23 +458,12 @@ mod tests {
 
     #[test]
     fn an_orthographic_viewer_sees_along_its_view_direction() {
-        let m = Material::Plastic {
-            color: [0.0; 3],
-            opacity: [1.0; 3],
-            ka: 0.0,
-            kd: 0.0,
-            ks: 1.0,
-            roughness: 0.1,
-            specular_color: [1.0; 3],
-        };
+        let m = plastic([0.0; 3], 0.0, 1.0, 0.1);
         // Light and view both along -z: the highlight peaks wherever the surface faces -z,
         // however far off the axis (a perspective eye would see those points obliquely).
         let lights = [distant([0.0, 0.0, -1.0])];
         let viewer = Viewer::Along { eye: EYE, forward: Vec3::Z };
-        let object = Object::new(
-            reyes_scene::Shape::Sphere { radius: 1.0, zmin: None, zmax: None, thetamax: 360.0 },
-            m.clone(),
-        );
+        let object = Object::new(fixtures::sphere(1.0), m.clone());
         let ortho = Shader::for_object(&object, &lights, viewer);
         let persp = Shader::new(&m, &lights, EYE);
         for x in [0.0f32, 3.0, -8.0] {

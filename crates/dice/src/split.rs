@@ -497,7 +497,7 @@ mod tests {
     use crate::shapes::{Surface, surfaces};
     use glam::Mat4;
     use proptest::prelude::*;
-    use reyes_scene::{Camera, Material, Object, Scene, Shape};
+    use reyes_scene::{Camera, Material, Object, PatchType, Scene, Shape};
     use reyes_testkit::fixtures;
 
     /// The camera seeing a 160x120 scene of nothing from the origin down +z (fov 40, yon
@@ -572,18 +572,7 @@ mod tests {
                 [i - 1.5, j - 1.5 + spike * (1.0 - 2.0 * (k % 4 == 2) as i32 as f32), 20.0]
             })
             .collect();
-        let shape = Shape::PatchMesh {
-            kind: reyes_scene::PatchType::Bicubic,
-            nu: 4,
-            nv: 4,
-            uwrap: reyes_scene::Wrap::Nonperiodic,
-            vwrap: reyes_scene::Wrap::Nonperiodic,
-            points,
-            ubasis: reyes_scene::Basis::Bezier,
-            ustep: None,
-            vbasis: reyes_scene::Basis::Bezier,
-            vstep: None,
-        };
+        let shape = fixtures::patch_mesh(PatchType::Bicubic, 4, 4, points);
         let surface = surfaces(&shape_object(shape)).remove(0);
         let (cam, sp) = splitter(None);
         let moment = Moment::new(0.0, Placement::Matrix(Mat4::IDENTITY), Mat4::IDENTITY, 0);

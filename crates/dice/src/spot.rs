@@ -7,6 +7,7 @@
 //! own position or where the fall-off is zero.
 
 use glam::Vec3;
+use reyes_scene::Light;
 
 /// `d^2` below which a light is taken to sit on the shaded point and is ignored (the rule of
 /// point lights).
@@ -67,6 +68,25 @@ impl SpotLight {
         })
     }
 
+    /// The spot light of a scene's `Light::Spot`, or `None` for any other light and for a
+    /// spot light without an axis.
+    pub fn of(light: &Light) -> Option<SpotLight> {
+        let Light::Spot {
+            from,
+            to,
+            color,
+            intensity,
+            cone_angle,
+            cone_delta,
+            beam_distribution,
+            ..
+        } = *light
+        else {
+            return None;
+        };
+        SpotLight::new(from, to, color, intensity, cone_angle, cone_delta, beam_distribution)
+    }
+
     /// The light's position.
     pub fn from(&self) -> Vec3 {
         self.from
@@ -122,12 +142,7 @@ mod tests {
         if cos_angle < e0 {
             return 0.0;
         }
-        let s = if cos_angle >= e1 {
-            1.0
-        } else {
-            let t = (cos_angle - e0) / (e1 - e0);
-            t * t * (3.0 - 2.0 * t)
-        };
+        let s = reyes_testkit::shading::smoothstep(e0, e1, cos_angle);
         intensity * cos_angle.powf(beam) / (len * len) * s
     }
 

@@ -12,13 +12,7 @@ fn mesh_object(material: Material, matte: bool) -> Object {
     let shape = Shape::Mesh {
         points: quad_and_triangle(),
         faces: Faces::from(vec![vec![0, 1, 2, 3], vec![1, 4, 2]]),
-        colors: Some(vec![
-            [1.0, 0.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [0.0, 0.0, 1.0],
-            [1.0, 1.0, 0.0],
-            [0.0, 1.0, 1.0],
-        ]),
+        colors: Some(reyes_testkit::fixtures::five_colors()),
     };
     Object { matte, ..Object::new(shape, material).named("mesh") }
 }

@@ -9,6 +9,7 @@ use common::*;
 use glam::{Vec2, Vec3};
 use reyes_dice::{CameraSetup, Viewer};
 use reyes_scene::{Camera, Lens, Projection, Scene, Transform};
+use reyes_testkit::random::Uniform;
 
 /// A scene of `objects` seen by `camera` on a `w x h` image.
 fn seen_by(camera: Camera, w: u32, h: u32, objects: Vec<reyes_scene::Object>) -> Scene {
@@ -20,20 +21,14 @@ fn ahead(projection: Projection, window: Option<[f32; 4]>) -> Camera {
     Camera { projection, screen_window: window, ..camera_ahead(40.0, None) }
 }
 
-/// Uniform numbers in [0, 1) from a counter.
-fn rand(n: &mut u64) -> f32 {
-    *n += 1;
-    reyes_sampling::unit(reyes_sampling::hash(0x5c4e, &[*n]))
-}
-
 /// The default window's raster mapping is, bit for bit, the formula the renderer used before
 /// screen windows and projections existed: `w/2 + k x/z`, `h/2 - k y/z`, with
 /// `k = (min(w, h)/2) / tan(fov/2)`.
 #[test]
 fn the_default_window_is_bit_identical_to_the_old_projection() {
-    let mut n = 0;
+    let mut uniform = Uniform::new(0x5c4e);
     for _ in 0..200 {
-        let mut r = |lo: f32, hi: f32| lo + (hi - lo) * rand(&mut n);
+        let mut r = |lo: f32, hi: f32| uniform.range(lo, hi);
         let (w, h) = (r(1.0, 3000.0) as u32, r(1.0, 3000.0) as u32);
         let fov = r(1.0, 170.0);
         let s = seen_by(camera_ahead(fov, None), w, h, vec![]);
@@ -121,9 +116,9 @@ fn orthographic_ignores_depth_and_the_lens() {
     assert_eq!(cam.projection(), Projection::Orthographic);
     let to_world = cam.world_to_camera().inverse();
     let forward = to_world.transform_vector3(Vec3::Z);
-    let mut n = 0;
+    let mut uniform = Uniform::new(0x5c4e);
     for _ in 0..200 {
-        let mut r = |lo: f32, hi: f32| lo + (hi - lo) * rand(&mut n);
+        let mut r = |lo: f32, hi: f32| uniform.range(lo, hi);
         let p = Vec3::new(r(-2.0, 3.0), r(-1.5, 1.0), r(0.5, 50.0));
         let raster = cam.eye_to_raster(p);
         let deeper = cam.eye_to_raster(Vec3::new(p.x, p.y, p.z * 3.0 + 1.0));

@@ -216,19 +216,6 @@ mod tests {
     use super::*;
     use proptest::prelude::*;
 
-    /// The nine RenderMan kinds.
-    pub(crate) const RI: [FilterKind; 9] = [
-        FilterKind::RiBox,
-        FilterKind::RiTriangle,
-        FilterKind::RiCatmullRom,
-        FilterKind::RiGaussian,
-        FilterKind::RiSinc,
-        FilterKind::RiDisk,
-        FilterKind::RiBessel,
-        FilterKind::RiMitchell,
-        FilterKind::RiBlackmanHarris,
-    ];
-
     fn w(kind: FilterKind, xw: f32, yw: f32, x: f32, y: f32) -> f64 {
         f64::from(weight(kind, xw, yw, x, y).unwrap_or_else(|| panic!("{kind:?} is not Ri")))
     }
@@ -240,8 +227,12 @@ mod tests {
     #[test]
     fn only_the_ri_kinds_are_renderman_kernels() {
         for kind in FilterKind::ALL {
-            assert_eq!(weight(kind, 2.0, 2.0, 0.0, 0.0).is_some(), RI.contains(&kind), "{kind:?}");
-            assert_eq!(kind.is_renderman(), RI.contains(&kind), "{kind:?}");
+            assert_eq!(
+                weight(kind, 2.0, 2.0, 0.0, 0.0).is_some(),
+                FilterKind::RENDERMAN.contains(&kind),
+                "{kind:?}"
+            );
+            assert_eq!(kind.is_renderman(), FilterKind::RENDERMAN.contains(&kind), "{kind:?}");
         }
     }
 
@@ -365,7 +356,7 @@ mod tests {
     }
 
     fn kinds() -> impl Strategy<Value = FilterKind> {
-        prop::sample::select(RI.to_vec())
+        prop::sample::select(FilterKind::RENDERMAN)
     }
 
     proptest! {

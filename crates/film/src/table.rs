@@ -391,19 +391,6 @@ pub(crate) mod tests {
         assert!(msg.contains("Box") && !msg.contains('\n'), "{msg}");
     }
 
-    /// The nine RenderMan kinds.
-    const RI: [FilterKind; 9] = [
-        FilterKind::RiBox,
-        FilterKind::RiTriangle,
-        FilterKind::RiCatmullRom,
-        FilterKind::RiGaussian,
-        FilterKind::RiSinc,
-        FilterKind::RiDisk,
-        FilterKind::RiBessel,
-        FilterKind::RiMitchell,
-        FilterKind::RiBlackmanHarris,
-    ];
-
     fn table(kind: FilterKind, width: f32, height: Option<f32>, n: u32) -> FilterTable {
         let filter = Filter { kind, width, height };
         FilterTable::for_filter(&filter, n, n, &grid_locations(n, n), &Original::default())
@@ -422,7 +409,7 @@ pub(crate) mod tests {
     proptest::proptest! {
         #[test]
         fn renderman_tables_sum_to_one(
-            kind in proptest::sample::select(RI.to_vec()),
+            kind in proptest::sample::select(FilterKind::RENDERMAN),
             width in 1.0_f32..6.0,
             height in 1.0_f32..6.0,
             n in 1_u32..6,
@@ -452,7 +439,7 @@ pub(crate) mod tests {
 
     #[test]
     fn renderman_tables_are_symmetric() {
-        for kind in RI {
+        for &kind in FilterKind::RENDERMAN {
             for (width, height) in [(2.0, 2.0), (4.0, 1.0), (1.5, 3.0)] {
                 for n in GRIDS {
                     let loc = grid_locations(n, n);

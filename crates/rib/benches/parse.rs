@@ -96,18 +96,31 @@ fn status_kib(field: &str) -> Option<u64> {
     line.split_whitespace().nth(1)?.parse().ok()
 }
 
-/// One timed, measured parse: MB/s and the peak RSS it adds, against the geometry's size.
-fn memory_report(bytes: &[u8]) {
-    let geometry = 4 * (N * N + 4 * N * N + 3 * (N + 1) * (N + 1));
-    // Reset the high-water mark to the current RSS (Linux >= 4.0), so VmHWM measures the parse.
+/// The bytes of the grid's geometry held plainly: f32 points and i32 counts and indices.
+const GEOMETRY: usize = 4 * (N * N + 4 * N * N + 3 * (N + 1) * (N + 1));
+
+/// One timed run of `f` on a copy of `bytes`: its seconds, and the peak RSS it added beyond
+/// the copy, in bytes (None where Linux's /proc/self/clear_refs is not there to reset it).
+fn timed<T>(bytes: &[u8], f: impl FnOnce(Vec<u8>) -> T) -> (f64, Option<f64>) {
+    // Reset the high-water mark to the current RSS (Linux >= 4.0), so VmHWM measures the run.
     let reset = std::fs::write("/proc/self/clear_refs", "5").is_ok();
-    let before = status_kib("VmRSS:");
     let input = bytes.to_vec();
     let copied = status_kib("VmRSS:");
     let t = Instant::now();
-    parse(input);
+    f(input);
     let secs = t.elapsed().as_secs_f64();
     let peak = status_kib("VmHWM:");
+    match (reset, copied, peak) {
+        (true, Some(copied), Some(peak)) => {
+            (secs, Some(peak.saturating_sub(copied) as f64 * 1024.0))
+        }
+        _ => (secs, None),
+    }
+}
+
+/// One timed, measured parse: MB/s and the peak RSS it adds, against the geometry's size.
+fn memory_report(bytes: &[u8]) {
+    let (secs, added) = timed(bytes, parse);
     eprintln!(
         "grid: {:.1} MB of RIB, {} quads, parsed once in {:.3} s = {:.1} MB/s",
         bytes.len() as f64 / 1e6,
@@ -115,14 +128,16 @@ fn memory_report(bytes: &[u8]) {
         secs,
         bytes.len() as f64 / 1e6 / secs
     );
-    match (reset, before, copied, peak) {
-        (true, Some(_), Some(copied), Some(peak)) => eprintln!(
+    match added {
+        Some(added) => eprintln!(
             "grid: geometry (f32 points + i32 indices) {:.1} MB; peak RSS added by the parse {:.1} MB = {:.2}x the geometry (input copy excluded)",
-            geometry as f64 / 1e6,
-            (peak.saturating_sub(copied)) as f64 * 1024.0 / 1e6,
-            (peak.saturating_sub(copied)) as f64 * 1024.0 / geometry as f64
+            GEOMETRY as f64 / 1e6,
+            added / 1e6,
+            added / GEOMETRY as f64
         ),
-        _ => eprintln!("grid: peak memory not measurable here (needs Linux /proc/self/clear_refs)"),
+        None => {
+            eprintln!("grid: peak memory not measurable here (needs Linux /proc/self/clear_refs)")
+        }
     }
 }
 
@@ -141,24 +156,17 @@ fn load_scene(bytes: Vec<u8>) -> usize {
 
 /// One timed, measured load into the scene model, as [`memory_report`] measures the parse.
 fn scene_report(bytes: &[u8]) {
-    let geometry = 4 * (N * N + 4 * N * N + 3 * (N + 1) * (N + 1));
-    let reset = std::fs::write("/proc/self/clear_refs", "5").is_ok();
-    let input = bytes.to_vec();
-    let copied = status_kib("VmRSS:");
-    let t = Instant::now();
-    load_scene(input);
-    let secs = t.elapsed().as_secs_f64();
-    let peak = status_kib("VmHWM:");
+    let (secs, added) = timed(bytes, load_scene);
     eprintln!(
         "grid to scene: loaded and validated once in {:.3} s = {:.1} MB/s",
         secs,
         bytes.len() as f64 / 1e6 / secs
     );
-    if let (true, Some(copied), Some(peak)) = (reset, copied, peak) {
+    if let Some(added) = added {
         eprintln!(
             "grid to scene: peak RSS added {:.1} MB = {:.2}x the geometry",
-            (peak.saturating_sub(copied)) as f64 * 1024.0 / 1e6,
-            (peak.saturating_sub(copied)) as f64 * 1024.0 / geometry as f64
+            added / 1e6,
+            added / GEOMETRY as f64
         );
     }
 }

@@ -612,14 +612,20 @@ impl Lexer {
         }
     }
 
+    /// Refuses a binary float array (pending after its `[`) where `want` is expected.
+    fn no_binary_floats(&mut self, open: Pos, want: &str) -> Result<(), ArrayError> {
+        match self.pending.take() {
+            Some(_) => Err(ArrayError::Unexpected(
+                open,
+                format!("expected {want}, got a binary float array"),
+            )),
+            None => Ok(()),
+        }
+    }
+
     /// Reads the integers of an array whose `[` was consumed, through its `]`.
     pub(crate) fn ints(&mut self, open: Pos, out: &mut Vec<i32>) -> Result<(), ArrayError> {
-        if self.pending.take().is_some() {
-            return Err(ArrayError::Unexpected(
-                open,
-                "expected integers, got a binary float array".into(),
-            ));
-        }
+        self.no_binary_floats(open, "integers")?;
         loop {
             match self.item()? {
                 Item::Num(_, Num { i: Some(i), .. }) => out.push(i),
@@ -632,12 +638,7 @@ impl Lexer {
 
     /// Reads the strings of an array whose `[` was consumed, through its `]`.
     pub(crate) fn strings(&mut self, open: Pos, out: &mut Vec<String>) -> Result<(), ArrayError> {
-        if self.pending.take().is_some() {
-            return Err(ArrayError::Unexpected(
-                open,
-                "expected strings, got a binary float array".into(),
-            ));
-        }
+        self.no_binary_floats(open, "strings")?;
         loop {
             match self.item()? {
                 Item::Str(_, s) => out.push(s),

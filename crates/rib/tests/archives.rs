@@ -35,17 +35,27 @@ fn trace(root: &Path) -> (Vec<String>, Vec<String>) {
     panic!("did not finish");
 }
 
+/// Writes `files` (`(path, text)`) to a new temporary folder and [`trace`]s the first; the
+/// folder, then what was seen and the errors.
+fn trace_files(files: &[(&str, &str)]) -> (tempfile::TempDir, Vec<String>, Vec<String>) {
+    let tmp = tempfile::tempdir().unwrap();
+    for (name, text) in files {
+        write(tmp.path(), name, text);
+    }
+    let (seen, errors) = trace(&tmp.path().join(files[0].0));
+    (tmp, seen, errors)
+}
+
 #[test]
 fn archives_resolve_relative_to_the_including_file() {
-    let tmp = tempfile::tempdir().unwrap();
-    let d = tmp.path();
-    write(d, "scene/main.rib", "WorldBegin\nReadArchive \"parts/ball.rib\"\nWorldEnd\n");
-    write(d, "scene/parts/ball.rib", "AttributeBegin\n  ReadArchive \"shape.rib\"\nAttributeEnd\n");
-    write(d, "scene/parts/shape.rib", "Sphere 1 -1 1 360");
-    let main = d.join("scene/main.rib");
-    let (seen, errors) = trace(&main);
+    let (tmp, seen, errors) = trace_files(&[
+        ("scene/main.rib", "WorldBegin\nReadArchive \"parts/ball.rib\"\nWorldEnd\n"),
+        ("scene/parts/ball.rib", "AttributeBegin\n  ReadArchive \"shape.rib\"\nAttributeEnd\n"),
+        ("scene/parts/shape.rib", "Sphere 1 -1 1 360"),
+    ]);
     assert_eq!(errors, Vec::<String>::new());
-    let m = main.display().to_string();
+    let d = tmp.path();
+    let m = d.join("scene/main.rib").display().to_string();
     let b = d.join("scene/parts/ball.rib").display().to_string();
     let s = d.join("scene/parts/shape.rib").display().to_string();
     assert_eq!(
@@ -64,43 +74,40 @@ fn archives_resolve_relative_to_the_including_file() {
 
 #[test]
 fn errors_inside_an_archive_name_the_archive() {
-    let tmp = tempfile::tempdir().unwrap();
-    let d = tmp.path();
-    write(d, "a.rib", "ReadArchive \"b.rib\"\nSphere 1 -1 1 360\n");
-    write(d, "b.rib", "# archive\nTranslate 1 2\n");
-    let (_, errors) = trace(&d.join("a.rib"));
+    let (tmp, _, errors) = trace_files(&[
+        ("a.rib", "ReadArchive \"b.rib\"\nSphere 1 -1 1 360\n"),
+        ("b.rib", "# archive\nTranslate 1 2\n"),
+    ]);
     assert_eq!(
         errors,
         vec![format!(
             "{}:2:1: Translate: missing argument dz (a number) in Translate dx dy dz",
-            d.join("b.rib").display()
+            tmp.path().join("b.rib").display()
         )]
     );
 }
 
 #[test]
 fn include_cycles_are_reported_with_the_chain() {
-    let tmp = tempfile::tempdir().unwrap();
+    let (tmp, seen, errors) = trace_files(&[
+        ("a.rib", "ReadArchive \"b.rib\"\n"),
+        ("b.rib", "Sphere 1 -1 1 360\nReadArchive \"a.rib\"\n"),
+    ]);
     let d = tmp.path();
-    write(d, "a.rib", "ReadArchive \"b.rib\"\n");
-    write(d, "b.rib", "Sphere 1 -1 1 360\nReadArchive \"a.rib\"\n");
-    let (seen, errors) = trace(&d.join("a.rib"));
     let (a, b) = (d.join("a.rib").display().to_string(), d.join("b.rib").display().to_string());
     assert_eq!(errors, vec![format!("{b}:2:1: ReadArchive: include cycle {a} -> {b} -> {a}")]);
     assert_eq!(seen.len(), 3);
     // A file including itself.
-    write(d, "self.rib", "ReadArchive \"self.rib\"");
-    let (_, errors) = trace(&d.join("self.rib"));
-    let s = d.join("self.rib").display().to_string();
+    let (tmp, _, errors) = trace_files(&[("self.rib", "ReadArchive \"self.rib\"")]);
+    let s = tmp.path().join("self.rib").display().to_string();
     assert_eq!(errors, vec![format!("{s}:1:1: ReadArchive: include cycle {s} -> {s}")]);
 }
 
 #[test]
 fn a_missing_archive_names_the_file_and_the_including_request() {
-    let tmp = tempfile::tempdir().unwrap();
+    let (tmp, seen, errors) =
+        trace_files(&[("main.rib", "WorldBegin\n  ReadArchive \"nowhere.rib\"\nWorldEnd\n")]);
     let d = tmp.path();
-    write(d, "main.rib", "WorldBegin\n  ReadArchive \"nowhere.rib\"\nWorldEnd\n");
-    let (seen, errors) = trace(&d.join("main.rib"));
     assert_eq!(errors.len(), 1);
     let want = format!(
         "{}:2:3: ReadArchive: cannot read \"{}\": ",

@@ -7,21 +7,7 @@ const DOC: &str = include_str!("../../../docs/rib.md");
 
 /// The ```rib blocks of the document.
 fn rib_blocks() -> Vec<String> {
-    let mut blocks = Vec::new();
-    let mut current: Option<String> = None;
-    for line in DOC.lines() {
-        match current.as_mut() {
-            None if line.trim() == "```rib" => current = Some(String::new()),
-            None => {}
-            Some(_) if line.trim() == "```" => blocks.extend(current.take()),
-            Some(block) => {
-                block.push_str(line);
-                block.push('\n');
-            }
-        }
-    }
-    assert!(current.is_none(), "unterminated ```rib block");
-    blocks
+    reyes_testkit::docs::fenced_blocks(DOC, "rib")
 }
 
 #[test]

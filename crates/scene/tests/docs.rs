@@ -9,21 +9,7 @@ const DOC: &str = include_str!("../../../docs/scene-format.md");
 
 /// The ```ron blocks of the document, in order.
 fn ron_blocks() -> Vec<String> {
-    let mut blocks = Vec::new();
-    let mut current: Option<String> = None;
-    for line in DOC.lines() {
-        match current.as_mut() {
-            None if line.trim() == "```ron" => current = Some(String::new()),
-            None => {}
-            Some(_) if line.trim() == "```" => blocks.extend(current.take()),
-            Some(block) => {
-                block.push_str(line);
-                block.push('\n');
-            }
-        }
-    }
-    assert!(current.is_none(), "unterminated ```ron block");
-    blocks
+    reyes_testkit::docs::fenced_blocks(DOC, "ron")
 }
 
 fn is_complete(block: &str) -> bool {

@@ -258,6 +258,16 @@ fn run(case: &Case) -> SceneError {
     }
 }
 
+/// The case named `name`.
+fn case(name: &str) -> &'static Case {
+    CASES.iter().find(|c| c.name == name).unwrap_or_else(|| panic!("no case {name}"))
+}
+
+/// The one-line message of the error of the case named `name`.
+fn shown(name: &str) -> String {
+    run(case(name)).to_string()
+}
+
 #[test]
 fn the_base_scene_is_valid() {
     let scene = parse(BASE, Path::new(FILE)).unwrap_or_else(|e| panic!("{e}"));
@@ -398,11 +408,6 @@ fn the_catalogue_covers_the_required_inputs() {
 /// The exact text of a few errors, independent of the snapshot.
 #[test]
 fn exact_messages() {
-    let shown = |name: &str| {
-        let case =
-            CASES.iter().find(|c| c.name == name).unwrap_or_else(|| panic!("no case {name}"));
-        run(case).to_string()
-    };
     assert_eq!(
         shown("filter height negative"),
         "scenes/bad.ron:4:79: hider.filter.height: must be in (0, 16] pixels, got -1"
@@ -607,21 +612,22 @@ fn operand_names_in_messages_are_clipped_and_escaped() {
     assert_eq!(e.message, "no object is named \"a\\nb\"");
 }
 
-/// What `load` shows for the case `name` written to the file `file`, a bad scene (exit code
-/// 2) on one line.
-fn load_case(name: &str, file: &str) -> String {
-    let case = CASES.iter().find(|c| c.name == name).unwrap_or_else(|| panic!("no case {name}"));
+/// `load` shows the case `name`, written to the file `file`, as a bad scene (exit code 2) on
+/// one line ending in `tail`.
+fn assert_load_shows(name: &str, file: &str, tail: &str) {
+    let case = case(name);
     let path = common::temp_file(file, BASE.replacen(case.from, case.to, 1).as_bytes());
-    common::load_bad(&path).to_string()
+    let shown = common::load_bad(&path).to_string();
+    assert!(shown.ends_with(tail), "{shown}");
 }
 
 /// A bad solid is a bad scene for `load` too: one line, exit code 2.
 #[test]
 fn a_bad_solid_is_exit_code_2() {
-    let shown = load_case("disk operand", "bad-solid.ron");
-    assert!(
-        shown.ends_with(":11:46: solids[0].tree[1]: object \"plate\" is not closed (Disk); CSG operands must be closed solids"),
-        "{shown}"
+    assert_load_shows(
+        "disk operand",
+        "bad-solid.ron",
+        ":11:46: solids[0].tree[1]: object \"plate\" is not closed (Disk); CSG operands must be closed solids",
     );
 }
 
@@ -637,36 +643,31 @@ fn object_keys_follow_the_shutter() {
     let keys = |a: &str, b: &str| {
         format!("(time: {a}, transform: []), (time: {b}, transform: [Translate((1.0, 0.0, 0.0))])")
     };
-    // Keys at both ends of a shifted shutter are inside it; outside it they are not.
-    assert_eq!(with("(open: 1.0, close: 2.0)", &keys("1.0", "2.0")), Ok(()));
-    assert_eq!(
-        with("(open: 1.0, close: 2.0)", &keys("0.0", "2.0")),
-        Err("scenes/bad.ron:7:64: objects[0].motion[0].time: motion key time 0 is outside the shutter [1, 2]".into())
-    );
-    assert_eq!(
-        with("(open: 1.0, close: 2.0)", &keys("1.0", "2.5")),
-        Err("scenes/bad.ron:7:92: objects[0].motion[1].time: motion key time 2.5 is outside the shutter [1, 2]".into())
-    );
-    // A closed shutter (no blur): every key at the opening time, none after.
-    assert_eq!(with("(open: 0.5, close: 0.5)", &keys("0.5", "0.5")), Ok(()));
-    assert_eq!(
-        with("(open: 0.5, close: 0.5)", &keys("0.5", "0.75")),
-        Err("scenes/bad.ron:7:92: objects[0].motion[1].time: motion key time 0.75 is outside the shutter [0.5, 0.5]".into())
-    );
-    // An open shutter needs strictly increasing times.
-    assert_eq!(
-        with("(open: 0.0, close: 1.0)", &keys("0.5", "0.5")),
-        Err("scenes/bad.ron:7:92: objects[0].motion[1].time: keys must be in increasing time order, got 0.5 after 0.5".into())
-    );
+    #[rustfmt::skip]
+    let cases = [
+        // Keys at both ends of a shifted shutter are inside it; outside it they are not.
+        ("(open: 1.0, close: 2.0)", ("1.0", "2.0"), None),
+        ("(open: 1.0, close: 2.0)", ("0.0", "2.0"), Some("scenes/bad.ron:7:64: objects[0].motion[0].time: motion key time 0 is outside the shutter [1, 2]")),
+        ("(open: 1.0, close: 2.0)", ("1.0", "2.5"), Some("scenes/bad.ron:7:92: objects[0].motion[1].time: motion key time 2.5 is outside the shutter [1, 2]")),
+        // A closed shutter (no blur): every key at the opening time, none after.
+        ("(open: 0.5, close: 0.5)", ("0.5", "0.5"), None),
+        ("(open: 0.5, close: 0.5)", ("0.5", "0.75"), Some("scenes/bad.ron:7:92: objects[0].motion[1].time: motion key time 0.75 is outside the shutter [0.5, 0.5]")),
+        // An open shutter needs strictly increasing times.
+        ("(open: 0.0, close: 1.0)", ("0.5", "0.5"), Some("scenes/bad.ron:7:92: objects[0].motion[1].time: keys must be in increasing time order, got 0.5 after 0.5")),
+    ];
+    for (shutter, (a, b), error) in cases {
+        let want = error.map_or(Ok(()), |e| Err(e.to_string()));
+        assert_eq!(with(shutter, &keys(a, b)), want, "shutter {shutter}, keys at {a} and {b}");
+    }
 }
 
 /// A bad motion key is a bad scene for `load` too: one line, exit code 2.
 #[test]
 fn a_bad_motion_key_is_exit_code_2() {
-    let shown = load_case("transform motion keys out of order", "bad-motion.ron");
-    assert!(
-        shown.ends_with(":7:120: objects[0].motion[2].time: keys must be in increasing time order, got 0.5 after 0.7"),
-        "{shown}"
+    assert_load_shows(
+        "transform motion keys out of order",
+        "bad-motion.ron",
+        ":7:120: objects[0].motion[2].time: keys must be in increasing time order, got 0.5 after 0.7",
     );
 }
 
@@ -702,10 +703,6 @@ fn positions_survive_comments_and_strings() {
 
 #[test]
 fn new_geometry_messages() {
-    let shown = |name: &str| {
-        let case = CASES.iter().find(|c| c.name == name).expect(name);
-        run(case).to_string()
-    };
     assert_eq!(
         shown("nurbs knots decreasing"),
         "scenes/bad.ron:7:76: objects[0].shape.uknot[3]: must not decrease, got 0.5 after 1"
@@ -728,11 +725,6 @@ fn new_geometry_messages() {
 /// light set, the spot light and the metal material.
 #[test]
 fn exact_messages_of_the_renderman_fields() {
-    let shown = |name: &str| {
-        let case =
-            CASES.iter().find(|c| c.name == name).unwrap_or_else(|| panic!("no case {name}"));
-        run(case).to_string()
-    };
     assert_eq!(
         shown("screen window right not above left"),
         "scenes/bad.ron:3:100: camera.screen_window[1]: must be > left (-1), got -2"

@@ -7,6 +7,7 @@ use glam::DVec3;
 use reyes_sampling::SplitMix64;
 use reyes_scene::patches::{self, bezier_patches, patch_count};
 use reyes_scene::{Basis, PatchType, Shape, Wrap};
+use reyes_testkit::fixtures::nurbs_cylinder;
 
 /// The spec's basis matrices (RenderMan Interface 3.2, `RiBasis`), typed in again.
 fn spec_matrix(basis: Basis) -> [[f64; 4]; 4] {
@@ -296,38 +297,7 @@ fn a_nurbs_with_bezier_knots_is_the_bezier_patch() {
 
 #[test]
 fn the_nine_point_circle_is_exactly_round() {
-    let w = std::f32::consts::FRAC_1_SQRT_2;
-    let ring = [
-        (1.0, 0.0),
-        (1.0, 1.0),
-        (0.0, 1.0),
-        (-1.0, 1.0),
-        (-1.0, 0.0),
-        (-1.0, -1.0),
-        (0.0, -1.0),
-        (1.0, -1.0),
-        (1.0, 0.0),
-    ];
-    let mut points = Vec::new();
-    for z in [-1.0_f32, 1.0] {
-        for (k, (x, y)) in ring.iter().enumerate() {
-            let wk = if k % 2 == 1 { w } else { 1.0 };
-            points.push([x * wk, y * wk, z * wk, wk]);
-        }
-    }
-    let shape = Shape::NuPatch {
-        nu: 9,
-        uorder: 3,
-        uknot: vec![0.0, 0.0, 0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0, 1.0],
-        umin: 0.0,
-        umax: 1.0,
-        nv: 2,
-        vorder: 2,
-        vknot: vec![0.0, 0.0, 1.0, 1.0],
-        vmin: 0.0,
-        vmax: 1.0,
-        points,
-    };
+    let shape = nurbs_cylinder();
     let patches = bezier_patches(&shape, None);
     assert_eq!(patches.len(), 4);
     let mut rng = SplitMix64::from_state(1);

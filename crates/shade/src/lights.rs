@@ -118,27 +118,9 @@ impl DirectLight {
                 cl: *intensity * Vec3::from(*color),
                 shadows: *shadows,
             }),
-            Light::Spot {
-                from,
-                to,
-                color,
-                intensity,
-                cone_angle,
-                cone_delta,
-                beam_distribution,
-                shadows,
-            } => Some(DirectLight::Spot {
-                spot: SpotLight::new(
-                    *from,
-                    *to,
-                    *color,
-                    *intensity,
-                    *cone_angle,
-                    *cone_delta,
-                    *beam_distribution,
-                )?,
-                shadows: *shadows,
-            }),
+            Light::Spot { shadows, .. } => {
+                Some(DirectLight::Spot { spot: SpotLight::of(light)?, shadows: *shadows })
+            }
             Light::Area { shape, color, intensity, motion } => {
                 let shape = match shape {
                     AreaShape::Sphere { center, radius } => {

@@ -6,8 +6,8 @@ use std::path::Path;
 
 pub use reyes_render::frame_for;
 use reyes_scene::{
-    Camera, Hider, Image, Lens, Light, Material, Object, Projection, Scene, Shape, Shutter,
-    Transform,
+    Basis, Camera, Hider, Image, Lens, Light, Material, Object, PatchType, Projection, Scene,
+    Shape, Shutter, Transform, Wrap,
 };
 
 /// Parse and validate RON scene text, panicking with the error (tests only).
@@ -70,6 +70,96 @@ pub fn object(shape: Shape, transform: Vec<Transform>) -> Object {
 /// A whole sphere of radius `r`.
 pub fn sphere(r: f32) -> Shape {
     Shape::Sphere { radius: r, zmin: None, zmax: None, thetamax: 360.0 }
+}
+
+/// Five distinct vertex colours, a mesh's `colors` for its five points: red, green, blue,
+/// yellow and cyan.
+pub fn five_colors() -> Vec<[f32; 3]> {
+    vec![[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 1.0, 0.0], [0.0, 1.0, 1.0]]
+}
+
+/// A nonperiodic patch mesh of `kind` with `nu` x `nv` `points` (bicubic: in the Bezier basis).
+pub fn patch_mesh(kind: PatchType, nu: u32, nv: u32, points: Vec<[f32; 3]>) -> Shape {
+    let bezier = (Basis::Bezier, Basis::Bezier);
+    patch_mesh_with(kind, nu, nv, (Wrap::Nonperiodic, Wrap::Nonperiodic), bezier, points)
+}
+
+/// A patch mesh of `kind` with `nu` x `nv` `points`, the `(u, v)` wraps and bases and the
+/// bases' standard steps.
+pub fn patch_mesh_with(
+    kind: PatchType,
+    nu: u32,
+    nv: u32,
+    wrap: (Wrap, Wrap),
+    basis: (Basis, Basis),
+    points: Vec<[f32; 3]>,
+) -> Shape {
+    Shape::PatchMesh {
+        kind,
+        nu,
+        nv,
+        uwrap: wrap.0,
+        vwrap: wrap.1,
+        points,
+        ubasis: basis.0,
+        ustep: None,
+        vbasis: basis.1,
+        vstep: None,
+    }
+}
+
+/// The nine control points of the unit circle around z as a rational quadratic (corners of
+/// weight 1/sqrt(2), from (1, 0) round to (1, 0) again), a row at each of the two `heights`,
+/// in homogeneous form `[x w, y w, z w, w]`.
+pub fn nurbs_circle_points(heights: [f32; 2]) -> Vec<[f32; 4]> {
+    let w = std::f32::consts::FRAC_1_SQRT_2;
+    let ring = [
+        (1.0, 0.0),
+        (1.0, 1.0),
+        (0.0, 1.0),
+        (-1.0, 1.0),
+        (-1.0, 0.0),
+        (-1.0, -1.0),
+        (0.0, -1.0),
+        (1.0, -1.0),
+        (1.0, 0.0),
+    ];
+    let mut points = Vec::new();
+    for z in heights {
+        for (k, (x, y)) in ring.iter().enumerate() {
+            let wk = if k % 2 == 1 { w } else { 1.0 };
+            points.push([x * wk, y * wk, z * wk, wk]);
+        }
+    }
+    points
+}
+
+/// The knots of [`nurbs_circle_points`] along u: four quadratic spans, one a quarter circle.
+pub const NURBS_CIRCLE_KNOTS: [f32; 12] =
+    [0.0, 0.0, 0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0, 1.0];
+
+/// A NURBS of `nu` points along u, of order `uorder` on `uknot`, ruled linearly in v between
+/// two rows (order 2 on `[0, 0, 1, 1]`): `points` holds both rows, `[x w, y w, z w, w]`.
+pub fn nurbs_ruled(nu: u32, uorder: u32, uknot: Vec<f32>, points: Vec<[f32; 4]>) -> Shape {
+    Shape::NuPatch {
+        nu,
+        uorder,
+        uknot,
+        umin: 0.0,
+        umax: 1.0,
+        nv: 2,
+        vorder: 2,
+        vknot: vec![0.0, 0.0, 1.0, 1.0],
+        vmin: 0.0,
+        vmax: 1.0,
+        points,
+    }
+}
+
+/// The unit cylinder around z from z = -1 to 1 as a NURBS: the nine-point circle ruled
+/// between the two heights.
+pub fn nurbs_cylinder() -> Shape {
+    nurbs_ruled(9, 3, NURBS_CIRCLE_KNOTS.to_vec(), nurbs_circle_points([-1.0, 1.0]))
 }
 
 /// The RON text of a scene for measurement (FIG. 23): these objects (each given a grey

@@ -1,5 +1,6 @@
 //! Exact planar geometry for analytic tests: polygons clipped by half-planes
-//! (Sutherland-Hodgman) and their areas (shoelace), in `f64`.
+//! (Sutherland-Hodgman) and their areas (shoelace), in `f64`; and the bound on stratified
+//! sampling's coverage error that those areas test.
 //!
 //! Invariant: exact up to `f64` rounding for convex clip regions; no sampling anywhere.
 
@@ -56,6 +57,29 @@ pub fn coverage_of_pixel(poly: &[(f64, f64)], px: f64, py: f64) -> f64 {
         }
     }
     area(&p)
+}
+
+/// The bound on the RMS coverage error of a pixel an edge crosses, sampled once in each cell
+/// of an `n x n` grid: only the cells the edge cuts vary, each a Bernoulli indicator (variance
+/// at most 1/4) weighted `1/n^2`, and a line cuts at most `2n - 1` of them, so
+/// `RMS <= sqrt(2n - 1) / (2 n^2)`.
+pub fn stratified_rms_bound(n: u32) -> f64 {
+    ((2 * n - 1) as f64).sqrt() / (2.0 * (n * n) as f64)
+}
+
+/// The law of the coverage tests: each RMS coverage error `(n, rms)` measured on an `n x n`
+/// grid (grids growing in turn) is within [`stratified_rms_bound`] plus 15% (several standard
+/// errors of an estimate from some hundreds of pixels or trials), and the errors shrink as the
+/// grids grow. `what` says what each was measured over, for the message.
+pub fn assert_stratified(rms: &[(u32, f64)], what: &str) {
+    for &(n, r) in rms {
+        let bound = stratified_rms_bound(n);
+        assert!(
+            r <= bound * 1.15,
+            "{n}x{n}: rms {r} over {what} above the stratified bound {bound}"
+        );
+    }
+    assert!(rms.windows(2).all(|w| w[0].1 > w[1].1), "error must shrink with samples: {rms:?}");
 }
 
 #[cfg(test)]

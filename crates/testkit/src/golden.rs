@@ -108,10 +108,14 @@ pub fn render_case(root: &Path, case: &Case) -> Result<(Film, f32), GoldenError>
         scene.hider.method = method;
     }
     let film = render(&scene, &RenderOptions::default()).map_err(err)?.film;
-    // Largest filter weight, for the tolerance.
-    let table = Stages::new(&scene, |hider| hider).map_err(err)?.table;
-    let w_max = table.weights().iter().fold(0.0f32, |m, &w| m.max(w.abs()));
-    Ok((film, w_max))
+    Ok((film, max_weight(&scene)?))
+}
+
+/// The largest filter-table weight (in magnitude) of `scene`'s hider, the `w_max` of the
+/// tolerance.
+pub fn max_weight(scene: &reyes_scene::Scene) -> Result<f32, GoldenError> {
+    let table = Stages::new(scene, |hider| hider).map_err(err)?.table;
+    Ok(table.weights().iter().fold(0.0f32, |m, &w| m.max(w.abs())))
 }
 
 /// Compare `actual` with `reference` under the tolerance for filter weight `w_max`.

@@ -9,6 +9,7 @@ use common::{Rng, close, close_v, deforming, object, placed, scene, shoot};
 use glam::{DVec3, Mat3, Mat4, Vec3};
 use reyes_scene::patches::{self, BezierPatch};
 use reyes_scene::{Basis, PatchType, Shape, Transform, Wrap, object_to_world};
+use reyes_testkit::fixtures::{nurbs_cylinder, patch_mesh, patch_mesh_with};
 use reyes_trace::Tracer;
 
 /// The hyperboloid's point and outward normal at `(u, v)`, written from the definition:
@@ -82,18 +83,7 @@ fn a_cylinder_like_hyperboloid_is_hit_as_the_cylinder() {
 
 /// A bicubic patch mesh with the given bases and wraps.
 fn mesh(nu: u32, nv: u32, wrap: (Wrap, Wrap), basis: Basis, points: Vec<[f32; 3]>) -> Shape {
-    Shape::PatchMesh {
-        kind: PatchType::Bicubic,
-        nu,
-        nv,
-        uwrap: wrap.0,
-        vwrap: wrap.1,
-        points,
-        ubasis: basis,
-        ustep: None,
-        vbasis: basis,
-        vstep: None,
-    }
+    patch_mesh_with(PatchType::Bicubic, nu, nv, wrap, (basis, basis), points)
 }
 
 /// A B-spline tube of radius about 1 around z: 8 points around, 5 along, wrapped in u.
@@ -145,40 +135,7 @@ fn distance_to(patches: &[BezierPatch], p: DVec3) -> f64 {
 fn tessellated_hits_lie_on_the_surface_within_the_bound() {
     let wavy: Vec<[f32; 3]> =
         (0..16).map(|k| [(k % 4) as f32, (k / 4) as f32, ((k * 5) % 7) as f32 * 0.3]).collect();
-    let circle = {
-        let w = std::f32::consts::FRAC_1_SQRT_2;
-        let ring = [
-            (1.0, 0.0),
-            (1.0, 1.0),
-            (0.0, 1.0),
-            (-1.0, 1.0),
-            (-1.0, 0.0),
-            (-1.0, -1.0),
-            (0.0, -1.0),
-            (1.0, -1.0),
-            (1.0, 0.0),
-        ];
-        let mut points = Vec::new();
-        for z in [-1.0_f32, 1.0] {
-            for (k, (x, y)) in ring.iter().enumerate() {
-                let wk = if k % 2 == 1 { w } else { 1.0 };
-                points.push([x * wk, y * wk, z * wk, wk]);
-            }
-        }
-        Shape::NuPatch {
-            nu: 9,
-            uorder: 3,
-            uknot: vec![0.0, 0.0, 0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0, 1.0],
-            umin: 0.0,
-            umax: 1.0,
-            nv: 2,
-            vorder: 2,
-            vknot: vec![0.0, 0.0, 1.0, 1.0],
-            vmin: 0.0,
-            vmax: 1.0,
-            points,
-        }
-    };
+    let circle = nurbs_cylinder();
     let mut rng = Rng::new(11);
     for (name, shape) in [
         ("bezier", mesh(4, 4, (Wrap::Nonperiodic, Wrap::Nonperiodic), Basis::Bezier, wavy.clone())),
@@ -235,13 +192,11 @@ fn a_wrapped_b_spline_tube_is_closed() {
 
 #[test]
 fn bilinear_patch_meshes_are_hit_exactly() {
-    let shape = Shape::PatchMesh {
-        kind: PatchType::Bilinear,
-        nu: 3,
-        nv: 2,
-        uwrap: Wrap::Nonperiodic,
-        vwrap: Wrap::Nonperiodic,
-        points: vec![
+    let shape = patch_mesh(
+        PatchType::Bilinear,
+        3,
+        2,
+        vec![
             [0.0; 3],
             [1.0, 0.0, 0.5],
             [2.0, 0.0, 0.0],
@@ -249,11 +204,7 @@ fn bilinear_patch_meshes_are_hit_exactly() {
             [1.0, 1.0, 0.5],
             [2.0, 1.0, 0.0],
         ],
-        ubasis: Basis::Bezier,
-        ustep: None,
-        vbasis: Basis::Bezier,
-        vstep: None,
-    };
+    );
     let m = Mat4::from_translation(Vec3::new(0.5, 0.0, 1.0));
     let t = Tracer::new(&scene(vec![object(shape, vec![Transform::Translate([0.5, 0.0, 1.0])])]));
     for (x, y, surface) in [(0.5, 0.3, 0), (1.5, 0.7, 1)] {

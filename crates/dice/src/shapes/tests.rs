@@ -2,7 +2,8 @@
 //! agree with the parametric orientation, end caps facing out of their solids.
 
 use super::*;
-use reyes_scene::{Faces, Material};
+use reyes_scene::{Basis, Faces, Material, PatchType, Wrap};
+use reyes_testkit::fixtures;
 
 fn object(shape: Shape) -> Object {
     Object::new(shape, Material::Constant { color: [1.0; 3], opacity: [1.0; 3] })
@@ -240,13 +241,7 @@ fn mesh_faces_become_patches_with_tints() {
             [2.0, 0.0, 0.0],
         ],
         faces: Faces::from(vec![vec![0, 1, 2, 3], vec![1, 4, 2], vec![0, 1], vec![0, 9, 1]]),
-        colors: Some(vec![
-            [1.0, 0.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [0.0, 0.0, 1.0],
-            [1.0, 1.0, 0.0],
-            [0.0, 1.0, 1.0],
-        ]),
+        colors: Some(fixtures::five_colors()),
     });
     let s = surfaces(&obj);
     assert_eq!(s.len(), 2, "the two-index face and the face with a bad index are skipped");
@@ -352,18 +347,8 @@ fn grid16(z: impl Fn(usize, usize) -> f32) -> Vec<[f32; 3]> {
 
 #[test]
 fn patch_meshes_give_one_surface_per_sub_patch() {
-    let bicubic = Shape::PatchMesh {
-        kind: reyes_scene::PatchType::Bicubic,
-        nu: 4,
-        nv: 7,
-        uwrap: reyes_scene::Wrap::Nonperiodic,
-        vwrap: reyes_scene::Wrap::Nonperiodic,
-        points: (0..28).map(|k| [(k % 4) as f32, (k / 4) as f32, ((k * 3) % 5) as f32]).collect(),
-        ubasis: reyes_scene::Basis::Bezier,
-        ustep: None,
-        vbasis: reyes_scene::Basis::Bezier,
-        vstep: None,
-    };
+    let points = (0..28).map(|k| [(k % 4) as f32, (k / 4) as f32, ((k * 3) % 5) as f32]).collect();
+    let bicubic = fixtures::patch_mesh(PatchType::Bicubic, 4, 7, points);
     let s = surfaces(&object(bicubic));
     assert_eq!(s.len(), 2, "(7 - 4) / 3 + 1 = 2 sub-patches along v");
     // Bezier sub-patches interpolate their corners, and neighbours share an edge.
@@ -372,13 +357,13 @@ fn patch_meshes_give_one_surface_per_sub_patch() {
     for u in [0.0, 0.3, 0.8, 1.0] {
         assert!((s[0].position(u, 1.0) - s[1].position(u, 0.0)).length() < 1e-6);
     }
-    let bilinear = Shape::PatchMesh {
-        kind: reyes_scene::PatchType::Bilinear,
-        nu: 3,
-        nv: 2,
-        uwrap: reyes_scene::Wrap::Periodic,
-        vwrap: reyes_scene::Wrap::Nonperiodic,
-        points: vec![
+    let bilinear = fixtures::patch_mesh_with(
+        PatchType::Bilinear,
+        3,
+        2,
+        (Wrap::Periodic, Wrap::Nonperiodic),
+        (Basis::Bezier, Basis::Bezier),
+        vec![
             [0.0; 3],
             [1.0, 0.0, 0.0],
             [0.5, 1.0, 0.0],
@@ -386,11 +371,7 @@ fn patch_meshes_give_one_surface_per_sub_patch() {
             [1.0, 0.0, 1.0],
             [0.5, 1.0, 1.0],
         ],
-        ubasis: reyes_scene::Basis::Bezier,
-        ustep: None,
-        vbasis: reyes_scene::Basis::Bezier,
-        vstep: None,
-    };
+    );
     let s = surfaces(&object(bilinear));
     assert_eq!(s.len(), 3, "periodic: 3 sub-patches around");
     assert_eq!(s[2].position(1.0, 0.0), Vec3::ZERO, "the last wraps to the first point");
@@ -409,18 +390,7 @@ fn a_bezier_patch_with_collinear_rows_is_flat() {
             [x, p[1], 0.25 * x - 0.5 * p[1] + 1.0]
         })
         .collect();
-    let shape = Shape::PatchMesh {
-        kind: reyes_scene::PatchType::Bicubic,
-        nu: 4,
-        nv: 4,
-        uwrap: reyes_scene::Wrap::Nonperiodic,
-        vwrap: reyes_scene::Wrap::Nonperiodic,
-        points: pts,
-        ubasis: reyes_scene::Basis::Bezier,
-        ustep: None,
-        vbasis: reyes_scene::Basis::Bezier,
-        vstep: None,
-    };
+    let shape = fixtures::patch_mesh(PatchType::Bicubic, 4, 4, pts);
     let s = &surfaces(&object(shape))[0];
     let plane = Vec3::new(-0.25, 0.5, 1.0).normalize();
     for (u, v) in params() {
@@ -433,38 +403,7 @@ fn a_bezier_patch_with_collinear_rows_is_flat() {
 
 #[test]
 fn nurbs_circle_lies_on_the_unit_cylinder() {
-    let w = std::f32::consts::FRAC_1_SQRT_2;
-    let ring = [
-        (1.0, 0.0),
-        (1.0, 1.0),
-        (0.0, 1.0),
-        (-1.0, 1.0),
-        (-1.0, 0.0),
-        (-1.0, -1.0),
-        (0.0, -1.0),
-        (1.0, -1.0),
-        (1.0, 0.0),
-    ];
-    let mut points = Vec::new();
-    for z in [-1.0_f32, 1.0] {
-        for (k, (x, y)) in ring.iter().enumerate() {
-            let wk = if k % 2 == 1 { w } else { 1.0 };
-            points.push([x * wk, y * wk, z * wk, wk]);
-        }
-    }
-    let shape = Shape::NuPatch {
-        nu: 9,
-        uorder: 3,
-        uknot: vec![0.0, 0.0, 0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0, 1.0],
-        umin: 0.0,
-        umax: 1.0,
-        nv: 2,
-        vorder: 2,
-        vknot: vec![0.0, 0.0, 1.0, 1.0],
-        vmin: 0.0,
-        vmax: 1.0,
-        points,
-    };
+    let shape = fixtures::nurbs_cylinder();
     let s = surfaces(&object(shape));
     assert_eq!(s.len(), 4, "four quarter-circle spans");
     for (k, surface) in s.iter().enumerate() {
@@ -482,18 +421,9 @@ fn nurbs_circle_lies_on_the_unit_cylinder() {
 
 #[test]
 fn deformation_keys_move_patch_meshes_and_nurbs() {
-    let mesh = Shape::PatchMesh {
-        kind: reyes_scene::PatchType::Bicubic,
-        nu: 4,
-        nv: 4,
-        uwrap: reyes_scene::Wrap::Nonperiodic,
-        vwrap: reyes_scene::Wrap::Nonperiodic,
-        points: grid16(|i, j| (i * j) as f32 * 0.1),
-        ubasis: reyes_scene::Basis::BSpline,
-        ustep: None,
-        vbasis: reyes_scene::Basis::Bezier,
-        vstep: None,
-    };
+    let (wrap, bases) = ((Wrap::Nonperiodic, Wrap::Nonperiodic), (Basis::BSpline, Basis::Bezier));
+    let points = grid16(|i, j| (i * j) as f32 * 0.1);
+    let mesh = fixtures::patch_mesh_with(PatchType::Bicubic, 4, 4, wrap, bases, points);
     let own = control_points(&mesh).unwrap();
     assert_eq!(own.len(), 16);
     assert_eq!(shape_surfaces(&mesh, Some(&own)), surfaces(&object(mesh.clone())));
@@ -508,26 +438,15 @@ fn deformation_keys_move_patch_meshes_and_nurbs() {
     // A NURBS key gives positions and keeps the weights: a quarter circle of weight 1/sqrt(2)
     // moved up stays a (moved) circular arc.
     let w = std::f32::consts::FRAC_1_SQRT_2;
-    let nurbs = Shape::NuPatch {
-        nu: 3,
-        uorder: 3,
-        uknot: vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
-        umin: 0.0,
-        umax: 1.0,
-        nv: 2,
-        vorder: 2,
-        vknot: vec![0.0, 0.0, 1.0, 1.0],
-        vmin: 0.0,
-        vmax: 1.0,
-        points: vec![
-            [1.0, 0.0, 0.0, 1.0],
-            [w, w, 0.0, w],
-            [0.0, 1.0, 0.0, 1.0],
-            [1.0, 0.0, 1.0, 1.0],
-            [w, w, w, w],
-            [0.0, 1.0, 1.0, 1.0],
-        ],
-    };
+    let points = vec![
+        [1.0, 0.0, 0.0, 1.0],
+        [w, w, 0.0, w],
+        [0.0, 1.0, 0.0, 1.0],
+        [1.0, 0.0, 1.0, 1.0],
+        [w, w, w, w],
+        [0.0, 1.0, 1.0, 1.0],
+    ];
+    let nurbs = fixtures::nurbs_ruled(3, 3, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0], points);
     let own = control_points(&nurbs).unwrap();
     assert!((own[1] - Vec3::new(1.0, 1.0, 0.0)).length() < 1e-6, "positions, not Pw");
     let lifted: Vec<Vec3> = own.iter().map(|p| *p + Vec3::Z * 2.0).collect();

@@ -155,19 +155,20 @@ fn difference_depth_matches_ray_solid_intersection() {
     assert!(kinds[1] > 250 && kinds[2] > 30 && kinds[3] > 10, "{kinds:?}");
 }
 
+/// The white spheres "a" and "b" of radius 1.2 at (-0.6, 0, 4) and (0.6, 0, 4), of opacity
+/// `opacity`, combined by the solid `tree`, through a box filter a pixel wide; and their centres.
+fn two_spheres(tree: &str, opacity: f32) -> (Film, DVec3, DVec3) {
+    let objects = "(name: \"a\", shape: Sphere(radius: 1.2), transform: [Translate((-0.6, 0.0, 4.0))],
+                    material: Constant(color: (1.0, 1.0, 1.0), opacity: OPACITY)),
+                   (name: \"b\", shape: Sphere(radius: 1.2), transform: [Translate((0.6, 0.0, 4.0))],
+                    material: Constant(color: (1.0, 1.0, 1.0), opacity: OPACITY))";
+    let film = render_text(&scene(objects, tree, opacity, "(kind: Box, width: 1.0)"));
+    (film, DVec3::new(-0.6, 0.0, 4.0), DVec3::new(0.6, 0.0, 4.0))
+}
+
 #[test]
 fn intersection_depth_matches_ray_solid_intersection() {
-    let objects = "(name: \"a\", shape: Sphere(radius: 1.2), transform: [Translate((-0.6, 0.0, 4.0))],
-                    material: Constant(color: (1.0, 1.0, 1.0))),
-                   (name: \"b\", shape: Sphere(radius: 1.2), transform: [Translate((0.6, 0.0, 4.0))],
-                    material: Constant(color: (1.0, 1.0, 1.0)))";
-    let film = render_text(&scene(
-        objects,
-        "(tree: Intersection([Object(\"a\"), Object(\"b\")]))",
-        1.0,
-        "(kind: Box, width: 1.0)",
-    ));
-    let (ca, cb) = (DVec3::new(-0.6, 0.0, 4.0), DVec3::new(0.6, 0.0, 4.0));
+    let (film, ca, cb) = two_spheres("(tree: Intersection([Object(\"a\"), Object(\"b\")]))", 1.0);
     let checked = check_depths(&film, |d| match (sphere(d, ca, 1.2), sphere(d, cb, 1.2)) {
         (Some((a0, a1)), Some((b0, b1))) if a0.max(b0) < a1.min(b1) => {
             (if a0 > b0 { 1 } else { 2 }, Some(a0.max(b0)))
@@ -182,17 +183,7 @@ fn a_transparent_union_shows_no_internal_surfaces() {
     // Two overlapping half-opaque spheres: every ray through the union crosses exactly two
     // boundary surfaces (in and out), so alpha = 1 - 0.5^2 = 0.75 everywhere inside the
     // silhouette, including the overlap, where the four operand surfaces would give 0.9375.
-    let objects = "(name: \"a\", shape: Sphere(radius: 1.2), transform: [Translate((-0.6, 0.0, 4.0))],
-                    material: Constant(color: (1.0, 1.0, 1.0), opacity: OPACITY)),
-                   (name: \"b\", shape: Sphere(radius: 1.2), transform: [Translate((0.6, 0.0, 4.0))],
-                    material: Constant(color: (1.0, 1.0, 1.0), opacity: OPACITY))";
-    let film = render_text(&scene(
-        objects,
-        "(tree: Union([Object(\"a\"), Object(\"b\")]))",
-        0.5,
-        "(kind: Box, width: 1.0)",
-    ));
-    let (ca, cb) = (DVec3::new(-0.6, 0.0, 4.0), DVec3::new(0.6, 0.0, 4.0));
+    let (film, ca, cb) = two_spheres("(tree: Union([Object(\"a\"), Object(\"b\")]))", 0.5);
     let mut overlap = 0;
     for py in 0..64u32 {
         for px in 0..64u32 {

@@ -6,7 +6,7 @@
 use reyes_film::Film;
 use reyes_render::{RenderOptions, render};
 use reyes_scene::Scene;
-use reyes_testkit::fixtures::parse;
+use reyes_testkit::fixtures::{NURBS_CIRCLE_KNOTS, nurbs_circle_points, parse};
 use reyes_testkit::image::psnr;
 
 fn render_film(scene: &Scene, threads: Option<usize>) -> Film {
@@ -119,45 +119,24 @@ fn a_wrapped_b_spline_tube_has_no_seam() {
 /// bilinear mesh floor, with a moving hyperboloid and a deforming Catmull-Rom sheet when
 /// `moving` (the sheet's keys shift it, keeping its shape).
 fn new_shapes(method: &str, moving: bool) -> Scene {
-    let w = std::f32::consts::FRAC_1_SQRT_2;
-    let ring = [
-        (1.0, 0.0),
-        (1.0, 1.0),
-        (0.0, 1.0),
-        (-1.0, 1.0),
-        (-1.0, 0.0),
-        (-1.0, -1.0),
-        (0.0, -1.0),
-        (1.0, -1.0),
-        (1.0, 0.0),
-    ];
-    let mut pw = Vec::new();
-    for z in [-0.8_f32, 0.8] {
-        for (k, (x, y)) in ring.iter().enumerate() {
-            let wk = if k % 2 == 1 { w } else { 1.0 };
-            pw.push(format!("({}, {}, {}, {wk})", x * wk, y * wk, z * wk));
-        }
-    }
-    let sheet: Vec<String> = (0..16)
-        .map(|k| {
-            format!(
-                "({}, {}, {})",
-                (k % 4) as f32 * 0.6 - 0.9,
-                (k / 4) as f32 * 0.5,
-                ((k * 5) % 7) as f32 * 0.15
-            )
-        })
+    let pw: Vec<String> = nurbs_circle_points([-0.8, 0.8])
+        .iter()
+        .map(|p| format!("({}, {}, {}, {})", p[0], p[1], p[2], p[3]))
         .collect();
-    let lifted: Vec<String> = (0..16)
-        .map(|k| {
-            format!(
-                "({}, {}, {})",
-                (k % 4) as f32 * 0.6 - 0.9,
-                (k / 4) as f32 * 0.5 + 0.3,
-                ((k * 3) % 7) as f32 * 0.15
-            )
-        })
-        .collect();
+    // The sheet's control points, raised by `dy`, at heights `0.15 ((k * zstep) % 7)`.
+    let net = |dy: f32, zstep: usize| -> Vec<String> {
+        (0..16)
+            .map(|k| {
+                format!(
+                    "({}, {}, {})",
+                    (k % 4) as f32 * 0.6 - 0.9,
+                    (k / 4) as f32 * 0.5 + dy,
+                    ((k * zstep) % 7) as f32 * 0.15
+                )
+            })
+            .collect()
+    };
+    let (sheet, lifted) = (net(0.0, 5), net(0.3, 3));
     let (hyp_motion, deform) = if moving {
         (
             "motion: [(time: 0.0, transform: [Rotate(angle: -90.0, axis: (1.0, 0.0, 0.0)), Translate((-2.2, 0.4, 1.0))]),
@@ -186,7 +165,7 @@ fn new_shapes(method: &str, moving: bool) -> Scene {
               interpolation: Gouraud, material: Matte(color: (0.9, 0.3, 0.1))),
              (shape: {tube}, transform: [Rotate(angle: -90.0, axis: (1.0, 0.0, 0.0)), Scale((0.7, 0.7, 0.7)), Translate((0.0, 0.3, 1.5))],
               interpolation: Gouraud, material: Matte(color: (0.2, 0.8, 0.3))),
-             (shape: NuPatch(nu: 9, uorder: 3, uknot: [0.0, 0.0, 0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0, 1.0], umin: 0.0, umax: 1.0,
+             (shape: NuPatch(nu: 9, uorder: 3, uknot: {knots:?}, umin: 0.0, umax: 1.0,
                              nv: 2, vorder: 2, vknot: [0.0, 0.0, 1.0, 1.0], vmin: 0.0, vmax: 1.0, points: [{pw}]),
               transform: [Rotate(angle: -90.0, axis: (1.0, 0.0, 0.0)), Scale((0.7, 0.7, 0.7)), Translate((2.2, 0.2, 1.0))],
               interpolation: Gouraud, material: Matte(color: (0.2, 0.3, 0.9))),
@@ -196,6 +175,7 @@ fn new_shapes(method: &str, moving: bool) -> Scene {
               interpolation: Gouraud, material: Matte(color: (0.9, 0.9, 0.3))),
            ])",
         tube = tube(),
+        knots = NURBS_CIRCLE_KNOTS,
         pw = pw.join(", "),
         sheet = sheet.join(", "),
     ))

@@ -91,11 +91,7 @@ impl Parser<'_> {
         if sig.array_form && first == Peeked::Open {
             self.next()?;
             let mut v = Vec::new();
-            if let Err(e) =
-                self.frame.lexer().map_err(ArrayError::Lex).and_then(|l| l.floats(open_at, &mut v))
-            {
-                return Err(self.array("arguments", e));
-            }
+            self.read_array(open_at, &mut v, Lexer::floats, |_| "arguments".to_string())?;
             if v.len() != sig.args.len() {
                 return Err(self.error(
                     open_at,
@@ -207,26 +203,19 @@ impl Parser<'_> {
             (ArgKind::Ints, Tok::Open) => {
                 self.next()?;
                 let mut v = Vec::new();
-                self.read_ints(pos, &mut v, arg.name)?;
+                self.arg_array(pos, &mut v, Lexer::ints, arg.name)?;
                 Ok(Value::Ints(v))
             }
             (ArgKind::Floats | ArgKind::Times, Tok::Open) => {
                 self.next()?;
                 let mut v = Vec::new();
-                self.read_floats(pos, &mut v, arg.name)?;
+                self.arg_array(pos, &mut v, Lexer::floats, arg.name)?;
                 Ok(Value::Floats(v))
             }
             (ArgKind::Strings, Tok::Open) => {
                 self.next()?;
                 let mut v = Vec::new();
-                let r = self
-                    .frame
-                    .lexer()
-                    .map_err(ArrayError::Lex)
-                    .and_then(|l| l.strings(pos, &mut v));
-                if let Err(e) = r {
-                    return Err(self.array(&format!("argument {}", arg.name), e));
-                }
+                self.arg_array(pos, &mut v, Lexer::strings, arg.name)?;
                 Ok(Value::Strings(v))
             }
             (ArgKind::Times, Tok::Num(_)) => {
@@ -240,7 +229,7 @@ impl Parser<'_> {
             (ArgKind::Fixed(n), Tok::Open) => {
                 self.next()?;
                 let mut v = Vec::with_capacity(n);
-                self.read_floats(pos, &mut v, arg.name)?;
+                self.arg_array(pos, &mut v, Lexer::floats, arg.name)?;
                 if v.len() != n {
                     return Err(self.error(
                         pos,
@@ -276,14 +265,47 @@ impl Parser<'_> {
         }
     }
 
-    fn read_floats(&mut self, open: Pos, v: &mut Vec<f32>, what: &str) -> Result<(), RibError> {
-        let r = self.frame.lexer().map_err(ArrayError::Lex).and_then(|l| l.floats(open, v));
-        r.map_err(|e| self.array(&format!("argument {what}"), e))
+    /// Reads the rest of the array opened at `open` into `v` with the lexer's `read`; an
+    /// error names `what` was being read (built only then).
+    fn read_array<T>(
+        &mut self,
+        open: Pos,
+        v: &mut Vec<T>,
+        read: impl FnOnce(&mut Lexer, Pos, &mut Vec<T>) -> Result<(), ArrayError>,
+        what: impl FnOnce(&Self) -> String,
+    ) -> Result<(), RibError> {
+        let r = self.frame.lexer().map_err(ArrayError::Lex).and_then(|l| read(l, open, v));
+        r.map_err(|e| {
+            let what = what(self);
+            self.array(&what, e)
+        })
     }
 
-    fn read_ints(&mut self, open: Pos, v: &mut Vec<i32>, what: &str) -> Result<(), RibError> {
-        let r = self.frame.lexer().map_err(ArrayError::Lex).and_then(|l| l.ints(open, v));
-        r.map_err(|e| self.array(&format!("argument {what}"), e))
+    /// Argument `name`'s array opened at `open`, read into `v` with the lexer's `read`.
+    fn arg_array<T>(
+        &mut self,
+        open: Pos,
+        v: &mut Vec<T>,
+        read: impl FnOnce(&mut Lexer, Pos, &mut Vec<T>) -> Result<(), ArrayError>,
+        name: &str,
+    ) -> Result<(), RibError> {
+        self.read_array(open, v, read, |_| format!("argument {name}"))
+    }
+
+    /// The parameter's values as an array opened at `open`, read with the lexer's `read`.
+    fn param_array<T>(
+        &mut self,
+        open: Pos,
+        read: impl FnOnce(&mut Lexer, Pos, &mut Vec<T>) -> Result<(), ArrayError>,
+    ) -> Result<Vec<T>, RibError> {
+        let mut v = Vec::new();
+        self.read_array(open, &mut v, read, Self::label)?;
+        Ok(v)
+    }
+
+    /// A parameter's value of the wrong kind: `expected numbers, got ...`.
+    fn expected(&self, pos: Pos, what: &str, got: &Tok) -> RibError {
+        self.error(pos, format!("{}: expected {what}, got {}", self.label(), got.describe()))
     }
 
     /// Reads `"token" value` pairs up to the next request.
@@ -336,25 +358,8 @@ impl Parser<'_> {
         let data = match decl.map(|d| d.ty.storage()) {
             Some(Storage::Floats) => match self.next()? {
                 (_, Tok::Num(n)) => Data::Floats(vec![n.f]),
-                (p, Tok::Open) => {
-                    let mut v = Vec::new();
-                    let r = self
-                        .frame
-                        .lexer()
-                        .map_err(ArrayError::Lex)
-                        .and_then(|l| l.floats(p, &mut v));
-                    r.map_err(|e| {
-                        let l = self.label();
-                        self.array(&l, e)
-                    })?;
-                    Data::Floats(v)
-                }
-                (p, other) => {
-                    return Err(self.error(
-                        p,
-                        format!("{}: expected numbers, got {}", self.label(), other.describe()),
-                    ));
-                }
+                (p, Tok::Open) => Data::Floats(self.param_array(p, Lexer::floats)?),
+                (p, other) => return Err(self.expected(p, "numbers", &other)),
             },
             Some(Storage::Ints) => match self.next()? {
                 (p, Tok::Num(n)) => match n.i {
@@ -363,44 +368,13 @@ impl Parser<'_> {
                         return Err(self.error(p, format!("{}: {}", self.label(), not_an_int(n))));
                     }
                 },
-                (p, Tok::Open) => {
-                    let mut v = Vec::new();
-                    let r =
-                        self.frame.lexer().map_err(ArrayError::Lex).and_then(|l| l.ints(p, &mut v));
-                    r.map_err(|e| {
-                        let l = self.label();
-                        self.array(&l, e)
-                    })?;
-                    Data::Ints(v)
-                }
-                (p, other) => {
-                    return Err(self.error(
-                        p,
-                        format!("{}: expected integers, got {}", self.label(), other.describe()),
-                    ));
-                }
+                (p, Tok::Open) => Data::Ints(self.param_array(p, Lexer::ints)?),
+                (p, other) => return Err(self.expected(p, "integers", &other)),
             },
             Some(Storage::Strings) => match self.next()? {
                 (_, Tok::Str(s)) => Data::Strings(vec![s]),
-                (p, Tok::Open) => {
-                    let mut v = Vec::new();
-                    let r = self
-                        .frame
-                        .lexer()
-                        .map_err(ArrayError::Lex)
-                        .and_then(|l| l.strings(p, &mut v));
-                    r.map_err(|e| {
-                        let l = self.label();
-                        self.array(&l, e)
-                    })?;
-                    Data::Strings(v)
-                }
-                (p, other) => {
-                    return Err(self.error(
-                        p,
-                        format!("{}: expected strings, got {}", self.label(), other.describe()),
-                    ));
-                }
+                (p, Tok::Open) => Data::Strings(self.param_array(p, Lexer::strings)?),
+                (p, other) => return Err(self.expected(p, "strings", &other)),
             },
             None => {
                 let data = match self.next()? {

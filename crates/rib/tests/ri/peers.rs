@@ -14,6 +14,7 @@ use std::path::PathBuf;
 use reyes_film::Film;
 use reyes_render::{RenderOptions, render};
 use reyes_rib::RiOptions;
+use reyes_scene::Scene;
 
 fn peers() -> PathBuf {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/peers");
@@ -40,6 +41,20 @@ fn psnr(a: &Film, b: &Film, channel: usize) -> f64 {
         .map(|(p, q)| f64::from(p[channel] - q[channel]).powi(2))
         .sum();
     10.0 * (a.rgba().len() as f64 / se.max(1e-30)).log10()
+}
+
+/// `from_rib` matches `from_ron`, the render of `scene`, within the golden tolerance.
+fn assert_golden_match(scene: &Scene, from_ron: &Film, from_rib: &Film, what: &str) {
+    let w_max = reyes_testkit::golden::max_weight(scene).unwrap();
+    let c = reyes_testkit::golden::compare(from_ron, from_rib, w_max).unwrap();
+    assert!(
+        c.passed(),
+        "{what}: mean {:?} max {:?} (tolerance {} / {})",
+        c.mean,
+        c.max,
+        c.mean_tolerance,
+        c.max_tolerance
+    );
 }
 
 #[test]
@@ -80,17 +95,7 @@ fn rib_and_ron_versions_of_the_bench_scenes_agree_within_golden_tolerance() {
         let from_rib = render_rib(rib);
         let scene = reyes_scene::load(&root.join(format!("scenes/bench/{ron}.ron"))).unwrap();
         let from_ron = render(&scene, &RenderOptions::default()).unwrap().film;
-        let table = reyes_render::settings::Stages::new(&scene, |h| h).unwrap().table;
-        let w_max = table.weights().iter().fold(0.0f32, |m, &w| m.max(w.abs()));
-        let c = reyes_testkit::golden::compare(&from_ron, &from_rib, w_max).unwrap();
-        assert!(
-            c.passed(),
-            "{rib} against {ron}.ron: mean {:?} max {:?} (tolerance {} / {})",
-            c.mean,
-            c.max,
-            c.mean_tolerance,
-            c.max_tolerance
-        );
+        assert_golden_match(&scene, &from_ron, &from_rib, &format!("{rib} against {ron}.ron"));
     }
 }
 
@@ -117,15 +122,5 @@ fn csg_from_rib_renders_as_its_ron_port() {
     let scene = reyes_scene::parse(ron, std::path::Path::new("csg.ron")).unwrap();
     let from_ron = render(&scene, &RenderOptions::default()).unwrap().film;
     let from_rib = render_rib("csg");
-    let table = reyes_render::settings::Stages::new(&scene, |h| h).unwrap().table;
-    let w_max = table.weights().iter().fold(0.0f32, |m, &w| m.max(w.abs()));
-    let c = reyes_testkit::golden::compare(&from_ron, &from_rib, w_max).unwrap();
-    assert!(
-        c.passed(),
-        "mean {:?} max {:?} (tolerance {} / {})",
-        c.mean,
-        c.max,
-        c.mean_tolerance,
-        c.max_tolerance
-    );
+    assert_golden_match(&scene, &from_ron, &from_rib, "csg.rib against its RON port");
 }

@@ -202,6 +202,9 @@ impl FilterKind {
         FilterKind::RiBlackmanHarris,
     ];
 
+    /// The RenderMan kinds (the `Ri` kinds), in the order of [`FilterKind::ALL`].
+    pub const RENDERMAN: &'static [FilterKind] = FilterKind::ALL.split_at(5).1;
+
     /// The RenderMan filter name of an `Ri` kind, as RIB's `PixelFilter` spells it
     /// (`"catmull-rom"`); `None` for the Appendix A kernels.
     pub const fn renderman_name(self) -> Option<&'static str> {

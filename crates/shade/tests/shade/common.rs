@@ -38,6 +38,17 @@ pub fn patch(corner: Vec3, eu: Vec3, ev: Vec3, rest: &str) -> String {
     format!("(shape: BilinearPatch(points: ({})), {rest})", pts.join(", "))
 }
 
+/// The white matte floor of the light tests, with no ambient term: the square
+/// `|x|, |z| <= half` of the plane y = 0, as a RON [`patch`] object.
+pub fn white_floor(half: f32) -> String {
+    patch(
+        Vec3::new(-half, 0.0, -half),
+        Vec3::new(2.0 * half, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, 2.0 * half),
+        "material: Matte(color: (1.0, 1.0, 1.0), ka: 0.0)",
+    )
+}
+
 /// Mean of `shade_surface`'s colour over the `count` members of stratified set `set`.
 pub fn shade_mean(shading: &Shading, at: &SurfacePoint, count: u32, set: u64) -> Vec3 {
     let mut sum = Vec3::ZERO;

@@ -4,10 +4,10 @@
 use glam::Vec3;
 use reyes_dice::Shader;
 use reyes_sampling::Strata;
-use reyes_shade::{BLACK, IVORY, Shading, SurfacePoint};
+use reyes_shade::{BLACK, IVORY, Shading, SurfacePoint, Traced};
 use reyes_trace::Ray;
 
-use crate::common::{patch, scene, trace_one, tracer};
+use crate::common::{patch, scene, trace_one, tracer, white_floor};
 
 #[test]
 fn local_illumination_is_the_dicers_bit_for_bit() {
@@ -135,24 +135,25 @@ fn mesh_vertex_colours_tint_at_the_hit() {
     assert!((got - want).abs().max_element() < 1e-5, "{got} vs {want}");
 }
 
-/// Three squares facing the ray at z = 1, 2, 3, with the given material fields.
-fn layers(a: &str, b: &str, c: &str) -> reyes_scene::Scene {
+/// What the ray from the origin along +z sees through three squares facing it at z = 1, 2, 3,
+/// with the given material fields.
+fn through_layers(a: &str, b: &str, c: &str) -> Traced {
     let sq = |z: f32, rest: &str| {
         patch(Vec3::new(-1.0, -1.0, z), Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 2.0, 0.0), rest)
     };
-    scene(&format!("objects: [{}, {}, {}]", sq(1.0, a), sq(2.0, b), sq(3.0, c)))
+    let s = scene(&format!("objects: [{}, {}, {}]", sq(1.0, a), sq(2.0, b), sq(3.0, c)));
+    let t = tracer(&s);
+    let shading = Shading::new(&s, &t);
+    trace_one(&shading, &Ray::new(Vec3::ZERO, Vec3::Z, 0.0))
 }
 
 #[test]
 fn transparent_surfaces_composite_front_to_back() {
-    let s = layers(
+    let got = through_layers(
         "material: Constant(color: (1.0, 0.0, 0.0), opacity: (0.5, 0.5, 0.5))",
         "material: Constant(color: (0.0, 1.0, 0.0), opacity: (0.5, 0.25, 1.0))",
         "material: Constant(color: (0.0, 0.0, 1.0))",
     );
-    let t = tracer(&s);
-    let shading = Shading::new(&s, &t);
-    let got = trace_one(&shading, &Ray::new(Vec3::ZERO, Vec3::Z, 0.0));
     // C = Os1 C1 + (1 - Os1) Os2 C2 + (1 - Os1)(1 - Os2) C3, per channel: red 0.5 from the
     // first layer, green 0.5 * 0.25 from the second, blue 0.5 * 0 * 1 from the third (the
     // second is opaque in blue).
@@ -164,14 +165,11 @@ fn transparent_surfaces_composite_front_to_back() {
     // The composite ends at the third layer: the second is not opaque in every channel.
 
     // Only transparent layers: alpha is the mean coverage, t infinite.
-    let s = layers(
+    let got = through_layers(
         "material: Constant(color: (1.0, 1.0, 1.0), opacity: (0.5, 0.5, 0.5))",
         "material: Constant(color: (1.0, 1.0, 1.0), opacity: (0.5, 0.5, 0.5))",
         "material: Constant(color: (1.0, 1.0, 1.0), opacity: (0.0, 0.0, 0.0))",
     );
-    let t = tracer(&s);
-    let shading = Shading::new(&s, &t);
-    let got = trace_one(&shading, &Ray::new(Vec3::ZERO, Vec3::Z, 0.0));
     assert!((got.rgba[3] - 0.75).abs() < 1e-6 && got.t.is_infinite(), "{got:?}");
 }
 
@@ -179,29 +177,19 @@ fn transparent_surfaces_composite_front_to_back() {
 fn matte_holds_out_what_is_behind() {
     let front = "material: Constant(color: (1.0, 0.0, 0.0), opacity: (0.5, 0.5, 0.5))";
     let back = "material: Constant(color: (1.0, 1.0, 1.0))";
-    let s = layers(front, "material: Constant(color: (0.0, 1.0, 0.0)), matte: true", back);
-    let t = tracer(&s);
-    let shading = Shading::new(&s, &t);
-    let got = trace_one(&shading, &Ray::new(Vec3::ZERO, Vec3::Z, 0.0));
+    let got =
+        through_layers(front, "material: Constant(color: (0.0, 1.0, 0.0)), matte: true", back);
     assert_eq!(got.rgba, [0.5, 0.0, 0.0, 0.5], "only the layer in front of the matte");
     assert!((got.t - 2.0).abs() < 1e-4, "ends at the matte: {}", got.t);
     // Without the matte flag the green surface shows.
-    let s = layers(front, "material: Constant(color: (0.0, 1.0, 0.0))", back);
-    let t = tracer(&s);
-    let shading = Shading::new(&s, &t);
-    let got = trace_one(&shading, &Ray::new(Vec3::ZERO, Vec3::Z, 0.0));
+    let got = through_layers(front, "material: Constant(color: (0.0, 1.0, 0.0))", back);
     assert_eq!(got.rgba, [0.5, 0.5, 0.0, 1.0]);
 }
 
 #[test]
 fn shadow_rays_are_attenuated_by_transparent_surfaces_and_blocked_by_glass() {
     // Point light at y = 4 over the floor point at the origin; a pane at y = 2.
-    let floor = patch(
-        Vec3::new(-5.0, 0.0, -5.0),
-        Vec3::new(10.0, 0.0, 0.0),
-        Vec3::new(0.0, 0.0, 10.0),
-        "material: Matte(color: (1.0, 1.0, 1.0), ka: 0.0)",
-    );
+    let floor = white_floor(5.0);
     let pane = |rest: &str| {
         patch(Vec3::new(-1.0, 2.0, -1.0), Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 2.0), rest)
     };

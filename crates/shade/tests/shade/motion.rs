@@ -11,17 +11,12 @@ use glam::Vec3;
 use reyes_sampling::Strata;
 use reyes_shade::Shading;
 
-use crate::common::{floor_point, patch, scene_with_shutter, simpson, tracer};
+use crate::common::{floor_point, patch, scene_with_shutter, simpson, tracer, white_floor};
 
 const H: f64 = 4.0;
 
 fn setup(occluder: bool, keys: &str) -> reyes_scene::Scene {
-    let floor = patch(
-        Vec3::new(-20.0, 0.0, -20.0),
-        Vec3::new(40.0, 0.0, 0.0),
-        Vec3::new(0.0, 0.0, 40.0),
-        "material: Matte(color: (1.0, 1.0, 1.0), ka: 0.0)",
-    );
+    let floor = white_floor(20.0);
     let wall = patch(
         Vec3::new(-30.0, 2.0, -30.0),
         Vec3::new(30.0, 0.0, 0.0),

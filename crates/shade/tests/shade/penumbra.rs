@@ -8,10 +8,9 @@
 
 use std::f64::consts::PI;
 
-use glam::Vec3;
 use reyes_shade::Shading;
 
-use crate::common::{floor_point, patch, scene, shade_mean, tracer};
+use crate::common::{floor_point, scene, shade_mean, tracer, white_floor};
 
 const R_L: f64 = 1.0;
 const H: f64 = 10.0;
@@ -19,12 +18,7 @@ const R_O: f64 = 2.0;
 const HO: f64 = 5.0;
 
 fn setup(occluder: bool) -> reyes_scene::Scene {
-    let floor = patch(
-        Vec3::new(-20.0, 0.0, -20.0),
-        Vec3::new(40.0, 0.0, 0.0),
-        Vec3::new(0.0, 0.0, 40.0),
-        "material: Matte(color: (1.0, 1.0, 1.0), ka: 0.0)",
-    );
+    let floor = white_floor(20.0);
     let disk = format!(
         ", (shape: Disk(radius: {R_O:?}), \
            transform: [Rotate(angle: 90.0, axis: (1.0, 0.0, 0.0)), Translate((0.0, {HO:?}, 0.0))], \

@@ -9,18 +9,13 @@ use reyes_scene::Scene;
 use reyes_shade::{RayVertexShader, Shading, SurfacePoint};
 use reyes_trace::Ray;
 
-use crate::common::{floor_point, patch, scene, shade_mean, trace_one, tracer};
+use crate::common::{floor_point, patch, scene, shade_mean, trace_one, tracer, white_floor};
 
 /// A white matte floor `y = 0` (ka 0) lit by a spot light 6 units above the origin aimed
 /// straight down (cone 30, penumbra 8 degrees, beam 2), with a shadow ray when `shadows`,
 /// and `extra` more objects.
 fn spot_floor(shadows: bool, extra: &str) -> Scene {
-    let floor = patch(
-        Vec3::new(-20.0, 0.0, -20.0),
-        Vec3::new(40.0, 0.0, 0.0),
-        Vec3::new(0.0, 0.0, 40.0),
-        "material: Matte(color: (1.0, 1.0, 1.0), ka: 0.0)",
-    );
+    let floor = white_floor(20.0);
     scene(&format!(
         "lights: [Spot(from: (0.0, 6.0, 0.0), to: (0.0, 0.0, 0.0), intensity: 36.0, \
                        cone_angle: 30.0, cone_delta: 8.0, beam_distribution: 2.0, shadows: {shadows})], \
@@ -34,14 +29,7 @@ fn spot_closed_form(r: f64) -> f64 {
     let d2 = 36.0 + r * r;
     let cos = 6.0 / d2.sqrt();
     let (e0, e1) = (30f64.to_radians().cos(), 22f64.to_radians().cos());
-    let step = if cos < e0 {
-        0.0
-    } else if cos >= e1 {
-        1.0
-    } else {
-        let t = (cos - e0) / (e1 - e0);
-        t * t * (3.0 - 2.0 * t)
-    };
+    let step = reyes_testkit::shading::smoothstep(e0, e1, cos);
     36.0 * cos * cos / d2 * step * cos
 }
 
