@@ -35,24 +35,35 @@ pub(crate) fn from_ron(text: &str, file: &Path, err: &SpannedError) -> SceneErro
         _ if expects_separator => map.snap(end, Pos::MAX),
         _ => map.snap(start, end),
     };
+    // ron reports some number errors from inside the number (after a sign, at the point of
+    // `1.5` read as an integer): the error is about the whole number, so point at its start.
+    let number = map.number_around(pos);
+    let read = number.map_or(0, |(start, _)| pos.col.saturating_sub(start.col));
+    let pos = number.map_or(pos, |(start, _)| start);
     let at_eof = map.is_past_last_token(pos);
     let field = if is_document_level(&err.code) {
         String::new()
     } else {
-        let base = map.path_at(pos);
+        let base = map.path_for(pos);
         match &err.code {
             RonError::NoSuchStructField { found, .. } => join(&base, found),
             RonError::MissingStructField { field, .. }
             | RonError::DuplicateStructField { field, .. } => join(&base, field),
+            RonError::ExpectedMapColon => map.field_before(pos).unwrap_or(base),
             _ => base,
         }
     };
+    let message = match number {
+        Some((_, text)) => describe_number(&err.code, text, read, expects_separator),
+        None => None,
+    };
+    let message = message.unwrap_or_else(|| describe(&err.code, at_eof));
     SceneError {
         file: file.to_path_buf(),
         line: Some(pos.line),
         col: Some(pos.col),
         field: clip(&field, MAX_LEN),
-        message: clip(&describe(&err.code, at_eof), MAX_LEN),
+        message: clip(&message, MAX_LEN),
     }
 }
 
@@ -83,6 +94,48 @@ fn is_document_level(code: &RonError) -> bool {
             | RonError::NoSuchExtension(_)
             | RonError::ExceededRecursionLimit
     )
+}
+
+/// What is wrong with the number `text` that ron stopped reading after `read` characters:
+/// a negative or too large integer, a fraction or exponent where an integer is due (`640.5`,
+/// `4e0`), or something that is not a number at all (`35.0deg`); `None` to describe the
+/// error as usual. `stopped_early` is true for the errors ron gives after a value, which are
+/// about the number only when ron stopped inside it.
+fn describe_number(
+    code: &RonError,
+    text: &str,
+    read: usize,
+    stopped_early: bool,
+) -> Option<String> {
+    let shown = clip(text, 40);
+    let rest = text.chars().nth(read);
+    let integer_then = |rest: Option<char>| matches!(rest, Some('.' | 'e' | 'E'));
+    let read_an_integer = read > 0
+        && text
+            .chars()
+            .take(read)
+            .enumerate()
+            .all(|(i, c)| c.is_ascii_digit() || c == '_' || (i == 0 && matches!(c, '+' | '-')));
+    match code {
+        RonError::IntegerOutOfBounds if text.starts_with('-') => {
+            Some(format!("must be a non-negative integer, got {shown}"))
+        }
+        RonError::IntegerOutOfBounds => {
+            Some(format!("integer out of range for this field, got {shown}"))
+        }
+        RonError::InvalidIntegerDigit { digit, .. } if integer_then(Some(*digit)) => {
+            Some(format!("expected an integer, got {shown}"))
+        }
+        RonError::InvalidIntegerDigit { .. } => Some(format!("`{shown}` is not an integer")),
+        _ if stopped_early && read > 0 && read < text.chars().count() => {
+            Some(if read_an_integer && integer_then(rest) {
+                format!("expected an integer, got {shown}")
+            } else {
+                format!("`{shown}` is not a number")
+            })
+        }
+        _ => None,
+    }
 }
 
 /// `a, b or c`, with each name in backticks.

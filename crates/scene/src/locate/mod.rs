@@ -51,6 +51,42 @@ enum Expect<'a> {
     Separator,
 }
 
+/// The place of one token in the tree: which value a value written there would be.
+#[derive(Debug, Clone, Copy)]
+struct Slot<'a> {
+    /// The innermost open group (its node), if any.
+    frame: Option<usize>,
+    kind: SlotKind<'a>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum SlotKind<'a> {
+    /// The value of the named field (the token follows `name:`).
+    Field(&'a str),
+    /// Element `i` of a list or tuple (the token follows its opener or a comma).
+    Element(usize),
+    /// No value's place: a field name, or where a separator is due.
+    Between,
+}
+
+const NO_SLOT: Slot<'static> = Slot { frame: None, kind: SlotKind::Between };
+
+/// The slot of the next token in `frame` (the innermost open group).
+fn slot_in<'a>(frame: Option<&Frame<'a>>) -> Slot<'a> {
+    let Some(f) = frame else { return NO_SLOT };
+    let kind = match f.expect {
+        Expect::Value(name) => SlotKind::Field(name),
+        // A list, or a group that has held elements but no fields: a tuple.
+        Expect::Item
+            if f.closer == ']' || (f.closer == ')' && f.fields == 0 && f.positional > 0) =>
+        {
+            SlotKind::Element(f.positional)
+        }
+        Expect::Item | Expect::Separator => SlotKind::Between,
+    };
+    Slot { frame: Some(f.node), kind }
+}
+
 /// An open `(..)`, `[..]` or `{..}`.
 struct Frame<'a> {
     node: usize,
@@ -65,6 +101,8 @@ struct Frame<'a> {
 pub(crate) struct SourceMap<'a> {
     nodes: Vec<Node<'a>>,
     tokens: Vec<Token<'a>>,
+    /// Per token, its slot (tokens read together with the one before have [`NO_SLOT`]).
+    slots: Vec<Slot<'a>>,
     /// Where a block comment that never ends starts.
     pub unclosed_comment: Option<Pos>,
 }
@@ -77,8 +115,12 @@ impl<'a> SourceMap<'a> {
         let mut stack: Vec<Frame<'a>> = Vec::new();
         // Open frames per closer kind, so a stray closer costs O(1), not a scan of the stack.
         let mut open = OpenCounts::default();
+        let mut slots = vec![NO_SLOT; tokens.len()];
         let mut k = 0;
         while let Some(token) = tokens.get(k) {
+            if let Some(slot) = slots.get_mut(k) {
+                *slot = slot_in(stack.last());
+            }
             k += 1;
             let next = tokens.get(k).map(|t| t.tok);
             match token.tok {
@@ -108,7 +150,7 @@ impl<'a> SourceMap<'a> {
                     open.add(closer);
                     stack.push(open_frame(node, closer, false));
                 }
-                Tok::Ident(_) | Tok::Atom => {
+                Tok::Ident(_) | Tok::Atom | Tok::Number(_) => {
                     let node = push_value(&mut nodes, &mut stack, token.start);
                     if let Some(n) = nodes.get_mut(node) {
                         n.end = token.end;
@@ -138,7 +180,7 @@ impl<'a> SourceMap<'a> {
         while let Some(frame) = stack.pop() {
             close_frame(&mut nodes, &frame, eof);
         }
-        SourceMap { nodes, tokens, unclosed_comment }
+        SourceMap { nodes, tokens, slots, unclosed_comment }
     }
 
     /// The path of node `index`, e.g. `objects[0].shape.radius` (empty for the top level).
@@ -202,6 +244,56 @@ impl<'a> SourceMap<'a> {
             }
         }
         best.map(|(_, i)| self.path_of(i)).unwrap_or_default()
+    }
+
+    /// The path of what stands at `pos` (a token start): the innermost value containing it,
+    /// except where no value starts there but one is due (after `name:`, or after the opener
+    /// or a comma of a list or tuple): then the path of the value due, e.g. `image.width` for
+    /// the second colon of `(width: : 640)` and `eye[1]` for the colon of `eye: (0.0, :)`.
+    pub(crate) fn path_for(&self, pos: Pos) -> String {
+        let Some(k) = self.tokens.iter().position(|t| t.start == pos) else {
+            return self.path_at(pos);
+        };
+        if self.nodes.iter().any(|n| n.start == pos) {
+            return self.path_at(pos);
+        }
+        let (Some(slot), Some(token)) = (self.slots.get(k), self.tokens.get(k)) else {
+            return self.path_at(pos);
+        };
+        let Some(frame) = slot.frame else { return self.path_at(pos) };
+        let base = self.path_of(frame);
+        let newtype = self.nodes.get(frame).is_some_and(|n| n.newtype);
+        match slot.kind {
+            SlotKind::Field(name) => join(&base, name),
+            // A closer after a comma ends the group: no element is due.
+            SlotKind::Element(_) if matches!(token.tok, Tok::Close(_)) || newtype => base,
+            SlotKind::Element(i) => {
+                let mut path = base;
+                push_seg(&mut path, Seg::Index(i));
+                path
+            }
+            SlotKind::Between => self.path_at(pos),
+        }
+    }
+
+    /// `struct.name` for the field name just before `pos`, when it is an identifier inside a
+    /// group (a field name missing its colon, `(width 640)`); `None` otherwise.
+    pub(crate) fn field_before(&self, pos: Pos) -> Option<String> {
+        let token = self.tokens.iter().rev().find(|t| t.end < pos)?;
+        let Tok::Ident(name) = token.tok else { return None };
+        let node = self.nodes.iter().find(|n| n.start == token.start)?;
+        let parent = node.parent?;
+        Some(join(&self.path_of(parent), name))
+    }
+
+    /// The number written at `pos`, if `pos` lies on one: its first character's position
+    /// and its text.
+    pub(crate) fn number_around(&self, pos: Pos) -> Option<(Pos, &'a str)> {
+        let token = self.tokens.iter().find(|t| t.start <= pos && pos <= t.end)?;
+        match token.tok {
+            Tok::Number(text) => Some((token.start, text)),
+            _ => None,
+        }
     }
 
     /// True if no token ends at or after `pos` (only whitespace and comments remain).
@@ -445,6 +537,29 @@ mod tests {
         assert_eq!(map.path_at(Pos { line: 1, col: 15 }), "a");
         assert_eq!(map.path_at(Pos { line: 1, col: 17 }), "a");
         assert_eq!(map.path_at(Pos { line: 1, col: 2 }), "");
+    }
+
+    /// Where no value starts but one is due, the path is that of the value due; elsewhere it
+    /// is the innermost value's.
+    #[test]
+    fn the_value_due_at_punctuation() {
+        let src = "(a: (b: : 1, c: [:, 2], d: (1.0, :), e:), f: (g 1))";
+        let map = SourceMap::scan(src);
+        let p = |col| map.path_for(Pos { line: 1, col });
+        assert_eq!(p(9), "a.b");
+        assert_eq!(p(18), "a.c[0]");
+        assert_eq!(p(34), "a.d[1]");
+        assert_eq!(p(40), "a.e");
+        // A value starts here: its own path (the colon before it held no element).
+        assert_eq!(p(21), "a.c[0]");
+        // A field name: the struct.
+        assert_eq!(p(14), "a");
+        assert_eq!(map.field_before(Pos { line: 1, col: 49 }).as_deref(), Some("f.g"));
+        assert_eq!(
+            map.number_around(Pos { line: 1, col: 31 }),
+            Some((Pos { line: 1, col: 29 }, "1.0"))
+        );
+        assert_eq!(map.number_around(Pos { line: 1, col: 28 }), None);
     }
 
     #[test]

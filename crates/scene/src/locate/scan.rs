@@ -33,8 +33,10 @@ pub(super) enum Tok<'a> {
     Comma,
     /// An identifier (raw identifiers without their `r#`).
     Ident(&'a str),
-    /// A number, string, character or byte literal.
+    /// A string, character or byte literal.
     Atom,
+    /// A number as written (sign, digits, point, exponent and any letters run into it).
+    Number(&'a str),
     /// Anything else (`#`, `!`, stray punctuation).
     Other(char),
 }
@@ -260,7 +262,7 @@ pub(super) fn tokenize(src: &str) -> Tokens<'_> {
                     prev = n;
                     cur.bump();
                 }
-                Tok::Atom
+                Tok::Number(src.get(at..cur.at).unwrap_or(""))
             }
             c if is_ident_start(c) => {
                 cur.bump_while(is_ident_continue);
