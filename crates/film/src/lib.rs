@@ -1,6 +1,7 @@
 //! reyes-film: reconstruction filtering and image output.
 //!
 //! Stage: after the hider. Per frame, [`FilterTable::new`] builds the normalised filter table
+//! from the kernels and weights of [`reyes_scene::filter`]
 //! (Appendix A `tablesinit`); per bucket, [`splat`] filters the per-sample composites into a
 //! bordered [`Window`] (Appendix A `filter` / `applyboxfilter`); [`Film::add`] sums the
 //! overlapping windows into the image in a fixed bucket order (3.17); [`write()`] stores the
@@ -13,11 +14,13 @@
 
 pub mod error;
 pub mod image;
-pub mod kernel;
 pub mod output;
-pub mod renderman;
 pub mod table;
 pub mod window;
+
+/// The kernels live in the scene crate, whose validation evaluates the same filter sums as
+/// [`FilterTable`]; they are re-exported here where the film stage always had them.
+pub use reyes_scene::filter::{kernel, renderman};
 
 pub use self::image::Film;
 pub use error::FilmError;

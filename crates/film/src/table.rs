@@ -5,20 +5,12 @@
 //! rounding). Every interior output pixel therefore receives each entry exactly once from its
 //! neighbourhood: unit gain for full opaque coverage (Appendix A 3.16).
 
+use reyes_scene::filter::{self, FilterProblem};
 use reyes_scene::{Filter, FilterKind, Original};
 
 use crate::FilmError;
-use crate::kernel;
 
-/// Refuse tables with more entries than this (256 MiB of weights): such a filter width is a
-/// scene error, not something to allocate.
-const MAX_TABLE_ENTRIES: usize = 1 << 26;
-
-/// Appendix A's `Border` for a filter of full width `width`: `(int)(width/2 + 0.499)`, computed
-/// exactly as the hider computes its extended screen (f32, truncation toward zero).
-pub fn border_for_width(width: f32) -> u32 {
-    (width / 2.0 + 0.499).max(0.0) as u32
-}
+pub use reyes_scene::filter::border_for_width;
 
 /// Filter weights of every sample stratum for every pixel of its `fw x fw` neighbourhood.
 ///
@@ -66,6 +58,8 @@ impl FilterTable {
     /// accumulated in `f64` (the C used `float`). The footprint is square, its `border` that of
     /// the larger width ([`Filter::max_width`]); the kernel cuts itself to each width. Weights
     /// may be negative (RenderMan's catmull-rom and sinc): only their sum must be positive.
+    /// The weights and their sum are [`reyes_scene::filter::weigh`]'s, the function scene
+    /// validation runs on the scene's filter, so a validated scene's filter always has a table.
     ///
     /// # Errors
     ///
@@ -80,57 +74,16 @@ impl FilterTable {
         original: &Original,
     ) -> Result<FilterTable, FilmError> {
         let (kind, width, height) = (filter.kind, filter.width, filter.y_width());
-        let degenerate =
-            |reason: String| FilmError::DegenerateFilter { kind, width, height, reason };
-        if !(width.is_finite() && width > 0.0 && height.is_finite() && height > 0.0) {
-            return Err(degenerate("the widths must be finite and positive".into()));
-        }
-        if nx == 0 || ny == 0 {
-            return Err(degenerate(format!("empty {nx}x{ny} sample grid")));
-        }
-        let ns = (nx as usize)
-            .checked_mul(ny as usize)
-            .ok_or_else(|| degenerate(format!("{nx}x{ny} sample grid is too large")))?;
-        if location.len() != ns {
-            return Err(degenerate(format!(
-                "{} stratum locations for a {nx}x{ny} grid (expected {ns})",
-                location.len()
-            )));
-        }
-        let border = border_for_width(filter.max_width());
-        let footprint = 2 * border + 1;
-        let fw = footprint as usize;
-        let entries = fw
-            .checked_mul(fw)
-            .and_then(|a| a.checked_mul(ns))
-            .filter(|&n| n <= MAX_TABLE_ENTRIES)
-            .ok_or_else(|| {
-                degenerate(format!(
-                    "a {fw}x{fw} footprint with {ns} samples exceeds {MAX_TABLE_ENTRIES} weights"
-                ))
-            })?;
-
-        let half_x = 0.5 / f64::from(nx);
-        let half_y = 0.5 / f64::from(ny);
-        let b = f64::from(border);
-        let mut weights = Vec::with_capacity(entries);
-        let mut sum = 0.0_f64;
-        for loc in location {
-            let cx = f64::from(loc[0]) + half_x;
-            let cy = f64::from(loc[1]) + half_y;
-            for j in 0..fw {
-                let dy = (cy - (j as f64 - b + 0.5)) as f32;
-                for i in 0..fw {
-                    let dx = (cx - (i as f64 - b + 0.5)) as f32;
-                    let w = kernel::weight(kind, width, height, dx, dy, original);
-                    sum += f64::from(w);
-                    weights.push(w);
-                }
-            }
-        }
-        if !sum.is_finite() || sum <= 0.0 {
-            return Err(degenerate(format!("the filter weights sum to {sum}")));
-        }
+        let degenerate = |problem: FilterProblem| FilmError::DegenerateFilter {
+            kind,
+            width,
+            height,
+            reason: problem.to_string(),
+        };
+        let shape = filter::footprint(filter, nx, ny, location.len()).map_err(degenerate)?;
+        let mut weights = Vec::with_capacity(shape.entries);
+        let (_, sum) = filter::weigh(filter, nx, ny, location, original, |w| weights.push(w))
+            .map_err(degenerate)?;
         for w in &mut weights {
             *w = (f64::from(*w) / sum) as f32;
         }
@@ -141,9 +94,9 @@ impl FilterTable {
             kind,
             width,
             height,
-            border,
-            footprint,
-            ns,
+            border: shape.border,
+            footprint: shape.side,
+            ns: shape.ns,
             weights,
             box_fast: unit_box && width == 1.0 && height == 1.0,
         })

@@ -8,7 +8,7 @@
 //! they are the stratum centres.
 
 use reyes_sampling::Drand;
-use reyes_sampling::permute::{bit_reversal, bit_reversal_original};
+use reyes_sampling::permute::stratum_locations;
 
 /// Appendix A's `NJITTER`: entries in each jitter table.
 pub const NJITTER: usize = 512;
@@ -94,21 +94,7 @@ impl Tables {
                 table[4 * len + s] = 0.5 / fy;
             }
         }
-        let mut location = vec![[0.0f32; 2]; ns as usize];
-        let mut q = 0;
-        for x in 0..nx {
-            for y in 0..ny {
-                let t = if original_permute {
-                    bit_reversal_original(q, ns)
-                } else {
-                    bit_reversal(q, ns) as i64
-                };
-                if (0..ns as i64).contains(&t) {
-                    location[t as usize] = [x as f32 / fx, y as f32 / fy];
-                }
-                q += 1;
-            }
-        }
+        let location = stratum_locations(nx, ny, original_permute);
         Tables { nx, ny, ns, location, jitter: table, len, overrun: original_tables }
     }
 

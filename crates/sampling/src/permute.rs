@@ -56,6 +56,31 @@ pub fn bit_reversal(i: u32, n: u32) -> u32 {
     unreachable!("bit reversal is a bijection on 0..2^k, which contains 0..n")
 }
 
+/// Appendix A's `Location` (from `tablesinit`): for each sample `s` of an `nx x ny` pixel,
+/// the lower-left corner `(x/nx, y/ny)` of the spatial stratum it is paired with. The strata
+/// are enumerated x-major (`q = x * ny + y`) and stratum `q` goes to sample
+/// [`bit_reversal`]`(q, nx * ny)`, or with `original` to [`bit_reversal_original`], which is
+/// not a permutation for every grid: a sample it assigns no stratum keeps `(0, 0)` (the C left
+/// it uninitialised). The hider's sample tables and the filter check of validation both take
+/// the locations from here, so the filter table validation evaluates is the one rendered.
+pub fn stratum_locations(nx: u32, ny: u32, original: bool) -> Vec<[f32; 2]> {
+    let ns = nx * ny;
+    let (fx, fy) = (nx as f32, ny as f32);
+    let mut location = vec![[0.0f32; 2]; ns as usize];
+    let mut q = 0;
+    for x in 0..nx {
+        for y in 0..ny {
+            let t =
+                if original { bit_reversal_original(q, ns) } else { bit_reversal(q, ns) as i64 };
+            if (0..ns as i64).contains(&t) {
+                location[t as usize] = [x as f32 / fx, y as f32 / fy];
+            }
+            q += 1;
+        }
+    }
+    location
+}
+
 /// Position of `i` in a pseudo-random permutation of `0..n` keyed by `key`: a bijection
 /// of the smallest power-of-two range holding `n`, walked until it lands below `n`
 /// (cycle walking, so the restriction stays a bijection).

@@ -7,6 +7,7 @@
 
 pub mod closure;
 mod error;
+pub mod filter;
 mod locate;
 pub mod model;
 pub mod patches;

@@ -4,6 +4,7 @@
 //! Invariant: reports at `hider.<field>` paths, as the source map spells them.
 
 use super::primitives::{Check, Interval, fail, int_in, positive, within};
+use crate::filter::{self, FilterProblem};
 use crate::model::{Hider, HiderMethod, Scene};
 
 /// Both full widths of the filter (x and y), in pixels.
@@ -22,6 +23,7 @@ pub(super) fn hider(h: &Hider, scene: &Scene) -> Check {
     if let Some(height) = h.filter.height {
         within("hider.filter.height", height, FILTER_WIDTH, " pixels")?;
     }
+    filter_table(h)?;
     int_in("hider.bucket_size[0]", h.bucket_size.0, 1, 1024)?;
     int_in("hider.bucket_size[1]", h.bucket_size.1, 1, 1024)?;
     positive("hider.shading_rate", h.shading_rate)?;
@@ -29,4 +31,29 @@ pub(super) fn hider(h: &Hider, scene: &Scene) -> Check {
         return fail("hider.max_grid_size", format!("must be >= 1, got {}", h.max_grid_size));
     }
     Ok(())
+}
+
+/// The film's filter table over the hider's sample strata can be built: the very sum the film
+/// divides by ([`filter::check`]) is finite and positive. A filter narrower than the strata are
+/// apart (a 0.1 pixel Gaussian on 2x2 samples) weighs no stratum centre at all.
+fn filter_table(h: &Hider) -> Check {
+    let (nx, ny) = h.pixel_samples;
+    match filter::check(h) {
+        Ok(()) => Ok(()),
+        Err(FilterProblem::Sum(sum)) if sum == 0.0 => fail(
+            "hider.filter",
+            format!(
+                "the filter is zero at every centre of the {nx}x{ny} sample strata, so its \
+                 weights sum to 0: make it wider or change pixel_samples"
+            ),
+        ),
+        Err(FilterProblem::Sum(sum)) => fail(
+            "hider.filter",
+            format!(
+                "the filter's weights on the {nx}x{ny} sample strata sum to {sum:?}, not to a \
+                 positive number: make it wider or change pixel_samples"
+            ),
+        ),
+        Err(problem) => fail("hider.filter", format!("the filter has no table: {problem}")),
+    }
 }

@@ -1,4 +1,4 @@
-//! The RenderMan pixel filters (stage: film, table construction only): the `Ri` kinds of
+//! The RenderMan pixel filters (used by validation and the film's filter table): the `Ri` kinds of
 //! [`FilterKind`], each with its own x and y full width.
 //!
 //! Sources, read for behaviour and ported, not copied: the RenderMan Interface Specification
@@ -22,9 +22,8 @@
 
 use std::f64::consts::PI;
 
-use reyes_scene::FilterKind;
-
-use crate::kernel::bessel_j1;
+use super::kernel::bessel_j1;
+use crate::FilterKind;
 
 /// Mitchell-Netravali's `B` of `"mitchell"` (Aqsis and Pixie: 1/3).
 pub const MITCHELL_B: f64 = 1.0 / 3.0;
@@ -36,7 +35,7 @@ pub const BLACKMAN_HARRIS: [f64; 4] = [0.35875, 0.48829, 0.14128, 0.01168];
 
 /// Weight of a sample at offset `(x, y)` (pixels) for the RenderMan kernel `kind` of full
 /// widths `xw` by `yw`; `None` if `kind` is one of Appendix A's kernels, which are not
-/// RenderMan's (see [`crate::kernel::weight`]).
+/// RenderMan's (see [`super::kernel::weight`]).
 pub fn weight(kind: FilterKind, xw: f32, yw: f32, x: f32, y: f32) -> Option<f32> {
     let (x, y, xw, yw) = (f64::from(x), f64::from(y), f64::from(xw), f64::from(yw));
     let inside = x.abs() <= 0.5 * xw && y.abs() <= 0.5 * yw;

@@ -1,5 +1,5 @@
-//! Reconstruction filter kernels (stage: film, table construction only): Appendix A's five
-//! here, RenderMan's in [`crate::renderman`], one entry point [`weight`] for both.
+//! Reconstruction filter kernels (used by validation and the film's filter table): Appendix A's
+//! five here, RenderMan's in [`super::renderman`], one entry point [`weight`] for both.
 //!
 //! Invariants: every kernel is a pure function of the offset `(dx, dy)` (sample minus pixel
 //! centre, in pixels) and the full filter widths in x and y; the result is finite for finite
@@ -8,7 +8,7 @@
 //! original 1985 shapes are selected by the [`Original`] switches. A filter as tall as it is
 //! wide computes exactly what the width-only kernels always did.
 
-use reyes_scene::{FilterKind, Original};
+use crate::{FilterKind, Original};
 
 /// Below this `|r|` the sinc and jinc kernels return their centre value instead of dividing
 /// by `r` (Appendix A's `r<.001&&r>-.001`).
@@ -17,7 +17,7 @@ const CENTRE_EPS: f64 = 0.001;
 /// Weight of a sample at offset `(dx, dy)` from an output pixel centre, for the kernel `kind`
 /// of full width `width` in x and `height` in y (pixels).
 ///
-/// The RenderMan kernels (the `Ri` kinds) are [`crate::renderman::weight`]. Appendix A's five
+/// The RenderMan kernels (the `Ri` kinds) are [`super::renderman::weight`]. Appendix A's five
 /// are defined for one width: for `height != width` the y offset is scaled by
 /// `width / height` first, so the kernel keeps its shape and reaches `height / 2` in y (the
 /// radial ones become elliptical); for `height == width` nothing is scaled and the weight is
@@ -59,7 +59,7 @@ pub fn weight(
         | FilterKind::RiBessel
         | FilterKind::RiMitchell
         | FilterKind::RiBlackmanHarris => {
-            crate::renderman::weight(kind, width, height, dx, dy).unwrap_or(0.0)
+            super::renderman::weight(kind, width, height, dx, dy).unwrap_or(0.0)
         }
     }
 }
