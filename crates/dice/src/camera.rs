@@ -14,22 +14,12 @@
 //! moving camera (`camera.motion`) changes only the view (eye, look-at point, up vector);
 //! the projection, screen window, clipping depths and lens are the same at every time.
 
-use glam::{DVec2, Mat4, Vec2, Vec3, Vec4};
+use glam::{Mat4, Vec2, Vec3};
 use reyes_hider::LensSetup;
+use reyes_scene::view::{self, ViewBasis as Basis, ViewError};
 use reyes_scene::{Camera, Lens, Projection, Scene};
 
 use crate::DiceError;
-
-/// Relative size below which `cross(up, forward)` counts as zero (up parallel to the view).
-const PARALLEL_EPS: f32 = 1e-7;
-
-/// An orthonormal camera basis in world space.
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Basis {
-    right: Vec3,
-    up: Vec3,
-    forward: Vec3,
-}
 
 /// Where a camera is and where it looks, in world space.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -74,17 +64,13 @@ impl View {
     }
 }
 
-/// The camera basis of `view`, or why it has none (eye at look_at, up along the view).
+/// The camera basis of `view`, or why it has none (eye at look_at, up along the view): the
+/// scene crate's [`view::basis`], which validation checks every camera view with.
 fn basis(view: &View) -> Result<Basis, DiceError> {
-    let forward = (view.look_at - view.eye).try_normalize().ok_or(DiceError::EyeAtLookAt)?;
-    let up_in = view.up;
-    let side = up_in.cross(forward);
-    if side.length() <= PARALLEL_EPS * up_in.length() {
-        return Err(DiceError::UpParallelToView);
-    }
-    let right = side.try_normalize().ok_or(DiceError::UpParallelToView)?;
-    let up = forward.cross(right);
-    Ok(Basis { right, up, forward })
+    view::basis(view.eye, view.look_at, view.up).map_err(|e| match e {
+        ViewError::NoDirection => DiceError::EyeAtLookAt,
+        ViewError::UpParallel => DiceError::UpParallelToView,
+    })
 }
 
 /// Check that the scene's camera has a well-defined view basis: the still view, or every
@@ -150,29 +136,9 @@ pub struct CameraSetup {
 }
 
 /// The raster mapping `(centre, scale)` of `cam` on a `width x height` image (see the module
-/// documentation).
+/// documentation): the scene crate's [`view::raster_mapping`], which validation checks.
 fn raster_mapping(cam: &Camera, width: f32, height: f32) -> (Vec2, Vec2) {
-    let perspective = cam.projection == Projection::Perspective;
-    let Some([left, right, bottom, top]) = cam.screen_window else {
-        // RenderMan's default window; the arithmetic of the renderer before screen windows.
-        let half_short = 0.5 * width.min(height);
-        let k =
-            if perspective { half_short / (0.5 * cam.fov.to_radians()).tan() } else { half_short };
-        return (Vec2::new(0.5 * width, 0.5 * height), Vec2::splat(k));
-    };
-    // Screen x = left at raster 0 and right at `width`; y = top at raster 0, bottom at
-    // `height`. In f64, where the window's extent is exact and nothing overflows.
-    let (left, right, bottom, top) =
-        (f64::from(left), f64::from(right), f64::from(bottom), f64::from(top));
-    let per_screen =
-        DVec2::new(f64::from(width) / (right - left), f64::from(height) / (top - bottom));
-    let centre = DVec2::new(-left * per_screen.x, top * per_screen.y);
-    let scale = if perspective {
-        per_screen / (0.5 * f64::from(cam.fov).to_radians()).tan()
-    } else {
-        per_screen
-    };
-    (centre.as_vec2(), scale.as_vec2())
+    view::raster_mapping(cam, width, height)
 }
 
 impl CameraSetup {
@@ -264,14 +230,7 @@ impl CameraSetup {
 
     /// The world-to-camera matrix (rigid: rows are right, up, forward; the eye maps to 0).
     pub fn world_to_camera(&self) -> Mat4 {
-        let Basis { right, up, forward } = self.basis;
-        let e = self.eye_world;
-        Mat4::from_cols(
-            Vec4::new(right.x, up.x, forward.x, 0.0),
-            Vec4::new(right.y, up.y, forward.y, 0.0),
-            Vec4::new(right.z, up.z, forward.z, 0.0),
-            Vec4::new(-right.dot(e), -up.dot(e), -forward.dot(e), 1.0),
-        )
+        self.basis.world_to_camera(self.eye_world)
     }
 
     /// Appendix A's `EyeToScreenXY`: raster position of a camera-space point with `z > 0`
@@ -306,7 +265,7 @@ impl CameraSetup {
     /// (and for any orthographic camera).
     pub fn lens(&self) -> Option<LensSetup> {
         let lens = self.lens?;
-        let radius = 0.5 * lens.focal_length / lens.f_stop;
+        let radius = lens.radius();
         let a_raster = self.eye_to_raster(Vec3::new(0.0, 0.0, 1.0));
         let b_raster = self.eye_to_raster(Vec3::new(1.0, 1.0, 1.0));
         Some(LensSetup::new(

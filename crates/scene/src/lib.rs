@@ -14,6 +14,7 @@ pub mod patches;
 mod roll;
 mod syntax;
 mod validate;
+pub mod view;
 pub mod xform;
 
 use std::path::Path;

@@ -184,6 +184,9 @@ proptest! {
 
     #[test]
     fn fov_is_accepted_exactly_inside_0_180(fov in prop_oneof![any::<f32>(), -10.0f32..200.0]) {
+        // Below 1e-20 degrees the lens of VALID blurs by more than single precision holds
+        // (and lower still the projection scale overflows): refused too, see the catalogue.
+        prop_assume!(!(fov > 0.0 && fov < 1e-20));
         let text = VALID.replace("fov: 35.0", &format!("fov: {fov:?}"));
         accepted_exactly(&text, fov > 0.0 && fov < 180.0, "camera.fov", Some((4, 17)))?;
     }

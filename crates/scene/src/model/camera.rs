@@ -148,3 +148,11 @@ pub struct Lens {
     /// Distance of the plane in focus, eye-space z (> 0).
     pub focal_distance: f32,
 }
+
+impl Lens {
+    /// The lens radius, `0.5 * focal_length / f_stop`, as the renderer computes it (validation
+    /// checks that it is finite).
+    pub fn radius(&self) -> f32 {
+        0.5 * self.focal_length / self.f_stop
+    }
+}

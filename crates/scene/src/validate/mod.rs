@@ -57,7 +57,7 @@ pub(crate) fn check(scene: &Scene) -> Option<Issue> {
 
 fn check_scene(scene: &Scene) -> Check {
     camera::image(&scene.image)?;
-    camera::camera(&scene.camera)?;
+    camera::camera(&scene.camera, &scene.image)?;
     hider::hider(&scene.hider, scene)?;
     let shutter = &scene.camera.shutter;
     for (i, light) in scene.lights.iter().enumerate() {
