@@ -22,12 +22,42 @@ pub enum CsgOp {
 }
 
 /// A CSG expression over leaf objects, as written in a scene.
+///
+/// An n-ary union folded into binary nodes is as deep as it has operands, so building a tree
+/// from an expression ([`CsgTree::build`]) and dropping one never recurse; `Clone`, `Debug`
+/// and `PartialEq` do, and are meant for the small expressions of tests.
 #[derive(Debug, Clone, PartialEq)]
 pub enum CsgExpr {
     /// A closed object, by index.
     Leaf(u32),
     /// An operator on two sub-expressions.
     Op(CsgOp, Box<CsgExpr>, Box<CsgExpr>),
+}
+
+impl Drop for CsgExpr {
+    /// Drops the sub-expressions from an explicit stack: a chain of 32767 operators (a flat
+    /// union of 32768 operands) would otherwise recurse once per operator.
+    fn drop(&mut self) {
+        fn take(e: &mut CsgExpr, into: &mut Vec<CsgExpr>) {
+            if let CsgExpr::Op(..) = e {
+                into.push(std::mem::replace(e, CsgExpr::Leaf(0)));
+            }
+        }
+        let CsgExpr::Op(_, a, b) = self else { return };
+        if matches!((a.as_ref(), b.as_ref()), (CsgExpr::Leaf(_), CsgExpr::Leaf(_))) {
+            return;
+        }
+        let mut stack = Vec::new();
+        take(a, &mut stack);
+        take(b, &mut stack);
+        while let Some(mut e) = stack.pop() {
+            if let CsgExpr::Op(_, a, b) = &mut e {
+                take(a, &mut stack);
+                take(b, &mut stack);
+            }
+            // `e` drops here with leaves for operands: no recursion.
+        }
+    }
 }
 
 /// One node: port of `struct CSGnode`.
@@ -42,12 +72,19 @@ pub struct CsgNode {
 }
 
 /// A CSG tree (port of the `Tree[]` entry registered by `CSGNewTree`).
+///
+/// Invariant: `nodes` are in post-order, as [`CsgTree::build`] lays them out: every node after
+/// the nodes of its subtrees, the first operand's before the second's, so a subtree's nodes are
+/// contiguous and end at its root, and `root` is the last node. [`csg_resolve_tree`] walks
+/// them in that order instead of recursing.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct CsgTree {
     /// Nodes; `nodes[root]` is the root.
     pub nodes: Vec<CsgNode>,
     /// Root node index.
     pub root: u16,
+    /// Per node, the id of the slot it fills in its parent's node (0 for the root).
+    slots: Vec<u16>,
 }
 
 /// Largest number of slots in one tree (ids are `u16`, 0 is the root).
@@ -57,35 +94,61 @@ impl CsgTree {
     /// Build a tree from an expression whose root is an operator. Returns the tree and, for
     /// every leaf, `(object index, slot id)`, in expression order; `None` if the expression is
     /// a bare leaf or has more slots than [`MAX_SLOTS`].
+    ///
+    /// Slot ids are given in pre-order (a node's first slot, the first operand's subtree, its
+    /// second slot, the second operand's subtree) and nodes are laid out in post-order, as the
+    /// recursive `CSGNewTree` did; the walk keeps its own stack, so no depth exhausts the
+    /// thread's.
     pub fn build(expr: &CsgExpr) -> Option<(CsgTree, Vec<(u32, u16)>)> {
-        fn walk(
-            e: &CsgExpr,
-            nodes: &mut Vec<CsgNode>,
-            leaves: &mut Vec<(u32, u16)>,
-            next_id: &mut usize,
-        ) -> Option<u16> {
-            let CsgExpr::Op(op, a, b) = e else { return None };
-            let mut node = CsgNode { op: *op, child: [None, None], id: [0, 0] };
-            for (k, sub) in [a, b].into_iter().enumerate() {
-                if *next_id > MAX_SLOTS {
-                    return None;
-                }
-                let id = *next_id as u16;
-                *next_id += 1;
-                node.id[k] = id;
-                match sub.as_ref() {
-                    CsgExpr::Leaf(obj) => leaves.push((*obj, id)),
-                    inner => node.child[k] = Some(walk(inner, nodes, leaves, next_id)?),
-                }
-            }
-            nodes.push(node);
-            Some((nodes.len() - 1) as u16)
+        /// An operator being built: its node, the id of its own slot, the next operand.
+        struct Open<'a> {
+            node: CsgNode,
+            slot: u16,
+            next: usize,
+            operands: [&'a CsgExpr; 2],
         }
+        fn open<'a>(op: CsgOp, a: &'a CsgExpr, b: &'a CsgExpr, slot: u16) -> Open<'a> {
+            Open {
+                node: CsgNode { op, child: [None, None], id: [0, 0] },
+                slot,
+                next: 0,
+                operands: [a, b],
+            }
+        }
+        let CsgExpr::Op(op, a, b) = expr else { return None };
         let mut nodes = Vec::new();
+        let mut slots = Vec::new();
         let mut leaves = Vec::new();
-        let mut next_id = 1;
-        let root = walk(expr, &mut nodes, &mut leaves, &mut next_id)?;
-        Some((CsgTree { nodes, root }, leaves))
+        let mut next_id = 1usize;
+        let mut root = 0u16;
+        let mut stack = vec![open(*op, a, b, 0)];
+        while let Some(top) = stack.last_mut() {
+            let k = top.next;
+            let Some(&operand) = top.operands.get(k) else {
+                // Both operands done: the node follows its subtrees.
+                let done = stack.pop()?;
+                nodes.push(done.node);
+                slots.push(done.slot);
+                let index = u16::try_from(nodes.len() - 1).ok()?;
+                match stack.last_mut() {
+                    Some(parent) => parent.node.child[parent.next - 1] = Some(index),
+                    None => root = index,
+                }
+                continue;
+            };
+            top.next += 1;
+            if next_id > MAX_SLOTS {
+                return None;
+            }
+            let id = next_id as u16;
+            next_id += 1;
+            top.node.id[k] = id;
+            match operand {
+                CsgExpr::Leaf(obj) => leaves.push((*obj, id)),
+                CsgExpr::Op(op, a, b) => stack.push(open(*op, a, b, id)),
+            }
+        }
+        Some((CsgTree { nodes, root, slots }, leaves))
     }
 }
 
@@ -201,6 +264,11 @@ pub fn csg_resolve_surface(points: &mut [VisPoint], mut la: u32, mut lb: u32, id
 
 /// Port of `csg_resolve_tree`: post-order evaluation of `node` (whose own slot id is `id`)
 /// on the tree's points in `*list`.
+///
+/// The original recursed into each child before resolving the node; the nodes of `node`'s
+/// subtree are laid out in exactly that order (see [`CsgTree`]), so they are resolved here in a
+/// loop from the subtree's first node, each with the id of the slot it fills, and no depth
+/// exhausts the stack.
 pub fn csg_resolve_tree(
     points: &mut [VisPoint],
     tree: &CsgTree,
@@ -209,12 +277,20 @@ pub fn csg_resolve_tree(
     list: &mut u32,
     lerps: &mut u64,
 ) {
-    let n = tree.nodes[node as usize];
-    for k in 0..2 {
-        if let Some(c) = n.child[k] {
-            csg_resolve_tree(points, tree, c, n.id[k], list, lerps);
-        }
+    // The subtree's first node in post-order: down the first operand that is an operator.
+    let mut first = node;
+    while let Some(c) = tree.nodes[first as usize].child.iter().flatten().next() {
+        first = *c;
     }
+    for i in first..=node {
+        let own = if i == node { id } else { tree.slots[i as usize] };
+        resolve_node(points, &tree.nodes[i as usize], own, list, lerps);
+    }
+}
+
+/// One node of `csg_resolve_tree`, its operands already resolved: extract the points of its two
+/// slots, resolve them against each other and relabel the survivors `id`.
+fn resolve_node(points: &mut [VisPoint], n: &CsgNode, id: u16, list: &mut u32, lerps: &mut u64) {
     let mut l0 = extract_csgnode(points, n.id[0], list);
     let mut l1 = extract_csgnode(points, n.id[1], list);
     if l0 != NIL || l1 != NIL {
