@@ -133,6 +133,11 @@ impl FrameBuild {
         self.object_attributes.push(attributes);
     }
 
+    /// How many `SolidBegin` blocks are open.
+    pub fn solid_depth(&self) -> usize {
+        self.solid_stack.len()
+    }
+
     pub fn solid_begin(&mut self, op: String, name: Option<String>, at: Location) {
         self.solid_stack.push(SolidNode { op, name, at, children: Vec::new() });
     }

@@ -38,6 +38,17 @@ impl Block {
     }
 }
 
+/// Most `SolidBegin` blocks open at once: each makes at most two levels of the model's CSG
+/// tree, which validation limits to [`reyes_scene::MAX_CSG_DEPTH`].
+pub(super) const MAX_SOLID_NESTING: usize = reyes_scene::MAX_CSG_DEPTH / 2;
+/// Most `ObjectInstance`s replaying inside each other (an object whose definition instances
+/// itself would replay forever).
+pub(super) const MAX_INSTANCE_NESTING: usize = 64;
+/// Most requests the object instances of one world block may replay in all. The model has no
+/// instancing, so every replayed primitive becomes an object of its own; definitions that
+/// instance the one before twice double with every level, and 40 levels would make 2^40.
+pub(super) const MAX_INSTANCED_REQUESTS: usize = 1 << 20;
+
 /// An open `MotionBegin` block: its times and the requests gathered so far.
 pub(super) struct Motion {
     pub times: Vec<f32>,
@@ -73,6 +84,10 @@ pub(crate) struct Machine {
     objects: HashMap<String, Vec<Request>>,
     /// The object definition being recorded.
     recording: Option<(String, Vec<Request>, usize)>,
+    /// `ObjectInstance`s replaying now, one inside the other.
+    instancing: usize,
+    /// Requests replayed by object instances in this world block.
+    instanced: usize,
     pub(super) warnings: Vec<Warning>,
     /// Warnings given once per key (unknown shaders, unsupported features).
     pub(super) warned: std::collections::HashSet<String>,
@@ -112,6 +127,8 @@ impl Machine {
             frame_number: None,
             objects: HashMap::new(),
             recording: None,
+            instancing: 0,
+            instanced: 0,
             warnings: Vec::new(),
             warned: Default::default(),
             frames: Vec::new(),
@@ -417,6 +434,7 @@ impl Machine {
         let mut build =
             FrameBuild::new(self.frame_options.clone(), r.at.clone(), self.options.wants(number));
         self.push(Block::World, &r.at);
+        self.instanced = 0;
         self.ctm = Xform::default();
         // Lights of the world block are new for every frame; those declared before it are on.
         self.attributes.lights_on.clear();
@@ -561,6 +579,9 @@ impl Machine {
                 "operation must be \"primitive\", \"union\", \"intersection\" or \"difference\", got \"{op}\""
             )));
         }
+        if self.build.as_ref().is_some_and(|b| b.solid_depth() >= MAX_SOLID_NESTING) {
+            return Err(r.error(format!("solids nested more than {MAX_SOLID_NESTING} deep")));
+        }
         self.push(Block::Solid, &r.at);
         let name = self.attributes.name.clone();
         if let Some(b) = &mut self.build {
@@ -592,12 +613,26 @@ impl Machine {
         if !self.in_world() {
             return Err(r.error("instances must be inside WorldBegin/WorldEnd"));
         }
+        if self.instancing >= MAX_INSTANCE_NESTING {
+            return Err(r.error(format!(
+                "object instances nested more than {MAX_INSTANCE_NESTING} deep (does a \
+                 definition instance itself?)"
+            )));
+        }
+        self.instanced = self.instanced.saturating_add(requests.len());
+        if self.instanced > MAX_INSTANCED_REQUESTS {
+            return Err(r.error(format!(
+                "object instances replay more than {MAX_INSTANCED_REQUESTS} requests in this \
+                 world block"
+            )));
+        }
         // Replay the definition in its own attribute block.
         let depth = self.blocks.len();
         self.push(Block::Attribute, &r.at);
-        for q in requests {
-            self.request(q)?;
-        }
+        self.instancing += 1;
+        let replayed = requests.into_iter().try_for_each(|q| self.request(q));
+        self.instancing -= 1;
+        replayed?;
         if self.blocks.len() != depth + 1 {
             return Err(r.error(format!("the definition of object {h} leaves a block open")));
         }

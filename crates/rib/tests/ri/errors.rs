@@ -59,6 +59,15 @@ fn cases() -> Vec<(&'static str, String)> {
         ("WorldBegin twice", "WorldBegin WorldBegin".into()),
         ("a degenerate polygon", w("Polygon \"P\" [0 0 0 1 0 0 2 0 0 3 0 0 4 0 0]")),
         ("geometry in an object definition left open", w("ObjectBegin 1 AttributeBegin Sphere 1 -1 1 360 ObjectEnd ObjectInstance 1")),
+        // Options the renderer could not set up: reported at the request by validation.
+        ("a filter narrower than the sample strata", "PixelSamples 2 2\nPixelFilter \"gaussian\" 0.01 0.01\nWorldBegin Sphere 1 -1 1 360 WorldEnd".into()),
+        ("a box filter of 1e-20 pixels", "PixelFilter \"box\" 1e-20 1e-20\nWorldBegin Sphere 1 -1 1 360 WorldEnd".into()),
+        ("a field of view too narrow for single precision", "Projection \"perspective\" \"fov\" [1e-44]\nWorldBegin Sphere 1 -1 1 360 WorldEnd".into()),
+        ("a screen window too small for single precision", "ScreenWindow 0 1e-40 0 1e-40\nProjection \"perspective\"\nWorldBegin Sphere 1 -1 1 360 WorldEnd".into()),
+        ("an orthographic screen window too small for single precision", "Projection \"orthographic\"\nScreenWindow 0 1e-40 0 1e-40\nWorldBegin Sphere 1 -1 1 360 WorldEnd".into()),
+        ("a lens too large for single precision", "DepthOfField 1e-38 3e38 5\nProjection \"perspective\"\nWorldBegin Sphere 1 -1 1 360 WorldEnd".into()),
+        ("a shutter too long for single precision", "Shutter -3e38 3e38\nProjection \"perspective\"\nWorldBegin Sphere 1 -1 1 360 WorldEnd".into()),
+        ("an object that instances itself", w("ObjectBegin \"a\" Sphere 1 -1 1 360 ObjectEnd ObjectBegin \"a\" ObjectInstance \"a\" ObjectEnd ObjectInstance \"a\"")),
     ]
 }
 

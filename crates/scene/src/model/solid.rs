@@ -16,6 +16,14 @@ pub struct Solid {
     pub tree: Csg,
 }
 
+/// Most operators a CSG expression nests along any path from its root to a leaf (the root
+/// counts 1). Validation refuses deeper trees, so the stages that walk a tree recursively
+/// (the dicer's set-up, the measurement of solids, dropping and cloning a `Csg`) recurse at
+/// most this deep. RON refuses deeper nesting anyway (its limit is 128 levels of brackets in
+/// all); the RIB reader refuses `SolidBegin` blocks nested more than half this deep, since each
+/// block makes at most two levels.
+pub const MAX_CSG_DEPTH: usize = 128;
+
 /// A CSG expression. Operands must be closed: full spheres and tori, cylinders, cones and
 /// paraboloids (closed by their end caps when used here), closed meshes.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

@@ -8,7 +8,8 @@
 //!
 //! Solids are checked after every object, so an operand's own shape is already valid when its
 //! closure is judged. Within a solid: an operator at the root, the number of leaves, then the
-//! tree in pre-order (an operator's operand count before its operands, operands left to right;
+//! tree in pre-order (an operator's depth, at most `MAX_CSG_DEPTH`, and operand count before its
+//! operands, operands left to right;
 //! a leaf's name, then its earlier uses, then its closure). Paths into a tree follow the source map: variant names are transparent and
 //! operands are indexed, `solids[0].tree[1][0]` is the first operand of the second operand.
 //!

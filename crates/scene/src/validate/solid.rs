@@ -9,7 +9,7 @@ use std::collections::HashMap;
 use super::primitives::{Check, fail};
 use crate::closure::{Closure, closure};
 use crate::error::clip;
-use crate::model::{Csg, Scene};
+use crate::model::{Csg, MAX_CSG_DEPTH, Scene};
 
 /// Most solids in a scene: the renderer numbers CSG trees with `u16`.
 const MAX_SOLIDS: usize = 65535;
@@ -58,7 +58,8 @@ pub(super) fn solids(scene: &Scene) -> Check {
 }
 
 /// Solid `s`: an operator at the root, at most [`MAX_LEAVES`] leaves, then every node in
-/// pre-order. Iterative, so no tree depth can exhaust the stack.
+/// pre-order, each operator at most [`MAX_CSG_DEPTH`] deep. Iterative, so no tree depth can
+/// exhaust the stack.
 fn solid(s: usize, tree: &Csg, scene: &Scene, names: &Names, used: &mut Used) -> Check {
     let at = format!("solids[{s}].tree");
     if matches!(tree, Csg::Object(_)) {
@@ -76,16 +77,26 @@ fn solid(s: usize, tree: &Csg, scene: &Scene, names: &Names, used: &mut Used) ->
     if leaves > MAX_LEAVES {
         return fail(at, format!("a solid may use at most {MAX_LEAVES} objects, got {leaves}"));
     }
-    let mut stack: Vec<(&Csg, String)> = vec![(tree, at)];
-    while let Some((node, path)) = stack.pop() {
+    // Each entry: a node, its path and how many operators it lies under.
+    let mut stack: Vec<(&Csg, String, usize)> = vec![(tree, at, 0)];
+    while let Some((node, path, above)) = stack.pop() {
+        if !matches!(node, Csg::Object(_)) && above >= MAX_CSG_DEPTH {
+            return fail(
+                path,
+                format!(
+                    "CSG operators may nest at most {MAX_CSG_DEPTH} deep, this one is {} deep",
+                    above + 1
+                ),
+            );
+        }
         let (op, items) = match node {
             Csg::Object(name) => {
                 leaf(&path, s, name, scene, names, used)?;
                 continue;
             }
             Csg::Difference(a, b) => {
-                stack.push((b, format!("{path}[1]")));
-                stack.push((a, format!("{path}[0]")));
+                stack.push((b, format!("{path}[1]"), above + 1));
+                stack.push((a, format!("{path}[0]"), above + 1));
                 continue;
             }
             Csg::Union(items) => ("Union", items),
@@ -95,7 +106,7 @@ fn solid(s: usize, tree: &Csg, scene: &Scene, names: &Names, used: &mut Used) ->
             return fail(path, format!("{op} needs at least 2 operands, got {}", items.len()));
         }
         for (k, item) in items.iter().enumerate().rev() {
-            stack.push((item, format!("{path}[{k}]")));
+            stack.push((item, format!("{path}[{k}]"), above + 1));
         }
     }
     Ok(())
