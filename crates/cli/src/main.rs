@@ -105,6 +105,24 @@ fn main() -> ExitCode {
         }
         if let Some(s) = args.samples {
             scene.hider.pixel_samples = s;
+            // The filter table depends on the sample grid: a filter valid on the scene's grid
+            // can weigh no stratum of another.
+            scene = match reyes_scene::validate(scene) {
+                Ok(scene) => scene,
+                Err(issue) => {
+                    return fail(
+                        2,
+                        format_args!(
+                            "{}: --samples {}x{}: {}: {}",
+                            args.scene.display(),
+                            s.0,
+                            s.1,
+                            issue.path,
+                            issue.message
+                        ),
+                    );
+                }
+            };
         }
         let main = output::frame_path(&args.output, frame.number, numbered);
         let extras: Vec<PathBuf> = frame

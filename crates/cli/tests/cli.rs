@@ -359,3 +359,46 @@ fn rib_errors_and_warnings_are_one_line_each() {
     let o = run(&[missing.to_str().unwrap(), "-o", out.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
 }
+
+/// Scenes that used to pass validation and fail at render time (exit 1, no position): a view
+/// with no direction in single precision, an up vector that rounds parallel to it, a filter
+/// that weighs no sample stratum. Each is now a scene error with its position; and a
+/// `--samples` override that leaves the scene's filter no stratum to weigh is a usage error.
+#[test]
+fn setup_failures_are_scene_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, from, to, tail) in [
+        (
+            "denormal-view",
+            "eye: (0.0, 0.0, -5.0), look_at: (0.0, 0.0, 0.0)",
+            "eye: (0.0, 0.0, 0.0), look_at: (0.0, 0.0, 1e-40)",
+            "camera.look_at",
+        ),
+        ("far-view", "eye: (0.0, 0.0, -5.0)", "eye: (0.0, 0.0, -1e20)", "camera.look_at"),
+        ("up-underflows", "fov: 40.0", "up: (1e-30, 1e-30, 0.0), fov: 40.0", "camera.up"),
+        ("narrow-filter", "width: 2.0)", "width: 0.1)", "hider.filter"),
+    ] {
+        let err = scene_error(dir.path(), name, from, to);
+        assert!(
+            err.contains(&format!("{name}.ron:3:")) || err.contains(&format!("{name}.ron:4:")),
+            "{err}"
+        );
+        assert!(err.contains(&format!(": {tail}: ")), "{name}: {err}");
+    }
+    let disk = scene_with(dir.path(), "disk.ron", |t| {
+        t.replace(
+            "pixel_samples: (2, 2), filter: (kind: Gaussian, width: 2.0)",
+            "pixel_samples: (3, 3), filter: (kind: RiDisk, width: 0.6)",
+        )
+    });
+    let out = dir.path().join("disk.exr");
+    let (disk, out) = (disk.to_str().unwrap(), out.to_str().unwrap());
+    assert!(run(&[disk, "-o", out, "-q"]).status.success());
+    std::fs::remove_file(out).unwrap();
+    let o = run(&[disk, "-o", out, "-q", "--samples", "2x2"]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains("disk.ron: --samples 2x2: hider.filter: the filter is zero"), "{err}");
+    assert!(!Path::new(out).exists());
+}
