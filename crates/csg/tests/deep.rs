@@ -9,9 +9,12 @@ use proptest::prelude::*;
 use reyes_csg::resolve_tree_at_sample;
 use reyes_csg::{CsgExpr, CsgNode, CsgOp, CsgOrder, CsgTree, MAX_SLOTS, NIL, VisPoint};
 
+/// A tree's nodes, its root and its leaves' `(object, slot id)`.
+type Layout = (Vec<CsgNode>, u16, Vec<(u32, u16)>);
+
 /// The recursive `CSGNewTree` walk as it was before the build kept its own stack: the
 /// reference layout.
-fn recursive_build(expr: &CsgExpr) -> Option<(Vec<CsgNode>, u16, Vec<(u32, u16)>)> {
+fn recursive_build(expr: &CsgExpr) -> Option<Layout> {
     fn walk(
         e: &CsgExpr,
         nodes: &mut Vec<CsgNode>,

@@ -40,7 +40,7 @@ fn filter_table(h: &Hider) -> Check {
     let (nx, ny) = h.pixel_samples;
     match filter::check(h) {
         Ok(()) => Ok(()),
-        Err(FilterProblem::Sum(sum)) if sum == 0.0 => fail(
+        Err(FilterProblem::Sum(0.0)) => fail(
             "hider.filter",
             format!(
                 "the filter is zero at every centre of the {nx}x{ny} sample strata, so its \

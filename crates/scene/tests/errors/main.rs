@@ -218,6 +218,28 @@ fn the_catalogue_covers_the_required_inputs() {
         "metal colour above 1",
         "metal ks negative",
         "metal with kd",
+        // What used to pass validation and fail at render time (exit 1, no position).
+        "look_at a denormal from eye",
+        "look_at 4e20 from eye",
+        "up too small to cross the view",
+        "up too large to cross the view",
+        "eye too far from the origin",
+        "camera motion key with no view direction in single precision",
+        "fov too narrow for single precision",
+        "screen window too small for single precision",
+        "screen window too large for single precision",
+        "lens radius too large for single precision",
+        "lens blur too large for single precision",
+        "shutter too long for single precision",
+        "narrow gaussian filter",
+        "narrow RenderMan box filter",
+        "disk filter between the strata",
+        "filter missed by the original stratum pairing",
+        // The positions an independent run found off.
+        "negative mesh index",
+        "float for an integer",
+        "negative integer",
+        "lone colon for a field value",
     ] {
         assert!(all_cases().any(|c| c.name == required), "missing case {required}");
     }
