@@ -95,3 +95,42 @@ fn validation_limits_the_depth_of_a_tree() {
     assert_eq!(path, want);
     assert_eq!(message, "CSG operators may nest at most 128 deep, this one is 129 deep");
 }
+
+/// Ray trees are at most `raytrace.max_depth` deep, which validation limits to 64: two facing
+/// mirrors at that depth render on a 2 MiB render thread (the ray-tracing hider recurses once
+/// per bounce), and a deeper limit is refused.
+#[test]
+fn ray_trees_between_facing_mirrors() {
+    let scene = |depth: u32| {
+        format!(
+            "Scene(
+  image: (width: 4, height: 4),
+  camera: (eye: (0.0, 0.0, 0.0), look_at: (0.0, 0.0, 1.0), fov: 10.0),
+  hider: (method: RayTrace, pixel_samples: (1, 1)),
+  lights: [Ambient(intensity: 1.0)],
+  objects: [
+    (shape: Disk(height: 5.0, radius: 100.0), material: Matte(color: (0.5, 0.5, 0.5)),
+     reflect: Some((color: (1.0, 1.0, 1.0)))),
+    (shape: Disk(height: -5.0, radius: 100.0), material: Matte(color: (0.5, 0.5, 0.5)),
+     reflect: Some((color: (1.0, 1.0, 1.0)))),
+  ],
+  raytrace: (max_depth: {depth}, min_weight: 0.0),
+)
+"
+        )
+    };
+    let e = parse(&scene(65), Path::new("mirrors.ron")).err().map(|e| e.to_string());
+    assert_eq!(
+        e.as_deref(),
+        Some("mirrors.ron:12:25: raytrace.max_depth: must be in 0..=64, got 65")
+    );
+    let valid = parse(&scene(64), Path::new("mirrors.ron")).unwrap_or_else(|e| panic!("{e}"));
+    let rendered = on_a_stack(8, move || {
+        let opts = reyes_render::RenderOptions { threads: Some(1), on_bucket: None };
+        reyes_render::render(&valid, &opts)
+            .map(|r| r.stats.rays.map_or(0, |rays| rays.secondary.reflection))
+            .map_err(|e| e.to_string())
+    });
+    // Every pixel's ray bounces 64 times.
+    assert!(rendered.as_ref().is_ok_and(|&n| n >= 16 * 64), "{rendered:?}");
+}
