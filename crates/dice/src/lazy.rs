@@ -414,11 +414,11 @@ impl<'a> Dicer<'a> {
     ) {
         match task.decision {
             Decision::Cull => out.stats.patches_culled += 1,
-            Decision::Split { along_u, hither } => {
+            Decision::Split { along_u, hither, count } => {
                 out.stats.splits += 1;
                 out.stats.hither_splits += u64::from(hither);
                 let mut now = Vec::with_capacity(2);
-                for (k, patch) in task.patch.split(along_u, hither).into_iter().enumerate() {
+                for (k, patch) in task.patch.split(along_u, hither, count).into_iter().enumerate() {
                     let key = task.key.child(task.patch.depth, k == 1);
                     let (decision, top) =
                         object.splitter(&self.splitter).decide_bound(poses, &patch);
