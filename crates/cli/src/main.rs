@@ -169,8 +169,23 @@ fn render_frame(
             b.inc(1);
         }
     };
-    let opts = RenderOptions { threads: args.threads.map(usize::from), on_bucket: Some(&tick) };
-    let mut rendered = render(scene, &opts).map_err(|e| fail(1, e))?;
+    let memory_limit = match args.memory_limit {
+        Some(limit) => Some(limit),
+        None => match std::env::var("REYES_MEMORY_LIMIT") {
+            Ok(text) => Some(
+                reyes_render::budget::parse_size(&text)
+                    .map_err(|e| fail(2, format_args!("REYES_MEMORY_LIMIT: {e}")))?,
+            ),
+            Err(_) => reyes_render::budget::default_memory_limit(),
+        },
+    };
+    let opts = RenderOptions {
+        threads: args.threads.map(usize::from),
+        on_bucket: Some(&tick),
+        memory_limit,
+    };
+    let mut rendered = render(scene, &opts)
+        .map_err(|e| fail(e.exit_code(), format_args!("{}: {e}", args.scene.display())))?;
     if let Some(b) = &progress {
         b.finish_and_clear();
     }
