@@ -26,7 +26,7 @@ pub(crate) const TEST_N: usize = 8;
 /// Most splits from an object's whole parameter range to a patch (any reason).
 pub(crate) const MAX_SPLIT_DEPTH: u32 = 40;
 /// Most splits made because a patch straddles the hither plane.
-pub(crate) const MAX_HITHER_SPLITS: u32 = 20;
+pub(crate) const MAX_HITHER_SPLITS: u32 = 12;
 /// A split makes no progress when a half still asks for at least this fraction
 /// (numerator, denominator) of its parent's micropolygons; see [`stalls`].
 const STALL_RATIO: (u128, u128) = (1, 1);
