@@ -84,6 +84,7 @@ const CATALOGUE: &[(&str, i32)] = &[
     ("huge-bucket.ron", 2),
     ("huge-image.ron", 2),
     ("tiny-shading-rate.ron", 1),
+    ("deep-transparency.ron", 1),
     ("deform-behind.ron", 0),
     ("deform-through-eye.ron", 0),
     ("dolly.ron", 0),

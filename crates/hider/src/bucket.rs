@@ -235,6 +235,10 @@ impl Hider {
         let (color, trans) =
             if mp.has(flags::GOURAUD) { gouraud(v, mp) } else { (mp.color[0], mp.trans[0]) };
         let index = scratch.points.len() as u32;
+        if scratch.points.len() as u64 >= self.max_points {
+            scratch.stats.dropped_points += 1;
+            return false;
+        }
         scratch.points.push(VisPoint {
             v: *v,
             minz,

@@ -17,6 +17,8 @@ use crate::settings::frame_for;
 /// permutations, the visible-point list head, its first visible point, the sample's colour
 /// and depth (each array of the hider's scratch, rounded up).
 pub const SAMPLE_BYTES: u64 = 128;
+/// Bytes per visible point kept in a bucket (the point and its list link, rounded up).
+pub const VISIBLE_POINT_BYTES: u64 = 128;
 /// Bytes per pixel of the film (RGBA and Z as `f32`).
 pub const FILM_PIXEL_BYTES: u64 = 20;
 /// Bytes per pixel of the encoded output's planes and conversion buffers.
@@ -62,10 +64,16 @@ impl Estimate {
         self.film.saturating_add(self.buckets).saturating_add(self.base)
     }
 
-    /// The micropolygons that fit in what `limit` leaves over (at least one grid's worth is
-    /// not promised: a limit below the estimate is refused before this is asked).
+    /// The micropolygons that fit in three quarters of what `limit` leaves over (a limit
+    /// below the estimate is refused before this is asked).
     pub fn micropolygons_left(&self, limit: u64) -> u64 {
-        limit.saturating_sub(self.total()) / MICROPOLYGON_BYTES
+        limit.saturating_sub(self.total()) / 4 * 3 / MICROPOLYGON_BYTES
+    }
+
+    /// The visible points one of `threads` workers may keep in a bucket: its share of the
+    /// last quarter of what `limit` leaves over.
+    pub fn points_left(&self, limit: u64, threads: usize) -> u64 {
+        limit.saturating_sub(self.total()) / 4 / threads.max(1) as u64 / VISIBLE_POINT_BYTES
     }
 }
 
@@ -111,7 +119,7 @@ pub fn parse_size(text: &str) -> Result<u64, String> {
         _ => return Err(format!("unknown unit in memory size `{text}` (use K, M, G or T)")),
     };
     let bytes = value * (1u64 << shift) as f64;
-    if !(bytes.is_finite() && bytes >= 1.0 && bytes < 1.8e19) {
+    if !(bytes.is_finite() && (1.0..1.8e19).contains(&bytes)) {
         return Err(format!("memory size out of range: `{text}`"));
     }
     Ok(bytes as u64)

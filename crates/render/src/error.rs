@@ -34,6 +34,14 @@ pub enum RenderError {
         /// The limit, in MB.
         limit: u64,
     },
+    /// A bucket needed more visible points than the memory budget's share.
+    #[error(
+        "memory limit reached: a bucket needs more than {limit} visible points (overlapping transparent layers); raise --memory-limit, or lower the pixel samples or bucket size"
+    )]
+    VisiblePointBudget {
+        /// The most visible points one bucket may keep.
+        limit: u64,
+    },
     /// The thread pool could not be built.
     #[error("cannot start render threads: {0}")]
     Threads(#[from] rayon::ThreadPoolBuildError),

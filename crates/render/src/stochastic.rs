@@ -119,6 +119,14 @@ fn render_rows(
     let mut t_dice = t0.elapsed();
     let Stages { hider, table, .. } =
         Stages::with_frame(scene, frame, |hider| hider.with_csg(dicer.csg_trees().to_vec()))?;
+    let max_points = opts.memory_limit.map(|limit| {
+        let threads = rayon::current_num_threads();
+        crate::budget::Estimate::new(scene, threads).points_left(limit, threads)
+    });
+    let hider = match max_points {
+        Some(max) => hider.with_max_points(max),
+        None => hider,
+    };
 
     let (mut t_hide, mut t_film) = (Duration::ZERO, Duration::ZERO);
     let mut film = Film::new(scene.image.width, scene.image.height);
@@ -166,6 +174,9 @@ fn render_rows(
         let t = Instant::now();
         buckets_rendered += pool::merge(&mut film, &results, |s| hider_stats.merge(s));
         t_film += t.elapsed();
+        if let (Some(limit), true) = (max_points, hider_stats.dropped_points > 0) {
+            return Err(RenderError::VisiblePointBudget { limit });
+        }
         dicer.release_row(row);
     }
     let dice_stats = dicer.stats();
