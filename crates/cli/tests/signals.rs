@@ -388,3 +388,92 @@ fn usage_errors_are_one_line_with_exit_2() {
     let o = run(&["--help"]);
     assert!(String::from_utf8_lossy(&o.stdout).lines().count() > 10);
 }
+
+/// A pseudo-terminal: its controlling side and the terminal itself, opened without becoming
+/// anyone's controlling terminal.
+fn pty() -> (std::os::fd::OwnedFd, std::fs::File) {
+    use rustix::pty::{OpenptFlags, grantpt, openpt, ptsname, unlockpt};
+    use std::os::unix::fs::OpenOptionsExt;
+    let master =
+        openpt(OpenptFlags::RDWR | OpenptFlags::NOCTTY | OpenptFlags::CLOEXEC).expect("openpt");
+    grantpt(&master).expect("grantpt");
+    unlockpt(&master).expect("unlockpt");
+    let name = ptsname(&master, Vec::new()).expect("ptsname");
+    let terminal = std::fs::OpenOptions::new()
+        .read(true)
+        .write(true)
+        .custom_flags(rustix::fs::OFlags::NOCTTY.bits() as i32)
+        .open(name.to_str().expect("utf-8 name"))
+        .expect("open the terminal");
+    (master, terminal)
+}
+
+/// Read `master` until its text contains each of `needles` (or it ends), then close it.
+fn read_until(
+    master: std::os::fd::OwnedFd,
+    needles: &'static [&'static str],
+) -> std::thread::JoinHandle<String> {
+    let mut master = std::fs::File::from(master);
+    std::thread::spawn(move || {
+        let mut seen = Vec::new();
+        let mut buf = [0_u8; 4096];
+        // A read fails with EIO once the last descriptor of the terminal is closed.
+        while let Ok(n @ 1..) = master.read(&mut buf) {
+            seen.extend_from_slice(&buf[..n]);
+            let text = String::from_utf8_lossy(&seen);
+            if !needles.is_empty() && needles.iter().all(|w| text.contains(w)) {
+                break;
+            }
+        }
+        String::from_utf8_lossy(&seen).into_owned()
+    })
+}
+
+/// The progress bar (stderr a terminal) is drawn; a terminal that goes away under it (every
+/// write then fails with EIO) makes nothing panic: the bar is cleared into the void and the
+/// run ends as it would have.
+#[test]
+fn the_progress_bar_survives_a_terminal_that_goes_away() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let s = scene(dir.path());
+
+    // Drawn, read to the end.
+    let (master, terminal) = pty();
+    let reader = read_until(master, &[]);
+    let out = dir.path().join("tty.exr");
+    let o = bin()
+        .arg(&s)
+        .arg("-o")
+        .arg(&out)
+        .args(["--threads", "1"])
+        .stderr(Stdio::from(terminal))
+        .output()
+        .expect("run");
+    assert_eq!(o.status.code(), Some(0), "{:?}", o.status);
+    assert!(reyes_film::read_exr(&out).is_ok());
+    let seen = reader.join().expect("reader");
+    assert!(seen.contains("buckets"), "no progress bar drawn: {seen:?}");
+
+    // The terminal closed while the render is paused after its first bucket (bar drawn), then
+    // SIGINT: the bar's clearing and the one-line message both hit the dead terminal.
+    let (master, terminal) = pty();
+    let reader = read_until(master, &["buckets", "test: paused rendering"]);
+    let child = bin()
+        .arg(&s)
+        .arg("-o")
+        .arg(dir.path().join("gone.exr"))
+        .args(["--threads", "1"])
+        .env("REYES_TEST_PAUSE", "render")
+        .stderr(Stdio::from(terminal))
+        .spawn()
+        .expect("spawn");
+    let seen = reader.join().expect("reader");
+    assert!(seen.contains("buckets") && seen.contains("paused rendering"), "{seen:?}");
+    kill_process(Pid::from_child(&child), Signal::INT).expect("SIGINT");
+    let status = {
+        let mut child = child;
+        child.wait().expect("wait")
+    };
+    assert_eq!(status.code(), Some(130), "{status:?}");
+    assert_eq!(names(dir.path()), ["s.ron", "tty.exr"]);
+}
