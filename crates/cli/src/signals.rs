@@ -24,7 +24,7 @@ pub(crate) struct Stop {
 
 /// Install the handlers: SIGXFSZ always; SIGINT and SIGTERM when `stop` (for commands that
 /// poll the cancel flag; the others keep the default, which ends them at once, cleanly, as
-/// they write no file).
+/// they write no file), unless the signal was ignored at start, which it then stays.
 pub(crate) fn install(stop: bool) -> std::io::Result<()> {
     #[cfg(unix)]
     {
@@ -32,7 +32,7 @@ pub(crate) fn install(stop: bool) -> std::io::Result<()> {
         static XFSZ: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
         signal_hook::flag::register(SIGXFSZ, &XFSZ)?;
         if stop {
-            for signal in [SIGINT, SIGTERM] {
+            for signal in [SIGINT, SIGTERM].into_iter().filter(|&s| !ignored_at_start(s)) {
                 // In this order: whoever sees the cancel flag finds the signal recorded.
                 signal_hook::flag::register_usize(signal, &RECEIVED, signal as usize)?;
                 signal_hook::flag::register(signal, reyes_render::cancel::flag())?;
@@ -42,6 +42,20 @@ pub(crate) fn install(stop: bool) -> std::io::Result<()> {
     #[cfg(not(unix))]
     let _ = stop;
     Ok(())
+}
+
+/// Whether `signal` was already ignored when the process started: a shell starts background
+/// jobs with SIGINT ignored so that Ctrl-C spares them, and such a signal stays ignored.
+/// Linux tells through the `SigIgn` mask of `/proc/self/status`; without it, not ignored.
+#[cfg(unix)]
+fn ignored_at_start(signal: i32) -> bool {
+    let Ok(status) = std::fs::read_to_string("/proc/self/status") else { return false };
+    let mask = status.lines().find_map(|l| l.strip_prefix("SigIgn:"));
+    let mask = mask.and_then(|m| u64::from_str_radix(m.trim(), 16).ok());
+    match (mask, u32::try_from(signal - 1)) {
+        (Some(mask), Ok(bit)) if bit < 64 => mask >> bit & 1 == 1,
+        _ => false,
+    }
 }
 
 /// The stopping signal received, if any.

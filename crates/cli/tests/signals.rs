@@ -132,6 +132,47 @@ fn sigint_and_sigterm_while_rendering_exit_130_and_143_and_write_nothing() {
     }
 }
 
+/// A SIGINT ignored when the command starts (as a shell starts background jobs) stays
+/// ignored, while SIGTERM is caught and stops it (Linux: the dispositions read from
+/// `/proc/PID/status`).
+#[test]
+#[cfg(target_os = "linux")]
+fn an_inherited_ignored_sigint_stays_ignored() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let s = scene(dir.path());
+    let out = dir.path().join("out.exr");
+    // `trap '' INT` makes the shell, and what it execs, ignore SIGINT.
+    let mut child = Command::new("sh")
+        .arg("-c")
+        .arg("trap '' INT; exec \"$0\" \"$@\"")
+        .arg(env!("CARGO_BIN_EXE_reyes-render"))
+        .arg(&s)
+        .arg("-o")
+        .arg(&out)
+        .args(["--threads", "1", "-q"])
+        .env("REYES_TEST_PAUSE", "render")
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("spawn sh");
+    let mut err = BufReader::new(child.stderr.take().expect("stderr"));
+    let mut line = String::new();
+    err.read_line(&mut line).expect("read stderr");
+    assert_eq!(line.trim_end(), "reyes-render: test: paused rendering");
+    // The handlers are installed by now: SIGINT is still ignored, SIGTERM is caught.
+    let status = std::fs::read_to_string(format!("/proc/{}/status", child.id())).expect("status");
+    let mask = |field: &str| {
+        let line = status.lines().find_map(|l| l.strip_prefix(field)).expect("mask");
+        u64::from_str_radix(line.trim(), 16).expect("hex mask")
+    };
+    let bit = |signal: Signal| 1_u64 << (signal.as_raw() - 1);
+    assert_ne!(mask("SigIgn:") & bit(Signal::INT), 0, "{status}");
+    assert_eq!(mask("SigCgt:") & bit(Signal::INT), 0, "{status}");
+    assert_ne!(mask("SigCgt:") & bit(Signal::TERM), 0, "{status}");
+    kill_process(Pid::from_child(&child), Signal::INT).expect("SIGINT");
+    let (status, rest) = stop(child, err, Some(Signal::TERM));
+    assert_stopped(status, &rest, "SIGTERM", &out);
+}
+
 #[test]
 fn sigkill_while_rendering_leaves_nothing() {
     let dir = tempfile::tempdir().expect("tempdir");
