@@ -291,12 +291,26 @@ fn render_frame(
             hooks.once.call_once(hooks::pause_rendering);
         }
     };
-    let opts = RenderOptions { threads: args.threads.map(usize::from), on_bucket: Some(&tick) };
+    let memory_limit = match args.memory_limit {
+        Some(limit) => Some(limit),
+        None => match std::env::var("REYES_MEMORY_LIMIT") {
+            Ok(text) => Some(
+                reyes_render::budget::parse_size(&text)
+                    .map_err(|e| Exit::error(2, format_args!("REYES_MEMORY_LIMIT: {e}")))?,
+            ),
+            Err(_) => reyes_render::budget::default_memory_limit(),
+        },
+    };
+    let opts = RenderOptions {
+        threads: args.threads.map(usize::from),
+        on_bucket: Some(&tick),
+        memory_limit,
+    };
     let rendered = render(scene, &opts);
     drop(progress);
     let mut rendered = rendered.map_err(|e| match (e, signals::received()) {
         (RenderError::Cancelled, Some(stop)) => Exit::stopped(stop, main),
-        (e, _) => Exit::error(1, e),
+        (e, _) => Exit::error(e.exit_code(), format_args!("{}: {e}", args.scene.display())),
     })?;
 
     let t = Instant::now();

@@ -50,7 +50,11 @@ fn render_shaded(scene: &Scene, opts: &RenderOptions) -> Result<Rendered, Render
     let shading = Shading::new(scene, &tracer);
     let shader = RayVertexShader::new(scene, &shading, shutter_shape(scene.camera.shutter.shape));
     let t_build = t0.elapsed();
-    let mut rendered = render_diced(scene, opts, &DiceOptions { vertex_shader: Some(&shader) })?;
+    let mut rendered = render_diced(
+        scene,
+        opts,
+        &DiceOptions { vertex_shader: Some(&shader), ..Default::default() },
+    )?;
     rendered.stats.t_dice += t_build;
     let (vertices, secondary) = shader.counts();
     rendered.stats.rays = Some(RaySummary {
@@ -75,6 +79,14 @@ pub fn render_diced(
     dice_options: &DiceOptions<'_>,
 ) -> Result<Rendered, RenderError> {
     let pool = Pool::new(opts.threads)?;
+    let mut dice_options = *dice_options;
+    if let Some(limit) = opts.memory_limit {
+        let threads = opts.threads.unwrap_or_else(|| pool.install(rayon::current_num_threads));
+        let left = crate::budget::Estimate::new(scene, threads).micropolygons_left(limit);
+        dice_options.max_micropolygons =
+            Some(dice_options.max_micropolygons.map_or(left, |m| m.min(left)));
+    }
+    let dice_options = &dice_options;
     let run = |eager: bool| pool.install(|| render_rows(scene, opts, dice_options, eager));
     match run(false) {
         Err(RenderError::Dice(DiceError::BoundMissed { .. })) => run(true),
