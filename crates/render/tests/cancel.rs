@@ -36,7 +36,7 @@ fn a_cancel_request_stops_the_render_between_buckets() {
             cancel::request();
         }
     };
-    let opts = RenderOptions { threads: Some(1), on_bucket: Some(&tick) };
+    let opts = RenderOptions { threads: Some(1), on_bucket: Some(&tick), ..Default::default() };
     let r = render(&scene("Stochastic", false), &opts);
     assert!(matches!(r, Err(RenderError::Cancelled)), "{:?}", r.err());
     assert_eq!(finished.load(Ordering::SeqCst), 3);
