@@ -45,4 +45,7 @@ pub enum RenderError {
     /// The thread pool could not be built.
     #[error("cannot start render threads: {0}")]
     Threads(#[from] rayon::ThreadPoolBuildError),
+    /// [`crate::cancel::request`] was called: the render stopped before its last bucket.
+    #[error("the render was cancelled")]
+    Cancelled,
 }

@@ -7,7 +7,8 @@
 //! - [`stochastic`]: Appendix A's bucket loop, with lazy dicing row by row of buckets and,
 //!   where the scene needs it, ray-traced vertex shading;
 //! - [`rayhide`]: Appendix B's ray-tracing hider over the same samples and filter;
-//! - [`stats`]: what `--stats` prints.
+//! - [`stats`]: what `--stats` prints;
+//! - [`cancel`]: the process-wide request to stop, polled before each bucket.
 //!
 //! Invariant (determinism): every bucket's result depends only on the scene, the seed and the
 //! bucket index, and bucket windows are added to the image in bucket raster order, so the
@@ -15,6 +16,7 @@
 #![deny(missing_docs)]
 
 pub mod budget;
+pub mod cancel;
 mod error;
 pub mod pool;
 pub mod rayhide;

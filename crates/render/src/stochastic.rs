@@ -7,6 +7,9 @@
 //! area lights, reflection, refraction or patterns ([`Shading::needed`]), by the distributed
 //! rays of [`RayVertexShader`].
 //!
+//! Each bucket first polls [`cancel::requested`]; a cancelled row is discarded and the frame
+//! ends with [`RenderError::Cancelled`].
+//!
 //! Invariant (determinism): a bucket's window depends only on the scene, the seed and the
 //! bucket; windows are merged in raster order ([`pool::merge`]).
 
@@ -20,6 +23,7 @@ use reyes_scene::Scene;
 use reyes_shade::{RayVertexShader, Shading};
 use reyes_trace::Tracer;
 
+use crate::cancel;
 use crate::pool::{self, Pool};
 use crate::settings::{Stages, frame_for, shutter_shape};
 use crate::stats::{DiceSummary, RaySummary, RenderStats};
@@ -134,6 +138,9 @@ fn render_rows(
     let mut buckets_rendered = 0;
     let across = frame.buckets_x as usize;
     for row in 0..dicer.rows() {
+        if cancel::requested() {
+            return Err(RenderError::Cancelled);
+        }
         let t = Instant::now();
         dicer.dice_row(row)?;
         t_dice += t.elapsed();
@@ -144,6 +151,10 @@ fn render_rows(
         let results = (first..first + across)
             .into_par_iter()
             .map_init(Buffers::default, |buf, b| {
+                if cancel::requested() {
+                    // Skipped: the row is discarded below.
+                    return (None, Default::default());
+                }
                 let result = if diced.bucket_len(b) == 0 {
                     // Appendix A's `emptybucket`: nothing to display.
                     (None, Default::default())
@@ -170,6 +181,9 @@ fn render_rows(
             })
             .collect::<Vec<_>>();
         t_hide += t.elapsed();
+        if cancel::requested() {
+            return Err(RenderError::Cancelled);
+        }
 
         let t = Instant::now();
         buckets_rendered += pool::merge(&mut film, &results, |s| hider_stats.merge(s));
