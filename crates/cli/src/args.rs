@@ -45,6 +45,11 @@ pub(crate) struct Args {
     /// Unknown RIB shaders are errors instead of warnings.
     #[arg(long)]
     pub strict: bool,
+    /// Memory budget, e.g. 4G or 512M (default: $REYES_MEMORY_LIMIT, else 3/4 of the smaller
+    /// of physical memory and the address-space limit). A frame estimated not to fit is
+    /// refused before it starts (exit 2); one that runs out while dicing stops (exit 1).
+    #[arg(long, value_name = "SIZE", value_parser = reyes_render::budget::parse_size)]
+    pub memory_limit: Option<u64>,
 }
 
 /// Volume and centre of mass of a closed object or CSG solid (patent FIG. 23), by stratified

@@ -72,6 +72,14 @@ pub(crate) struct Labels {
 /// not positive).
 type Quad = [[f32; 3]; 4];
 
+/// Whether a cell is at the same place at two breakpoints: every coordinate equal, or the
+/// same bits (so a vertex that is not finite at both, e.g. projected from behind the eye,
+/// counts as not moving, and the cell is classified once rather than once per segment).
+#[inline]
+fn same(a: &Quad, b: &Quad) -> bool {
+    a.iter().flatten().zip(b.iter().flatten()).all(|(x, y)| x == y || x.to_bits() == y.to_bits())
+}
+
 /// One kept micropolygon of a [`Grid`]: which cell, and over which segment.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Kept {
@@ -345,7 +353,7 @@ impl<'b> Emitter<'b> {
     /// order): one micropolygon per segment, runs of segments over which it is still merged.
     fn emit_segments(&mut self, cell: u32, quads: &[(f32, Quad)]) {
         let n = quads.len();
-        if quads.windows(2).all(|w| w[0].1 == w[1].1) {
+        if quads.windows(2).all(|w| same(&w[0].1, &w[1].1)) {
             // Still over the whole shutter (or a single breakpoint).
             if let Some((_, q)) = quads.first() {
                 self.emit(cell, (0, q), None, [0.0, 1.0]);
@@ -355,9 +363,9 @@ impl<'b> Emitter<'b> {
         let mut a = 0;
         while a + 1 < n {
             let mut b = a + 1;
-            let still = quads[a].1 == quads[b].1;
+            let still = same(&quads[a].1, &quads[b].1);
             if still {
-                while b + 1 < n && quads[b].1 == quads[b + 1].1 {
+                while b + 1 < n && same(&quads[b].1, &quads[b + 1].1) {
                     b += 1;
                 }
             }

@@ -48,4 +48,7 @@ pub trait VertexShader: Sync {
 pub struct DiceOptions<'a> {
     /// Shades every vertex instead of the dicer's local illumination when given.
     pub vertex_shader: Option<&'a dyn VertexShader>,
+    /// The most micropolygons the lazy dicer may hold at once (the memory budget's share for
+    /// grids); `None`: no limit. Exceeding it is [`crate::DiceError::MicropolygonBudget`].
+    pub max_micropolygons: Option<u64>,
 }

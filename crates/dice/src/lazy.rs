@@ -29,6 +29,8 @@
 //!   [`Dicer::new_eager`], which dices everything in row 0 (the whole scene in memory, as
 //!   before lazy dicing) and so cannot miss.
 
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+
 use rayon::prelude::*;
 use reyes_hider::{CsgTree, Frame, Micropolygon};
 use reyes_scene::Scene;
@@ -41,6 +43,10 @@ use crate::hook::DiceOptions;
 use crate::motion::{CameraMotion, ObjectMotion, Pose, ShutterTime};
 use crate::split::{Decision, MAX_SPLIT_DEPTH, Patch, Splitter};
 use crate::{DiceError, DiceStats, check_frame};
+
+/// What one held micropolygon takes, for the budget's messages: the micropolygon itself,
+/// its grid's shading and bucket ranges, and a few bucket-list entries.
+pub const MICROPOLYGON_BYTES: u64 = 2 * std::mem::size_of::<Micropolygon>() as u64;
 
 // Split paths must fit a `u64`, one bit per split.
 const _: () = assert!(MAX_SPLIT_DEPTH < 64);
@@ -151,6 +157,12 @@ pub struct Dicer<'a> {
     /// Micropolygons held now, and at most.
     alive: u64,
     peak_alive: u64,
+    /// The most micropolygons that may be held at once ([`DiceOptions::max_micropolygons`]).
+    max_alive: u64,
+    /// Micropolygons diced in the current wave so far (all threads), and whether the wave
+    /// went over `max_alive` (its remaining patches are then dropped: the row fails).
+    charged: AtomicU64,
+    over_budget: AtomicBool,
     stats: DiceStats,
 }
 
@@ -202,6 +214,9 @@ impl<'a> Dicer<'a> {
             next_row: 0,
             alive: 0,
             peak_alive: 0,
+            max_alive: options.max_micropolygons.unwrap_or(u64::MAX),
+            charged: AtomicU64::new(0),
+            over_budget: AtomicBool::new(false),
             stats: DiceStats::default(),
         };
         for (i, object) in scene.objects.iter().enumerate() {
@@ -298,7 +313,13 @@ impl<'a> Dicer<'a> {
         self.next_row += 1;
         let mut tasks = std::mem::take(&mut self.pending[row as usize]);
         tasks.sort_by_key(|t| t.key);
+        self.charged.store(0, Ordering::Relaxed);
         let wave = self.wave(row, tasks);
+        if self.over_budget.load(Ordering::Relaxed) {
+            let limit = self.max_alive;
+            let mb = limit.saturating_mul(MICROPOLYGON_BYTES) >> 20;
+            return Err(DiceError::MicropolygonBudget { limit, mb });
+        }
         self.stats.add(&wave.stats);
         for (r, task) in wave.deferred {
             self.pending[r as usize].push(task);
@@ -412,13 +433,16 @@ impl<'a> Dicer<'a> {
         row: u32,
         out: &mut Wave,
     ) {
+        if self.over_budget.load(Ordering::Relaxed) {
+            return;
+        }
         match task.decision {
             Decision::Cull => out.stats.patches_culled += 1,
-            Decision::Split { along_u, hither } => {
+            Decision::Split { along_u, hither, count } => {
                 out.stats.splits += 1;
                 out.stats.hither_splits += u64::from(hither);
                 let mut now = Vec::with_capacity(2);
-                for (k, patch) in task.patch.split(along_u, hither).into_iter().enumerate() {
+                for (k, patch) in task.patch.split(along_u, hither, count).into_iter().enumerate() {
                     let key = task.key.child(task.patch.depth, k == 1);
                     let (decision, top) =
                         object.splitter(&self.splitter).decide_bound(poses, &patch);
@@ -454,6 +478,13 @@ impl<'a> Dicer<'a> {
                 }
             }
             Decision::Dice { nu, nv, limited } => {
+                // Charge the grid before making it: a wave stops as soon as it is over.
+                let n = u64::from(nu) * u64::from(nv);
+                let before = self.charged.fetch_add(n, Ordering::Relaxed);
+                if self.alive.saturating_add(before).saturating_add(n) > self.max_alive {
+                    self.over_budget.store(true, Ordering::Relaxed);
+                    return;
+                }
                 out.stats.grids += 1;
                 out.stats.depth_limited += u64::from(limited);
                 let (hither, yon) = (self.camera.hither(), self.camera.yon());

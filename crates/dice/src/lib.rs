@@ -107,7 +107,7 @@ pub use bucket::screen_bound;
 pub use camera::{CameraSetup, Viewer};
 pub use csg::CsgSetup;
 pub use hook::{DiceOptions, VertexContext, VertexShader};
-pub use lazy::Dicer;
+pub use lazy::{Dicer, MICROPOLYGON_BYTES};
 pub use shade::{Shader, facing};
 pub use spot::{SpotLight, smoothstep};
 
@@ -218,6 +218,16 @@ pub enum DiceError {
         width: u32,
         /// Scene image height.
         height: u32,
+    },
+    /// The memory budget's share for micropolygons is used up.
+    #[error(
+        "memory limit reached: dicing a row of buckets needs more than {limit} micropolygons held at once (about {mb} MB); raise --memory-limit or the shading rate"
+    )]
+    MicropolygonBudget {
+        /// The most micropolygons the budget allows.
+        limit: u64,
+        /// What they take, in MB (at the budget's bytes per micropolygon).
+        mb: u64,
     },
     /// More micropolygons than bucket lists can index.
     #[error("more than {limit} micropolygons; raise the shading rate or simplify the scene")]

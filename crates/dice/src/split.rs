@@ -26,7 +26,18 @@ pub(crate) const TEST_N: usize = 8;
 /// Most splits from an object's whole parameter range to a patch (any reason).
 pub(crate) const MAX_SPLIT_DEPTH: u32 = 40;
 /// Most splits made because a patch straddles the hither plane.
-pub(crate) const MAX_HITHER_SPLITS: u32 = 20;
+pub(crate) const MAX_HITHER_SPLITS: u32 = 12;
+/// A split makes no progress when a half still asks for at least this fraction
+/// (numerator, denominator) of its parent's micropolygons; see [`stalls`].
+const STALL_RATIO: (u128, u128) = (1, 1);
+/// How much finer than at its on-screen breakpoints a moving grid may be diced for the sake
+/// of breakpoints where it is off screen (per side). Large enough that a grid leaving the
+/// screen keeps its size as it goes (every moving scene of `scenes/` renders unchanged),
+/// small enough that a fast approach off screen cannot ask for unbounded work.
+const OFF_SCREEN_GROWTH: f32 = 2.0;
+/// Consecutive splits without progress after which a patch is diced (clamped to
+/// `max_grid_size`) instead of split again, and counted as limited.
+const MAX_STALLS: u32 = 2;
 /// Safety margin, as a fraction of the test points' extent. Between test points a curved
 /// surface bulges by at most its sagitta; a full circle sampled at 8 points bulges by about
 /// 10% of its diameter, so 25% covers every shape we dice with room for perspective.
@@ -47,12 +58,24 @@ pub(crate) struct Patch {
     pub depth: u32,
     /// Of which because the patch straddled hither.
     pub hither_splits: u32,
+    /// The micropolygon count its parent would have been diced into (0: unknown, at the
+    /// root and after a hither split), to tell whether splitting makes progress.
+    pub parent_count: u64,
+    /// Consecutive splits down to this patch that did not make progress ([`STALL_RATIO`]).
+    pub stalls: u32,
 }
 
 impl Patch {
     /// The whole parameter range `[0, 1]^2`.
     pub fn root() -> Patch {
-        Patch { u: [0.0, 1.0], v: [0.0, 1.0], depth: 0, hither_splits: 0 }
+        Patch {
+            u: [0.0, 1.0],
+            v: [0.0, 1.0],
+            depth: 0,
+            hither_splits: 0,
+            parent_count: 0,
+            stalls: 0,
+        }
     }
 
     /// Parameter `k` of `n` equal steps across `range`, exact at both ends so that
@@ -68,11 +91,21 @@ impl Patch {
         }
     }
 
-    /// The two halves, lower parameter half first.
-    pub fn split(&self, along_u: bool, hither: bool) -> [Patch; 2] {
+    /// The two halves, lower parameter half first; `count` is the micropolygon count this
+    /// patch would have been diced into (0 for a hither split), which the halves remember.
+    pub fn split(&self, along_u: bool, hither: bool, count: u64) -> [Patch; 2] {
+        let stalled = !hither && stalls(self.parent_count, count);
         let child = Patch {
             depth: self.depth + 1,
             hither_splits: self.hither_splits + u32::from(hither),
+            parent_count: count,
+            stalls: if stalled {
+                self.stalls + 1
+            } else if hither {
+                self.stalls
+            } else {
+                0
+            },
             ..*self
         };
         let (mut a, mut b) = (child, child);
@@ -94,8 +127,9 @@ impl Patch {
 pub(crate) enum Decision {
     /// Nothing of it can be seen.
     Cull,
-    /// Split it in half (`along_u`: halve the u range), `hither`: because it straddles hither.
-    Split { along_u: bool, hither: bool },
+    /// Split it in half (`along_u`: halve the u range), `hither`: because it straddles hither;
+    /// `count`: the micropolygons it would have been diced into (0 for a hither split).
+    Split { along_u: bool, hither: bool, count: u64 },
     /// Dice it into `nu x nv` micropolygons; `limited`: a split limit forced dicing.
     Dice { nu: u32, nv: u32, limited: bool },
 }
@@ -333,7 +367,7 @@ impl Splitter {
         if straddles {
             if patch.hither_splits < MAX_HITHER_SPLITS && patch.depth < MAX_SPLIT_DEPTH {
                 let (len_u, len_v) = max_lengths(&facts, |p| p.is_finite().then_some(*p));
-                return (Decision::Split { along_u: len_u >= len_v, hither: true }, top);
+                return (Decision::Split { along_u: len_u >= len_v, hither: true, count: 0 }, top);
             }
             return (self.dice_decision(&facts, patch, true), top);
         }
@@ -412,25 +446,63 @@ impl Splitter {
         }
     }
 
+    /// False if the margin-grown raster bound of a breakpoint's test grid misses the bucket
+    /// grid; true without a raster bound (some point not in front of the eye).
+    fn may_be_on_screen(&self, f: &GridFacts<'_>) -> bool {
+        f.raster.is_none_or(|(lo, hi)| {
+            hi.x >= self.screen_lo.x
+                && hi.y >= self.screen_lo.y
+                && lo.x <= self.screen_hi.x
+                && lo.y <= self.screen_hi.y
+        })
+    }
+
     /// Grid size from the longest projected lengths over the breakpoints (so the grid is
     /// near the shading rate at every time); split if too big and allowed, else clamp.
     fn dice_decision(&self, facts: &[GridFacts<'_>], patch: &Patch, at_limit: bool) -> Decision {
         // Only points that may become kept vertices count (all of them unless at the limit).
-        let (len_u, len_v) = max_lengths(facts, |p| {
+        let raster = |p: &Vec3| {
             (p.is_finite() && p.z >= self.near).then(|| self.camera.eye_to_raster(*p).extend(0.0))
-        });
+        };
+        let (mut len_u, mut len_v) = max_lengths(facts, raster);
+        // A moving grid is seen near the times it is on screen. Breakpoints where it is off
+        // screen (gone far to one side, or next to the eye plane, where perspective stretches
+        // it without bound) may ask for at most `OFF_SCREEN_GROWTH` times the lengths of the
+        // breakpoints where it may be on screen; a grid on screen at none of its breakpoints
+        // (one sweeping across between them) is measured at all of them.
+        let on_screen: Vec<GridFacts<'_>> =
+            facts.iter().copied().filter(|f| self.may_be_on_screen(f)).collect();
+        if !on_screen.is_empty() && on_screen.len() < facts.len() {
+            let (on_u, on_v) = max_lengths(&on_screen, raster);
+            len_u = len_u.min(OFF_SCREEN_GROWTH * on_u);
+            len_v = len_v.min(OFF_SCREEN_GROWTH * on_v);
+        }
         let count =
             |len: f32| ((f64::from(len) / f64::from(self.step)).ceil()).clamp(1.0, MAX_SIDE) as u64;
         let (nu, nv) = (count(len_u), count(len_v));
         if nu * nv <= self.max_grid {
             return Decision::Dice { nu: nu as u32, nv: nv as u32, limited: at_limit };
         }
-        if !at_limit && patch.depth < MAX_SPLIT_DEPTH {
-            return Decision::Split { along_u: len_u >= len_v, hither: false };
+        let count = nu * nv;
+        let stalled = stalls(patch.parent_count, count) && patch.stalls + 1 >= MAX_STALLS;
+        if !at_limit && patch.depth < MAX_SPLIT_DEPTH && !stalled {
+            return Decision::Split { along_u: len_u >= len_v, hither: false, count };
         }
         let (nu, nv) = clamp_grid(nu, nv, self.max_grid);
         Decision::Dice { nu, nv, limited: true }
     }
+}
+
+/// True if a patch that would be diced into `count` micropolygons, split from a parent that
+/// would have been diced into `parent_count`, made no progress: a half of a patch asks for
+/// at least [`STALL_RATIO`] of its parent's micropolygons. Halving a patch reduces its
+/// count wherever its projection is finite; it fails to only where the projected lengths
+/// saturate (a field of view of 1e-30 degrees, a vertex at 1e30, so lengths of `inf`
+/// pixels, counted as [`MAX_SIDE`]), where further splits would multiply the work for
+/// nothing until the depth limit, 2^40 patches later.
+fn stalls(parent_count: u64, count: u64) -> bool {
+    parent_count > 0
+        && u128::from(count) * STALL_RATIO.1 >= u128::from(parent_count) * STALL_RATIO.0
 }
 
 /// Micropolygon side length in pixels at `shading_rate` pixels per micropolygon.
@@ -535,9 +607,9 @@ mod tests {
 
     #[test]
     fn split_halves_share_the_midpoint() {
-        let [a, b] = Patch::root().split(true, false);
+        let [a, b] = Patch::root().split(true, false, 0);
         assert_eq!((a.u, b.u, a.v, b.v), ([0.0, 0.5], [0.5, 1.0], [0.0, 1.0], [0.0, 1.0]));
-        let [c, d] = a.split(false, true);
+        let [c, d] = a.split(false, true, 0);
         assert_eq!((c.v, d.v, c.depth, c.hither_splits), ([0.0, 0.5], [0.5, 1.0], 2, 1));
         assert_eq!(Patch::at([0.25, 0.75], 7, 7), 0.75);
     }
@@ -577,7 +649,7 @@ mod tests {
         let (cam, sp) = splitter(None);
         let moment = Moment::new(0.0, Placement::Matrix(Mat4::IDENTITY), Mat4::IDENTITY, 0);
         let pose = Pose { surface: &surface, moment: &moment };
-        for patch in [Patch::root(), Patch::root().split(true, false)[1]] {
+        for patch in [Patch::root(), Patch::root().split(true, false, 0)[1]] {
             let (_, top) = sp.decide_bound(std::slice::from_ref(&pose), &patch);
             let top = top.expect("in front of the eye");
             for j in 0..=64 {
@@ -646,6 +718,58 @@ mod tests {
         assert!(nu_both > nu_far, "{nu_both} vs {nu_far}");
     }
 
+    #[test]
+    fn off_screen_breakpoints_ask_for_at_most_twice_the_on_screen_size() {
+        let (_, sp) = splitter(None);
+        let sp = Splitter { max_grid: 1 << 20, ..sp };
+        let sphere = unit_sphere();
+        let dice = |at: &[Vec3]| match decide_at(&sp, &sphere, at) {
+            Decision::Dice { nu, nv, .. } => (nu, nv),
+            other => panic!("{other:?}"),
+        };
+        let centre = Vec3::new(0.0, 0.0, 90.0);
+        let (nu_still, nv_still) = dice(&[centre]);
+        // Gone far to the side, where perspective stretches it many times over (the test
+        // camera's raster scale is about 220 pixels per unit at depth 1: 40 units out at
+        // depth 3 is some 2,900 pixels off screen and 30 times the size it has at depth 90).
+        let (nu, nv) = dice(&[centre, Vec3::new(40.0, 0.0, 3.0)]);
+        assert!(
+            nu <= 2 * nu_still + 1 && nv <= 2 * nv_still + 1,
+            "{nu}x{nv} vs {nu_still}x{nv_still}"
+        );
+        // On screen at both ends: the larger size counts in full.
+        let (nu_near, _) = dice(&[Vec3::new(0.0, 0.0, 20.0)]);
+        let (nu_both, _) = dice(&[centre, Vec3::new(0.0, 0.0, 20.0)]);
+        assert!(nu_near > 2 * nu_still && nu_both >= nu_near, "{nu_both} {nu_near} {nu_still}");
+    }
+
+    #[test]
+    fn a_split_that_asks_for_as_much_as_its_parent_stalls() {
+        assert!(!stalls(0, 1_000), "the root has no parent to compare with");
+        assert!(stalls(1_000, 1_000) && stalls(1_000, 1_001));
+        assert!(!stalls(1_000, 999));
+        // Saturated counts (MAX_SIDE per side) never overflow the comparison.
+        let top = (MAX_SIDE as u64) * (MAX_SIDE as u64);
+        assert!(stalls(top, top));
+        // Two stalls in a row dice the patch, clamped and counted as limited.
+        let (_, sp) = splitter(None);
+        let sphere = unit_sphere();
+        let at = Mat4::from_translation(Vec3::new(0.0, 0.0, 90.0));
+        let moment = Moment::new(0.0, Placement::Matrix(at), Mat4::IDENTITY, 0);
+        let grid = sp.test_grid(&Pose { surface: &sphere, moment: &moment }, &Patch::root());
+        let root = Patch { parent_count: 1, stalls: 1, ..Patch::root() };
+        let tiny = Splitter { step: 1e-9, ..sp.clone() };
+        assert!(matches!(
+            tiny.decide_grids_bound(std::slice::from_ref(&grid), &root).0,
+            Decision::Dice { limited: true, .. }
+        ));
+        let fresh = Patch { parent_count: 1, stalls: 0, ..Patch::root() };
+        assert!(matches!(
+            tiny.decide_grids_bound(std::slice::from_ref(&grid), &fresh).0,
+            Decision::Split { .. }
+        ));
+    }
+
     proptest! {
         /// The margin-grown bound of a patch's test points contains the raster position of
         /// every point of the patch (sampled densely), for spheres and tori anywhere in view.
@@ -669,7 +793,7 @@ mod tests {
             let surface = surfaces(&shape_object(shape)).remove(0);
             let m = Mat4::from_translation(Vec3::new(pos.0, pos.1, pos.2))
                 * Mat4::from_axis_angle(Vec3::new(axis.0, axis.1, axis.2).normalize(), angle.to_radians());
-            let patch = Patch { u: [u0, (u0 + du).min(1.0)], v: [v0, (v0 + dv).min(1.0)], depth: 0, hither_splits: 0 };
+            let patch = Patch { u: [u0, (u0 + du).min(1.0)], v: [v0, (v0 + dv).min(1.0)], ..Patch::root() };
             let moment = Moment::new(0.0, Placement::Matrix(m), Mat4::IDENTITY, 0);
             let grid = sp.test_grid(&Pose { surface: &surface, moment: &moment }, &patch);
             let (lo, hi) = sp.margin_bound(&grid).expect("in front of the eye");

@@ -121,7 +121,7 @@ impl VertexShader for ByPlace {
 
 #[test]
 fn the_vertex_shader_sees_the_same_vertices_lazily() {
-    let options = DiceOptions { vertex_shader: Some(&ByPlace) };
+    let options = DiceOptions { vertex_shader: Some(&ByPlace), ..Default::default() };
     check_lazy(&awkward_scene(None), &options, "vertex shader");
 }
 

@@ -19,6 +19,13 @@ pub enum FilmError {
         #[source]
         source: std::io::Error,
     },
+    /// Writing `path` was cancelled ([`crate::WriteOptions::cancel`]) before the file was
+    /// complete; nothing was written.
+    #[error("{}: the write was interrupted", path.display())]
+    Interrupted {
+        /// The file that was being written.
+        path: PathBuf,
+    },
     /// The output path's extension is neither `.exr` nor `.png` (case-insensitive).
     #[error("{}: unknown image format (expected a .exr or .png extension)", path.display())]
     UnknownFormat {

@@ -5,13 +5,15 @@
 //! (Appendix A `tablesinit`); per bucket, [`splat`] filters the per-sample composites into a
 //! bordered [`Window`] (Appendix A `filter` / `applyboxfilter`); [`Film::add`] sums the
 //! overlapping windows into the image in a fixed bucket order (3.17); [`write()`] stores the
-//! image atomically as OpenEXR or PNG.
+//! image atomically as OpenEXR or PNG, through an unnamed temporary
+//! file where the system allows ([`atomic`]).
 //!
 //! Invariants: colour is premultiplied linear light throughout; filter tables sum to 1, so a
 //! fully covered interior pixel has unit gain; our kernel fixes are the default and the
 //! original 1985 shapes are behind [`reyes_scene::Original`].
 #![deny(missing_docs)]
 
+pub mod atomic;
 pub mod error;
 pub mod image;
 pub mod output;
@@ -23,8 +25,9 @@ pub mod window;
 pub use reyes_scene::filter::{kernel, renderman};
 
 pub use self::image::Film;
+pub use atomic::{WriteOptions, remove_stale_temporaries};
 pub use error::FilmError;
 pub use kernel::{bessel_j1, weight};
-pub use output::{read_exr, srgb_decode, srgb_encode, write};
+pub use output::{read_exr, srgb_decode, srgb_encode, write, write_with};
 pub use table::{FilterTable, border_for_width};
 pub use window::{Window, splat};

@@ -1,16 +1,17 @@
 //! Image file output (stage: film, the very last step of a frame) and EXR read-back.
 //!
-//! Invariants: writes are atomic. The image is encoded into a temporary file in the target's
-//! own directory, flushed and synced, then renamed over the target; on any error the target is
-//! untouched (absent if it did not exist) and the temporary file is removed. The format is
+//! Invariants: writes are atomic ([`crate::atomic`]). The image is encoded into a temporary
+//! file in the target's own directory (unnamed where the system allows), flushed and synced,
+//! then given the target's name; on any error or cancellation the target is untouched (absent
+//! if it did not exist) and the temporary file is removed. The format is
 //! chosen by the extension alone: `.exr` (float R, G, B, A premultiplied linear, plus Z) or
 //! `.png` (8-bit straight sRGB colour, linear alpha).
 
 use std::ffi::OsStr;
-use std::fs::File;
-use std::io::{BufWriter, Seek, Write};
+use std::io::{Seek, Write};
 use std::path::{Path, PathBuf};
 
+use crate::atomic::{WriteOptions, write_atomic};
 use crate::{Film, FilmError};
 
 /// Output formats, chosen by extension.
@@ -44,9 +45,20 @@ fn format_of(path: &Path) -> Result<Format, FilmError> {
 /// [`FilmError::Io`] if the directory is missing or unwritable or the write/rename fails;
 /// [`FilmError::Exr`] / [`FilmError::Png`] if the encoder rejects the image (e.g. 0 pixels).
 pub fn write(path: &Path, film: &Film) -> Result<(), FilmError> {
+    write_with(path, film, &WriteOptions::default())
+}
+
+/// [`write()`] with options: a cancel flag polled between chunks, a test hook, the named
+/// temporary file forced (see [`WriteOptions`] and [`crate::atomic`]).
+///
+/// # Errors
+///
+/// Those of [`write()`], and [`FilmError::Interrupted`] when `opts.cancel` was set before the
+/// file was complete (the target is then untouched and no temporary file remains).
+pub fn write_with(path: &Path, film: &Film, opts: &WriteOptions) -> Result<(), FilmError> {
     match format_of(path)? {
-        Format::Exr => write_atomic(path, |w| encode_exr(path, film, w)),
-        Format::Png => write_atomic(path, |w| encode_png(path, film, w)),
+        Format::Exr => write_atomic(path, opts, &|w| encode_exr(path, film, w)),
+        Format::Png => write_atomic(path, opts, &|w| encode_png(path, film, w)),
     }
 }
 
@@ -59,37 +71,6 @@ fn exr_error(path: &Path, source: exr::error::Error) -> FilmError {
         exr::error::Error::Io(source) => io_error(path, source),
         source => FilmError::Exr { path: path.to_path_buf(), source },
     }
-}
-
-/// Encode into a temporary file beside `path`, then rename it over `path`.
-fn write_atomic(
-    path: &Path,
-    encode: impl FnOnce(&mut BufWriter<&mut File>) -> Result<(), FilmError>,
-) -> Result<(), FilmError> {
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    let mut builder = tempfile::Builder::new();
-    builder.prefix(".reyes-film-").suffix(".tmp");
-    #[cfg(unix)]
-    {
-        // NamedTempFile defaults to 0600; ask for 0666 so the final file gets the usual
-        // umask-restricted mode of a newly created file.
-        use std::os::unix::fs::PermissionsExt;
-        builder.permissions(std::fs::Permissions::from_mode(0o666));
-    }
-    // Dropping `tmp` on any early return deletes the temporary file.
-    let mut tmp = builder.tempfile_in(dir).map_err(|e| io_error(path, e))?;
-    {
-        let mut w = BufWriter::new(tmp.as_file_mut());
-        encode(&mut w)?;
-        w.flush().map_err(|e| io_error(path, e))?;
-    }
-    tmp.as_file().sync_all().map_err(|e| io_error(path, e))?;
-    // On failure the PersistError owns the temporary file and deletes it when dropped.
-    tmp.persist(path).map_err(|e| io_error(path, e.error))?;
-    Ok(())
 }
 
 fn encode_exr(path: &Path, film: &Film, w: &mut (impl Write + Seek)) -> Result<(), FilmError> {

@@ -103,6 +103,8 @@ pub struct Hider {
     slice_times: Vec<[f32; 2]>,
     /// CSG trees (`CSGNewTree`), indexed by the micropolygons' `csg_tree`.
     csg: Vec<CsgTree>,
+    /// Most visible points one bucket keeps ([`Hider::with_max_points`]).
+    max_points: u64,
 }
 
 /// Hider statistics (Appendix A `VisPrint("stat")`), summed over buckets.
@@ -118,6 +120,8 @@ pub struct Stats {
     pub micropolygons: u64,
     /// Largest number of visible points alive in one bucket (`NVisMaxUsed`).
     pub peak_points: u64,
+    /// Visible points not kept because a bucket reached [`Hider::with_max_points`].
+    pub dropped_points: u64,
     /// Visible points created in all.
     pub points: u64,
     /// Time spent testing samples (`VisEndBucket`'s loops), summed over threads, in ns.
@@ -134,6 +138,7 @@ impl Stats {
         self.lerps += o.lerps;
         self.micropolygons += o.micropolygons;
         self.peak_points = self.peak_points.max(o.peak_points);
+        self.dropped_points += o.dropped_points;
         self.points += o.points;
         self.sample_ns += o.sample_ns;
         self.resolve_ns += o.resolve_ns;
@@ -197,13 +202,21 @@ impl Hider {
                 [config.shutter.warp(a), config.shutter.warp(b)]
             })
             .collect();
-        Hider { config, frame, tables, spec, slice_times, csg: Vec::new() }
+        Hider { config, frame, tables, spec, slice_times, csg: Vec::new(), max_points: u64::MAX }
     }
 
     /// Register the scene's CSG trees (port of `CSGNewTree`); tree `n` resolves the
     /// micropolygons whose `csg_tree` is `n`. No limit but `u16` (the original had 64).
     pub fn with_csg(mut self, trees: Vec<CsgTree>) -> Hider {
         self.csg = trees;
+        self
+    }
+
+    /// The same hider keeping at most `max` visible points in one bucket (the memory
+    /// budget's share); a bucket that would keep more drops the rest and counts them in
+    /// [`Stats::dropped_points`], which the caller treats as an exhausted budget.
+    pub fn with_max_points(mut self, max: u64) -> Hider {
+        self.max_points = max;
         self
     }
 

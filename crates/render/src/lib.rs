@@ -7,13 +7,16 @@
 //! - [`stochastic`]: Appendix A's bucket loop, with lazy dicing row by row of buckets and,
 //!   where the scene needs it, ray-traced vertex shading;
 //! - [`rayhide`]: Appendix B's ray-tracing hider over the same samples and filter;
-//! - [`stats`]: what `--stats` prints.
+//! - [`stats`]: what `--stats` prints;
+//! - [`cancel`]: the process-wide request to stop, polled before each bucket.
 //!
 //! Invariant (determinism): every bucket's result depends only on the scene, the seed and the
 //! bucket index, and bucket windows are added to the image in bucket raster order, so the
 //! output is bit-identical for any thread count and scheduling.
 #![deny(missing_docs)]
 
+pub mod budget;
+pub mod cancel;
 mod error;
 pub mod pool;
 pub mod rayhide;
@@ -36,6 +39,10 @@ pub struct RenderOptions<'a> {
     pub threads: Option<usize>,
     /// Called once per finished bucket (from worker threads), e.g. to advance a progress bar.
     pub on_bucket: Option<&'a (dyn Fn() + Sync)>,
+    /// The memory budget in bytes (None: no limit). A frame whose up-front estimate
+    /// ([`budget::Estimate`]) exceeds it is refused with [`RenderError::WontFit`]; what is
+    /// left bounds the micropolygons held at once.
+    pub memory_limit: Option<u64>,
 }
 
 /// A rendered frame.
@@ -51,6 +58,18 @@ pub struct Rendered {
 /// them (shadows, area lights, reflection, refraction, patterns) and with the dicer's local
 /// illumination otherwise.
 pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<Rendered, RenderError> {
+    if let Some(limit) = opts.memory_limit {
+        let threads = opts.threads.unwrap_or_else(rayon::current_num_threads);
+        let estimate = budget::Estimate::new(scene, threads);
+        if estimate.total() > limit {
+            return Err(RenderError::WontFit {
+                need: budget::mb(estimate.total()),
+                film: budget::mb(estimate.film),
+                buckets: budget::mb(estimate.buckets),
+                limit: limit >> 20,
+            });
+        }
+    }
     match scene.hider.method {
         HiderMethod::RayTrace => rayhide::render_raytraced(scene, opts),
         HiderMethod::Stochastic => stochastic::render_stochastic(scene, opts),

@@ -17,6 +17,9 @@
 //! plane and ends at the yon plane: its direction has unit eye-depth component, so the ray
 //! parameter plus `hither` is the eye depth written to the film's z.
 //!
+//! Each bucket first polls [`cancel::requested`]; a cancelled frame ends with
+//! [`RenderError::Cancelled`].
+//!
 //! Invariant (determinism): a sample's result depends only on the scene, the seed, its pixel
 //! and its index: the pixel's `NS` samples form one stratified set of secondary-ray choices
 //! ([`Strata::new`]`(seed, hash(pixel), s, NS)`), so the image is bit-identical for any
@@ -32,6 +35,7 @@ use reyes_scene::Scene;
 use reyes_shade::{RayCounts, Shading, Traced};
 use reyes_trace::{Ray, Tracer};
 
+use crate::cancel;
 use crate::pool::{self, Pool};
 use crate::settings::Stages;
 use crate::stats::{RaySummary, RenderStats};
@@ -89,6 +93,10 @@ where
         (0..frame.bucket_count())
             .into_par_iter()
             .map_init(Buffers::default, |buf, b| {
+                if cancel::requested() {
+                    // Skipped: the frame is discarded below.
+                    return (None, Default::default());
+                }
                 let (left, top) = frame.bucket_origin(b);
                 let (bw, bh) = (frame.bucket_w as usize, frame.bucket_h as usize);
                 let p_count = bw * bh;
@@ -142,6 +150,9 @@ where
             .collect::<Vec<_>>()
     });
     let t_hide = t1.elapsed();
+    if cancel::requested() {
+        return Err(RenderError::Cancelled);
+    }
 
     // Fixed order: bucket raster order, whatever order the buckets finished in.
     let t2 = Instant::now();

@@ -7,6 +7,9 @@
 //! area lights, reflection, refraction or patterns ([`Shading::needed`]), by the distributed
 //! rays of [`RayVertexShader`].
 //!
+//! Each bucket first polls [`cancel::requested`]; a cancelled row is discarded and the frame
+//! ends with [`RenderError::Cancelled`].
+//!
 //! Invariant (determinism): a bucket's window depends only on the scene, the seed and the
 //! bucket; windows are merged in raster order ([`pool::merge`]).
 
@@ -20,6 +23,7 @@ use reyes_scene::Scene;
 use reyes_shade::{RayVertexShader, Shading};
 use reyes_trace::Tracer;
 
+use crate::cancel;
 use crate::pool::{self, Pool};
 use crate::settings::{Stages, frame_for, shutter_shape};
 use crate::stats::{DiceSummary, RaySummary, RenderStats};
@@ -46,7 +50,11 @@ fn render_shaded(scene: &Scene, opts: &RenderOptions) -> Result<Rendered, Render
     let shading = Shading::new(scene, &tracer);
     let shader = RayVertexShader::new(scene, &shading, shutter_shape(scene.camera.shutter.shape));
     let t_build = t0.elapsed();
-    let mut rendered = render_diced(scene, opts, &DiceOptions { vertex_shader: Some(&shader) })?;
+    let mut rendered = render_diced(
+        scene,
+        opts,
+        &DiceOptions { vertex_shader: Some(&shader), ..Default::default() },
+    )?;
     rendered.stats.t_dice += t_build;
     let (vertices, secondary) = shader.counts();
     rendered.stats.rays = Some(RaySummary {
@@ -71,6 +79,14 @@ pub fn render_diced(
     dice_options: &DiceOptions<'_>,
 ) -> Result<Rendered, RenderError> {
     let pool = Pool::new(opts.threads)?;
+    let mut dice_options = *dice_options;
+    if let Some(limit) = opts.memory_limit {
+        let threads = opts.threads.unwrap_or_else(|| pool.install(rayon::current_num_threads));
+        let left = crate::budget::Estimate::new(scene, threads).micropolygons_left(limit);
+        dice_options.max_micropolygons =
+            Some(dice_options.max_micropolygons.map_or(left, |m| m.min(left)));
+    }
+    let dice_options = &dice_options;
     let run = |eager: bool| pool.install(|| render_rows(scene, opts, dice_options, eager));
     match run(false) {
         Err(RenderError::Dice(DiceError::BoundMissed { .. })) => run(true),
@@ -107,6 +123,14 @@ fn render_rows(
     let mut t_dice = t0.elapsed();
     let Stages { hider, table, .. } =
         Stages::with_frame(scene, frame, |hider| hider.with_csg(dicer.csg_trees().to_vec()))?;
+    let max_points = opts.memory_limit.map(|limit| {
+        let threads = rayon::current_num_threads();
+        crate::budget::Estimate::new(scene, threads).points_left(limit, threads)
+    });
+    let hider = match max_points {
+        Some(max) => hider.with_max_points(max),
+        None => hider,
+    };
 
     let (mut t_hide, mut t_film) = (Duration::ZERO, Duration::ZERO);
     let mut film = Film::new(scene.image.width, scene.image.height);
@@ -114,6 +138,9 @@ fn render_rows(
     let mut buckets_rendered = 0;
     let across = frame.buckets_x as usize;
     for row in 0..dicer.rows() {
+        if cancel::requested() {
+            return Err(RenderError::Cancelled);
+        }
         let t = Instant::now();
         dicer.dice_row(row)?;
         t_dice += t.elapsed();
@@ -124,6 +151,10 @@ fn render_rows(
         let results = (first..first + across)
             .into_par_iter()
             .map_init(Buffers::default, |buf, b| {
+                if cancel::requested() {
+                    // Skipped: the row is discarded below.
+                    return (None, Default::default());
+                }
                 let result = if diced.bucket_len(b) == 0 {
                     // Appendix A's `emptybucket`: nothing to display.
                     (None, Default::default())
@@ -150,10 +181,16 @@ fn render_rows(
             })
             .collect::<Vec<_>>();
         t_hide += t.elapsed();
+        if cancel::requested() {
+            return Err(RenderError::Cancelled);
+        }
 
         let t = Instant::now();
         buckets_rendered += pool::merge(&mut film, &results, |s| hider_stats.merge(s));
         t_film += t.elapsed();
+        if let (Some(limit), true) = (max_points, hider_stats.dropped_points > 0) {
+            return Err(RenderError::VisiblePointBudget { limit });
+        }
         dicer.release_row(row);
     }
     let dice_stats = dicer.stats();

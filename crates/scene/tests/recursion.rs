@@ -126,7 +126,7 @@ fn ray_trees_between_facing_mirrors() {
     );
     let valid = parse(&scene(64), Path::new("mirrors.ron")).unwrap_or_else(|e| panic!("{e}"));
     let rendered = on_a_stack(8, move || {
-        let opts = reyes_render::RenderOptions { threads: Some(1), on_bucket: None };
+        let opts = reyes_render::RenderOptions { threads: Some(1), ..Default::default() };
         reyes_render::render(&valid, &opts)
             .map(|r| r.stats.rays.map_or(0, |rays| rays.secondary.reflection))
             .map_err(|e| e.to_string())

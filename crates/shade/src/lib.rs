@@ -102,6 +102,36 @@ pub const MAX_LAYERS: u32 = 64;
 
 /// Deepest bounce whatever `raytrace.max_depth` says (the scene validator's limit).
 pub const MAX_DEPTH: u32 = 64;
+/// Most reflected and refracted rays one primary ray or shaded point may cause, however
+/// deep its tree: every tree of at most 9 levels of two branches (1,022 rays) is whole.
+/// Beyond it the budget is shared out evenly between a surface's two branches, so an
+/// exhausted tree loses its deepest rays, never the first bounces.
+pub const MAX_TREE_RAYS: u32 = 1024;
+
+/// The rays one tree has traced, and what is left of its [`MAX_TREE_RAYS`] budget.
+struct Walk<'c> {
+    counts: &'c mut RayCounts,
+    /// Secondary rays this subtree may still trace, each counting itself.
+    left: u32,
+}
+
+impl<'c> Walk<'c> {
+    fn new(counts: &'c mut RayCounts) -> Walk<'c> {
+        Walk { counts, left: MAX_TREE_RAYS }
+    }
+
+    /// Trace one secondary ray (`trace`), which `others` sibling rays will follow: it costs
+    /// one, and its subtree gets an even share of what is then left, the rest kept for the
+    /// siblings. What the subtree does not use comes back.
+    fn branch<T>(&mut self, others: u32, trace: impl FnOnce(&mut Walk<'_>) -> T) -> T {
+        self.left -= 1;
+        let share = self.left / (others + 1);
+        let mut sub = Walk { counts: &mut *self.counts, left: share };
+        let seen = trace(&mut sub);
+        self.left -= share - sub.left;
+        seen
+    }
+}
 
 /// What a ray sees.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -261,7 +291,7 @@ impl<'a> Shading<'a> {
         strata: &mut Strata,
         counts: &mut RayCounts,
     ) -> ([f32; 3], [f32; 3]) {
-        let (c, trans) = self.shade_point(at, 0, Vec3::ONE, strata, counts);
+        let (c, trans) = self.shade_point(at, 0, Vec3::ONE, strata, &mut Walk::new(counts));
         (c.to_array(), trans.to_array())
     }
 
@@ -280,7 +310,7 @@ impl<'a> Shading<'a> {
         strata: &mut Strata,
         counts: &mut RayCounts,
     ) -> Traced {
-        self.composite(ray, t_max, 0, Vec3::ONE, strata, counts)
+        self.composite(ray, t_max, 0, Vec3::ONE, strata, &mut Walk::new(counts))
     }
 
     /// The front-to-back composite along `ray` of the surfaces it meets before `t_max`,
@@ -292,7 +322,7 @@ impl<'a> Shading<'a> {
         depth: u32,
         weight: Vec3,
         strata: &mut Strata,
-        counts: &mut RayCounts,
+        walk: &mut Walk<'_>,
     ) -> Traced {
         let mut color = Vec3::ZERO;
         let mut trans = Vec3::ONE;
@@ -303,7 +333,7 @@ impl<'a> Shading<'a> {
         let alpha = |coverage: Vec3| (coverage.x + coverage.y + coverage.z) / 3.0;
         for layer in 0..MAX_LAYERS {
             if layer > 0 {
-                counts.continuation += 1;
+                walk.counts.continuation += 1;
             }
             let Some(hit) = self.tracer.intersect(&ray, remaining) else {
                 break;
@@ -335,7 +365,7 @@ impl<'a> Shading<'a> {
                     from: ray.origin,
                     time: ray.time,
                 };
-                let (c, _) = self.shade_point(&at, depth, weight * trans, strata, counts);
+                let (c, _) = self.shade_point(&at, depth, weight * trans, strata, walk);
                 color += trans * c;
                 coverage += trans * os;
                 trans *= surface_trans;
@@ -376,7 +406,7 @@ impl<'a> Shading<'a> {
         depth: u32,
         weight: Vec3,
         strata: &mut Strata,
-        counts: &mut RayCounts,
+        walk: &mut Walk<'_>,
     ) -> (Vec3, Vec3) {
         let (Some(object), Some(setup)) =
             (self.scene.objects.get(at.object as usize), self.objects.get(at.object as usize))
@@ -407,7 +437,7 @@ impl<'a> Shading<'a> {
                     }
                     return None;
                 }
-                self.light(light, p, at.n_world, n, at.time, &mut light_strata, counts)
+                self.light(light, p, at.n_world, n, at.time, &mut light_strata, walk.counts)
             });
             shader.illuminate(cs, n, v, lights)
         };
@@ -420,24 +450,29 @@ impl<'a> Shading<'a> {
         if object.matte || depth >= self.max_depth || i == Vec3::ZERO {
             return (color, Vec3::ONE - os);
         }
+        // Whether a refracted ray will follow the reflected one (it shares the budget).
+        let refracts = object.refract.is_some_and(|r| self.worth(weight * Vec3::from(r.color)));
         if let Some(reflect) = object.reflect {
             let tint = Vec3::from(reflect.color);
             let w = weight * tint;
-            if self.worth(w) {
+            if self.worth(w) && walk.left > 0 {
                 let mut dir = mirror(i, n);
                 if let Some(u) = gloss {
                     dir = to_side(disperse(dir, reflect.gloss.to_radians(), u), n, 1.0);
                 }
-                counts.reflection += 1;
+                walk.counts.reflection += 1;
                 let ray = Ray::spawn(p, at.n_world, dir, at.time);
-                let seen = self.composite(&ray, f32::INFINITY, depth + 1, w, strata, counts);
+                let others = u32::from(refracts);
+                let seen = walk.branch(others, |walk| {
+                    self.composite(&ray, f32::INFINITY, depth + 1, w, strata, walk)
+                });
                 color += tint * Vec3::new(seen.rgba[0], seen.rgba[1], seen.rgba[2]);
             }
         }
         if let Some(refract) = object.refract {
             let tint = Vec3::from(refract.color);
             let w = weight * tint;
-            if self.worth(w) {
+            if self.worth(w) && walk.left > 0 {
                 let entering = i.dot(at.n_world) < 0.0;
                 let eta = if entering { 1.0 / refract.ior } else { refract.ior };
                 let (dir, side) = match snell(i, n, eta) {
@@ -449,9 +484,11 @@ impl<'a> Shading<'a> {
                     Some(u) => to_side(disperse(dir, refract.blur.to_radians(), u), n, side),
                     None => dir,
                 };
-                counts.refraction += 1;
+                walk.counts.refraction += 1;
                 let ray = Ray::spawn(p, at.n_world, dir, at.time);
-                let seen = self.composite(&ray, f32::INFINITY, depth + 1, w, strata, counts);
+                let seen = walk.branch(0, |walk| {
+                    self.composite(&ray, f32::INFINITY, depth + 1, w, strata, walk)
+                });
                 color += tint * Vec3::new(seen.rgba[0], seen.rgba[1], seen.rgba[2]);
             }
         }
