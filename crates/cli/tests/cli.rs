@@ -401,4 +401,14 @@ fn setup_failures_are_scene_errors() {
     assert_eq!(err.lines().count(), 1, "{err}");
     assert!(err.contains("disk.ron: --samples 2x2: hider.filter: the filter is zero"), "{err}");
     assert!(!Path::new(out).exists());
+    // RIB: reported at the request that made the filter.
+    let rib = dir.path().join("narrow.rib");
+    let text = "PixelSamples 2 2\nPixelFilter \"gaussian\" 0.01 0.01\nProjection \"perspective\"\nWorldBegin\nSphere 1 -1 1 360\nWorldEnd\n";
+    std::fs::write(&rib, text).unwrap();
+    let o = run(&[rib.to_str().unwrap(), "-o", out, "-q"]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains("narrow.rib:2:1: PixelFilter: hider.filter: the filter is zero"), "{err}");
+    assert!(!Path::new(out).exists());
 }
