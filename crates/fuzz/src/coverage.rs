@@ -11,18 +11,25 @@
 //! [`instrumented`] is false, every run sees zero edges, and the fuzzer is a plain mutational
 //! one over its corpus.
 //!
+//! The counters are packed eight to a 64-bit word, so that clearing them and folding them into
+//! the map between executions touches one word per eight edges (most are zero): that, not the
+//! target, was the larger cost of an execution with one byte read at a time. A counter is
+//! bumped by a relaxed load and store of its word, so two threads taking edges of one word at
+//! once may lose a count: coverage is a heuristic, and the loaders run on one thread.
+//!
 //! Invariant: counters are only read and cleared by the thread that runs the target, between
-//! executions ([`Map::merge`]); other threads (a render's workers) only bump them.
+//! executions ([`Map::merge`]); other threads only bump them.
 
 #![allow(unsafe_code)]
 
-use std::sync::atomic::{AtomicU8, AtomicUsize, Ordering::Relaxed};
+use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering::Relaxed};
 
 /// The most guards counted; later ones share counters (they wrap around).
 const CAPACITY: usize = 1 << 22;
 
-/// One hit counter per guard; index 0 collects guards not yet numbered.
-static COUNTERS: [AtomicU8; CAPACITY] = [const { AtomicU8::new(0) }; CAPACITY];
+/// One 8-bit hit counter per guard, eight to a word (guard `i` is byte `i % 8` of word
+/// `i / 8`); guard 0 collects guards not yet numbered.
+static COUNTERS: [AtomicU64; CAPACITY / 8] = [const { AtomicU64::new(0) }; CAPACITY / 8];
 /// How many guards have been numbered (the instrumented edges of the program).
 static GUARDS: AtomicUsize = AtomicUsize::new(0);
 
@@ -53,10 +60,11 @@ pub unsafe extern "C" fn __sanitizer_cov_trace_pc_guard_init(start: *mut u32, st
 pub unsafe extern "C" fn __sanitizer_cov_trace_pc_guard(guard: *mut u32) {
     // SAFETY: the compiler passes a pointer into its guard section.
     let index = unsafe { *guard } as usize;
-    if let Some(counter) = COUNTERS.get(index) {
-        let n = counter.load(Relaxed);
-        if n != u8::MAX {
-            counter.store(n + 1, Relaxed);
+    if let Some(word) = COUNTERS.get(index / 8) {
+        let shift = (index % 8) * 8;
+        let w = word.load(Relaxed);
+        if (w >> shift) & 0xff != 0xff {
+            word.store(w + (1 << shift), Relaxed);
         }
     }
 }
@@ -71,16 +79,31 @@ pub fn edges_total() -> usize {
     GUARDS.load(Relaxed)
 }
 
-/// The range of counters in use.
-fn live() -> &'static [AtomicU8] {
-    &COUNTERS[..GUARDS.load(Relaxed).min(CAPACITY - 1) + 1]
+/// The words of the counters in use.
+fn live() -> &'static [AtomicU64] {
+    &COUNTERS[..GUARDS.load(Relaxed).min(CAPACITY - 1) / 8 + 1]
+}
+
+/// Calls `f(guard, hits)` for every non-zero counter, clearing it.
+fn drain(mut f: impl FnMut(usize, u8)) {
+    for (w, word) in live().iter().enumerate() {
+        let bits = word.load(Relaxed);
+        if bits != 0 {
+            word.store(0, Relaxed);
+            for (b, hits) in bits.to_le_bytes().into_iter().enumerate() {
+                if hits != 0 {
+                    f(w * 8 + b, hits);
+                }
+            }
+        }
+    }
 }
 
 /// Clears every counter (before an execution whose coverage is wanted alone).
 pub fn clear() {
-    for c in live() {
-        if c.load(Relaxed) != 0 {
-            c.store(0, Relaxed);
+    for word in live() {
+        if word.load(Relaxed) != 0 {
+            word.store(0, Relaxed);
         }
     }
 }
@@ -122,18 +145,12 @@ impl Map {
     /// Folds the counters of the last execution in and clears them; true if they showed an
     /// edge or a hit-count class not seen before.
     pub fn merge(&mut self) -> bool {
-        let live = live();
-        if self.seen.len() < live.len() {
-            self.seen.resize(live.len(), 0);
+        let len = live().len() * 8;
+        if self.seen.len() < len {
+            self.seen.resize(len, 0);
         }
         let mut new = false;
-        for (i, c) in live.iter().enumerate() {
-            let hits = c.load(Relaxed);
-            if hits != 0 {
-                c.store(0, Relaxed);
-                new |= self.add(i, hits);
-            }
-        }
+        drain(|i, hits| new |= self.add(i, hits));
         new
     }
 
@@ -168,14 +185,10 @@ impl Map {
 /// a parent process to [`parse`]; clears them.
 pub fn dump() -> Vec<u8> {
     let mut out = Vec::new();
-    for (i, c) in live().iter().enumerate() {
-        let hits = c.load(Relaxed);
-        if hits != 0 {
-            c.store(0, Relaxed);
-            out.extend_from_slice(&(i as u32).to_le_bytes());
-            out.push(hits);
-        }
-    }
+    drain(|i, hits| {
+        out.extend_from_slice(&(i as u32).to_le_bytes());
+        out.push(hits);
+    });
     out
 }
 

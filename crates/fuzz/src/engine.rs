@@ -111,13 +111,17 @@ pub struct Report {
     pub edges_total: usize,
     /// Wall-clock time.
     pub elapsed: Duration,
+    /// The seeds have all run (a worker that dies before is not restarted: it would die
+    /// again on the same seed).
+    pub seeded: bool,
 }
 
 impl Report {
     /// The report as `key value` lines (what a worker hands its supervisor).
     pub fn to_text(&self) -> String {
         let mut s = format!(
-            "execs {}\naccepted {}\ncorpus {}\ncorpus_bytes {}\nedges {}\nedges_total {}\nseconds {:.3}\n",
+            "seeded {}\nexecs {}\naccepted {}\ncorpus {}\ncorpus_bytes {}\nedges {}\nedges_total {}\nseconds {:.3}\n",
+            u8::from(self.seeded),
             self.execs,
             self.accepted,
             self.corpus,
@@ -144,6 +148,7 @@ impl Report {
             let (key, value) = line.split_once(' ').unwrap_or((line, ""));
             let n = || value.trim().parse::<u64>().unwrap_or(0);
             match key {
+                "seeded" => r.seeded = n() == 1,
                 "execs" => r.execs = n(),
                 "accepted" => r.accepted = n(),
                 "corpus" => r.corpus = n() as usize,
@@ -370,6 +375,10 @@ pub fn run(opts: &Options) -> std::io::Result<Report> {
     if corpus.is_empty() {
         corpus.push(Vec::new());
     }
+    report.seeded = true;
+    if let Some(status) = &opts.status {
+        fs::write(status, report.to_text())?;
+    }
     let mut done = 0u64;
     let mut tries = 0u64;
     while done < opts.execs {
@@ -577,6 +586,7 @@ mod tests {
             edges: 7,
             edges_total: 70,
             elapsed: Duration::from_millis(1500),
+            seeded: true,
         };
         let back = Report::from_text(&r.to_text());
         assert_eq!(back.to_text(), r.to_text());

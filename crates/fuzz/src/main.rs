@@ -157,7 +157,9 @@ fn worker(args: &[String]) -> Result<u8, String> {
     let seed = seed.parse().map_err(|_| "worker: seed")?;
     let opts = options(&a, target, execs, seed);
     if let Ok(word) = std::env::var("REYES_FUZZ_CANARY") {
-        canary(&word);
+        if !word.starts_with("render-") {
+            target::set_canary(Box::new(canary(&word)));
+        }
     }
     let report = engine::run(&opts).map_err(|e| format!("{}: {e}", a.out.display()))?;
     if let Some(status) = &opts.status {
@@ -167,10 +169,11 @@ fn worker(args: &[String]) -> Result<u8, String> {
 }
 
 /// For the fuzzer's own tests: makes every input containing `canary` panic, abort or hang
-/// (`REYES_FUZZ_CANARY=panic|abort|hang`), to show that each is caught and saved.
-fn canary(word: &str) {
+/// (`REYES_FUZZ_CANARY=panic|abort|hang`) in a worker, or in a render child
+/// (`render-panic|render-abort|render-hang`), to show that each is caught and saved.
+fn canary(word: &str) -> impl Fn(&[u8]) + Send + Sync + 'static {
     let word = word.to_string();
-    target::set_canary(Box::new(move |input: &[u8]| {
+    move |input: &[u8]| {
         if input.windows(6).any(|w| w == b"canary") {
             match word.as_str() {
                 "panic" => panic!("canary"),
@@ -181,7 +184,7 @@ fn canary(word: &str) {
                 _ => {}
             }
         }
-    }));
+    }
 }
 
 /// `render-one INPUT OUT MEMORY_BYTES CPU_SECONDS [COVERAGE]`: the render child.
@@ -192,6 +195,11 @@ fn render_one(args: &[String]) -> Result<u8, String> {
     let memory: u64 = memory.parse().map_err(|_| "render-one: memory")?;
     let cpu: u64 = cpu.parse().map_err(|_| "render-one: cpu")?;
     limits::cap(memory, cpu).map_err(|e| format!("render-one: setrlimit: {e}"))?;
+    if let Some(word) =
+        std::env::var("REYES_FUZZ_CANARY").ok().as_deref().and_then(|w| w.strip_prefix("render-"))
+    {
+        canary(word)(&fs::read(input).unwrap_or_default());
+    }
     let code = target::render_child(Path::new(input), Path::new(out));
     if let Some(cov) = rest.first() {
         let _ = fs::write(cov, coverage::dump());
@@ -377,6 +385,7 @@ fn supervise(
         if status.success() {
             break;
         }
+        let seeded = report.seeded;
         // The worker died: blame the input it was running.
         use std::os::unix::process::ExitStatusExt;
         let input = fs::read(&current_path).unwrap_or_default();
@@ -404,7 +413,7 @@ fn supervise(
             path.display()
         );
         total.failures.push((Failure::new(kind, how), path));
-        if restart == MAX_RESTARTS {
+        if restart == MAX_RESTARTS || !seeded {
             break;
         }
         left = left.saturating_sub(seeds_run.max(1));
