@@ -207,14 +207,22 @@ fn render_one(args: &[String]) -> Result<u8, String> {
     Ok(code)
 }
 
-/// `replay TARGET FILE...`: each input once; exit 1 if any failed.
+/// `replay TARGET [--timeout SECS] [--memory MIB] FILE...`: each input once, a render with
+/// the fuzzer's limits (10 s, 2 GiB unless given); exit 1 if any failed.
 fn replay(args: &[String]) -> Result<u8, String> {
-    let [target, files @ ..] = args else { return Err("replay: arguments".into()) };
+    let [target, rest @ ..] = args else { return Err("replay: arguments".into()) };
     let target = Target::parse(target).ok_or_else(|| format!("unknown target {target}"))?;
+    let flags = rest.iter().take_while(|a| a.starts_with("--")).count() * 2;
+    let a = parse_args(&rest[..flags.min(rest.len())])?;
+    let files = &rest[flags.min(rest.len())..];
     target::quiet_panics();
     let scratch = std::env::temp_dir().join(format!("reyes-fuzz-replay-{}", std::process::id()));
     fs::create_dir_all(&scratch).map_err(|e| format!("{}: {e}", scratch.display()))?;
-    let child = Child { scratch: &scratch, timeout: Duration::from_secs(30), memory: 2048 << 20 };
+    let child = Child {
+        scratch: &scratch,
+        timeout: Duration::from_secs(a.timeout),
+        memory: a.memory_mib << 20,
+    };
     let mut failed = false;
     for file in files {
         let input = fs::read(file).map_err(|e| format!("{file}: {e}"))?;
