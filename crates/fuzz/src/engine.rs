@@ -22,6 +22,7 @@ use std::time::{Duration, Instant};
 use reyes_rib::Format;
 
 use crate::coverage::{self, Map};
+use crate::limits;
 use crate::mutate::Mutator;
 use crate::rng::Rng;
 use crate::target::{self, Failure, Target, Verdict};
@@ -99,8 +100,11 @@ pub struct Report {
     pub execs: u64,
     /// Of which the scene was accepted (rendered, for renders).
     pub accepted: u64,
-    /// Inputs that failed, with the file each was saved to.
+    /// Inputs that failed, with the file each was saved to (distinct panics, up to ten hangs
+    /// and ten signals).
     pub failures: Vec<(Failure, PathBuf)>,
+    /// Executions that failed, all of them.
+    pub failing: u64,
     /// Inputs in the corpus at the end.
     pub corpus: usize,
     /// Their total size in bytes.
@@ -120,8 +124,9 @@ impl Report {
     /// The report as `key value` lines (what a worker hands its supervisor).
     pub fn to_text(&self) -> String {
         let mut s = format!(
-            "seeded {}\nexecs {}\naccepted {}\ncorpus {}\ncorpus_bytes {}\nedges {}\nedges_total {}\nseconds {:.3}\n",
+            "seeded {}\nfailing {}\nexecs {}\naccepted {}\ncorpus {}\ncorpus_bytes {}\nedges {}\nedges_total {}\nseconds {:.3}\n",
             u8::from(self.seeded),
+            self.failing,
             self.execs,
             self.accepted,
             self.corpus,
@@ -150,6 +155,7 @@ impl Report {
             match key {
                 "seeded" => r.seeded = n() == 1,
                 "execs" => r.execs = n(),
+                "failing" => r.failing = n(),
                 "accepted" => r.accepted = n(),
                 "corpus" => r.corpus = n() as usize,
                 "corpus_bytes" => r.corpus_bytes = n() as usize,
@@ -233,34 +239,34 @@ impl Current {
     }
 }
 
-/// Ends the process with [`HANG_EXIT`] when one execution outlives the time limit.
+/// Ends the process with [`HANG_EXIT`] when one execution has used more CPU time than the
+/// limit (CPU time, not wall-clock time: a machine shared with other work stalls processes
+/// for seconds, and a stall is not a hang).
 struct Watchdog {
-    /// When the current execution started (ms since the watchdog's start, +1), 0 when idle.
+    /// The process's CPU time when the current execution started (ns, +1), 0 when idle.
     started: Arc<AtomicU64>,
-    epoch: Instant,
 }
 
 impl Watchdog {
     fn spawn(timeout: Duration) -> Watchdog {
         let started = Arc::new(AtomicU64::new(0));
-        let epoch = Instant::now();
         let s = Arc::clone(&started);
         std::thread::spawn(move || {
             loop {
                 std::thread::sleep(Duration::from_millis(100));
                 let t = s.load(Relaxed);
-                if t != 0 && epoch.elapsed().as_millis() as u64 + 1 - t > timeout.as_millis() as u64
-                {
-                    eprintln!("reyes-fuzz: an input ran longer than {timeout:?}: a hang");
+                let now = limits::cpu_time().as_nanos() as u64 + 1;
+                if t != 0 && now.saturating_sub(t) > timeout.as_nanos() as u64 {
+                    eprintln!("reyes-fuzz: an input used more than {timeout:?} of CPU: a hang");
                     std::process::exit(HANG_EXIT);
                 }
             }
         });
-        Watchdog { started, epoch }
+        Watchdog { started }
     }
 
     fn start(&self) {
-        self.started.store(self.epoch.elapsed().as_millis() as u64 + 1, Relaxed);
+        self.started.store(limits::cpu_time().as_nanos() as u64 + 1, Relaxed);
     }
 
     fn stop(&self) {
@@ -337,7 +343,13 @@ pub fn run(opts: &Options) -> std::io::Result<Report> {
                 Some((new, accepted))
             }
             Err(failure) => {
+                // Panics are told apart by their location: one input each. A hang or a signal
+                // says nothing of where, so up to ten inputs of each are kept.
+                report.failing += 1;
                 let sig = failure.signature();
+                let seen = signatures.iter().filter(|s| **s == sig).count();
+                let keep =
+                    if failure.kind == "panic" || failure.kind == "bad-error" { 1 } else { 10 };
                 let path = crashes.join(format!(
                     "{}-{}-{}.{}",
                     opts.target.name(),
@@ -345,7 +357,7 @@ pub fn run(opts: &Options) -> std::io::Result<Report> {
                     hash(input),
                     extension(opts.target, input)
                 ));
-                if !signatures.contains(&sig) {
+                if seen < keep {
                     eprintln!(
                         "reyes-fuzz: {}: {}: {}",
                         opts.target.name(),
@@ -446,7 +458,8 @@ pub fn run(opts: &Options) -> std::io::Result<Report> {
 pub struct Child<'a> {
     /// Scratch folder: the input, the outputs, stderr, the coverage dump.
     pub scratch: &'a Path,
-    /// Wall-clock limit.
+    /// CPU-time limit (the child's RLIMIT_CPU); the wall-clock limit is eight times it, for
+    /// a child that hangs without using the CPU.
     pub timeout: Duration,
     /// Address-space cap in bytes.
     pub memory: u64,
@@ -456,6 +469,7 @@ impl Child<'_> {
     /// Renders `input` in a child process (this program, `render-one`); with the child's
     /// coverage when instrumented.
     pub fn render(&self, input: &[u8]) -> Result<(Verdict, Vec<(u32, u8)>), Failure> {
+        use std::os::unix::process::ExitStatusExt;
         let io = |e: std::io::Error| Failure::new("exit", format!("cannot run the child: {e}"));
         let file = self.scratch.join("input");
         let stderr_path = self.scratch.join("stderr");
@@ -486,7 +500,7 @@ impl Child<'_> {
             if let Some(status) = child.try_wait().map_err(io)? {
                 break Some(status);
             }
-            if started.elapsed() > self.timeout {
+            if started.elapsed() > self.timeout * 8 {
                 let _ = child.kill();
                 let _ = child.wait();
                 break None;
@@ -497,8 +511,17 @@ impl Child<'_> {
         let err = fs::read_to_string(&stderr_path).unwrap_or_default();
         let pairs = fs::read(&cov).map(|b| coverage::parse(&b)).unwrap_or_default();
         let Some(status) = status else {
-            return Err(Failure::new("hang", format!("render ran longer than {:?}", self.timeout)));
+            return Err(Failure::new(
+                "hang",
+                format!("render ran longer than {:?} of wall-clock time", self.timeout * 8),
+            ));
         };
+        if status.signal() == Some(libc::SIGXCPU) {
+            return Err(Failure::new(
+                "hang",
+                format!("render used more than {:?} of CPU time", self.timeout),
+            ));
+        }
         classify(status, &err).map(|v| (v, pairs))
     }
 }
@@ -587,6 +610,7 @@ mod tests {
             edges_total: 70,
             elapsed: Duration::from_millis(1500),
             seeded: true,
+            failing: 2,
         };
         let back = Report::from_text(&r.to_text());
         assert_eq!(back.to_text(), r.to_text());

@@ -104,17 +104,26 @@ fn seed_dirs(corpus: &Path, target: Target) -> Vec<PathBuf> {
     }
 }
 
+/// Where a run writes the inputs that found new coverage: the corpus itself with `--save`,
+/// else `OUT/new-TARGET`.
+fn save_dir(a: &Args, target: Target) -> PathBuf {
+    if a.save { a.corpus.join(target.name()) } else { a.out.join(format!("new-{}", target.name())) }
+}
+
+/// A worker's options. Its seeds include what this run has saved so far, so that a worker
+/// started after one died goes on from the coverage reached.
 fn options(a: &Args, target: Target, execs: u64, seed: u64) -> Options {
+    let mut seeds = seed_dirs(&a.corpus, target);
+    let save = save_dir(a, target);
+    if !seeds.contains(&save) {
+        seeds.push(save.clone());
+    }
     Options {
         target,
         execs,
         seed,
-        seeds: seed_dirs(&a.corpus, target),
-        save: Some(if a.save {
-            a.corpus.join(target.name())
-        } else {
-            a.out.join(format!("new-{}", target.name()))
-        }),
+        seeds,
+        save: Some(save),
         out: a.out.clone(),
         timeout: Duration::from_secs(a.timeout),
         memory: a.memory_mib << 20,
@@ -179,7 +188,7 @@ fn canary(word: &str) -> impl Fn(&[u8]) + Send + Sync + 'static {
                 "panic" => panic!("canary"),
                 "abort" => std::process::abort(),
                 "hang" => loop {
-                    std::thread::sleep(Duration::from_millis(50));
+                    std::hint::spin_loop();
                 },
                 _ => {}
             }
@@ -324,11 +333,15 @@ fn fuzz(args: &[String]) -> Result<u8, String> {
     let mut any_failed = false;
     let mut rng = Rng::new(a.seed);
     for &target in &a.targets {
+        if !a.save {
+            // A run starts from the corpus alone, whatever an earlier run left.
+            let _ = fs::remove_dir_all(save_dir(&a, target));
+        }
         let execs = if target == Target::Render { a.renders } else { a.execs };
         let report = supervise(&exe, &a, target, execs, &mut rng)?;
         let secs = report.elapsed.as_secs_f64().max(1e-9);
         println!(
-            "{}: {} execs in {:.1} s ({:.0}/s), {} accepted, corpus {} inputs ({} bytes), edges {}/{}, failures {}",
+            "{}: {} execs in {:.1} s ({:.0}/s), {} accepted, corpus {} inputs ({} bytes), edges {}/{}, failures {} ({} failing runs)",
             target.name(),
             report.execs,
             secs,
@@ -338,7 +351,8 @@ fn fuzz(args: &[String]) -> Result<u8, String> {
             report.corpus_bytes,
             report.edges,
             report.edges_total,
-            report.failures.len()
+            report.failures.len(),
+            report.failing
         );
         for (f, path) in &report.failures {
             println!("  {}: {}: {}", f.kind, path.display(), f.message);
@@ -385,6 +399,7 @@ fn supervise(
         let seeds_run = report.execs.min(left);
         total.execs += report.execs;
         total.accepted += report.accepted;
+        total.failing += report.failing;
         total.failures.extend(report.failures.iter().cloned());
         total.corpus = total.corpus.max(report.corpus);
         total.corpus_bytes = total.corpus_bytes.max(report.corpus_bytes);
@@ -421,6 +436,7 @@ fn supervise(
             path.display()
         );
         total.failures.push((Failure::new(kind, how), path));
+        total.failing += 1;
         if restart == MAX_RESTARTS || !seeded {
             break;
         }
