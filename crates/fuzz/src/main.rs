@@ -165,10 +165,10 @@ fn worker(args: &[String]) -> Result<u8, String> {
     let execs = execs.parse().map_err(|_| "worker: execs")?;
     let seed = seed.parse().map_err(|_| "worker: seed")?;
     let opts = options(&a, target, execs, seed);
-    if let Ok(word) = std::env::var("REYES_FUZZ_CANARY") {
-        if !word.starts_with("render-") {
-            target::set_canary(Box::new(canary(&word)));
-        }
+    if let Ok(word) = std::env::var("REYES_FUZZ_CANARY")
+        && !word.starts_with("render-")
+    {
+        target::set_canary(Box::new(canary(&word)));
     }
     let report = engine::run(&opts).map_err(|e| format!("{}: {e}", a.out.display()))?;
     if let Some(status) = &opts.status {
