@@ -8,13 +8,20 @@
 use std::path::Path;
 use std::process::Command;
 
-/// Replays `regressions/FILE` through `target`: it must load, render or be rejected cleanly.
+/// Replays `regressions/FILE` through `target`: it must load, render or be rejected cleanly,
+/// a render within the fuzzer's limits (10 s of CPU, 2 GiB).
 fn replay(target: &str, file: &str) {
+    replay_with(target, file, &[]);
+}
+
+/// [`replay`] with other limits (`--timeout SECS`, `--memory MIB`).
+fn replay_with(target: &str, file: &str, limits: &[&str]) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("regressions").join(file);
     assert!(path.is_file(), "{} is missing", path.display());
     let out = Command::new(env!("CARGO_BIN_EXE_reyes-fuzz"))
         .arg("replay")
         .arg(target)
+        .args(limits)
         .arg(&path)
         .output()
         .unwrap();
@@ -36,4 +43,10 @@ fn dice_split_endless_huge_patch_point() {
 #[ignore = "owner: the lead (crates/dice memory budget): fast motion explodes memory"]
 fn dice_fast_motion_memory() {
     replay("render", "dice-fast-motion-memory.rib");
+}
+
+#[test]
+#[ignore = "owner: the lead (crates/dice work bounds): a huge CSG operand is split for seconds"]
+fn dice_csg_huge_operand_slow() {
+    replay_with("render", "dice-csg-huge-operand-slow.ron", &["--timeout", "2"]);
 }
