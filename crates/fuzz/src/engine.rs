@@ -458,8 +458,9 @@ pub fn run(opts: &Options) -> std::io::Result<Report> {
 pub struct Child<'a> {
     /// Scratch folder: the input, the outputs, stderr, the coverage dump.
     pub scratch: &'a Path,
-    /// CPU-time limit (the child's RLIMIT_CPU); the wall-clock limit is eight times it, for
-    /// a child that hangs without using the CPU.
+    /// CPU-time limit (the child's RLIMIT_CPU); the wall-clock limit is 30 times it, for
+    /// a child that hangs without using the CPU (on a loaded machine a render waits
+    /// for the CPU many times longer than it uses it).
     pub timeout: Duration,
     /// Address-space cap in bytes.
     pub memory: u64,
@@ -500,7 +501,7 @@ impl Child<'_> {
             if let Some(status) = child.try_wait().map_err(io)? {
                 break Some(status);
             }
-            if started.elapsed() > self.timeout * 8 {
+            if started.elapsed() > self.timeout * 30 {
                 let _ = child.kill();
                 let _ = child.wait();
                 break None;
@@ -513,7 +514,7 @@ impl Child<'_> {
         let Some(status) = status else {
             return Err(Failure::new(
                 "hang",
-                format!("render ran longer than {:?} of wall-clock time", self.timeout * 8),
+                format!("render ran longer than {:?} of wall-clock time", self.timeout * 30),
             ));
         };
         if status.signal() == Some(libc::SIGXCPU) {
