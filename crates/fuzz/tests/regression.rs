@@ -50,3 +50,9 @@ fn dice_fast_motion_memory() {
 fn dice_csg_huge_operand_slow() {
     replay_with("render", "dice-csg-huge-operand-slow.ron", &["--timeout", "2"]);
 }
+
+#[test]
+#[ignore = "owner: the lead (crates/dice work bounds): depth of field near the eye takes seconds"]
+fn dice_dof_near_eye_slow() {
+    replay_with("render", "dice-dof-near-eye-slow.rib", &["--timeout", "2"]);
+}
