@@ -15,7 +15,8 @@
 //! keeps the smallest inputs that together cover every edge the given ones cover (an
 //! instrumented build only). `render-one` is the render child.
 
-use std::collections::HashMap;
+use std::cmp::Reverse;
+use std::collections::{BinaryHeap, HashMap, HashSet};
 use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
@@ -96,12 +97,16 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
     Ok(a)
 }
 
-/// The seed folders of a target: its own corpus; renders start from every corpus.
+/// The seed folders of a target: the hand-picked seeds (`seeds/ron`, `seeds/rib`, never
+/// minimised away) and what earlier runs found (`ron`, `rib`, `render`, minimised by
+/// `cmin`); renders start from all of them.
 fn seed_dirs(corpus: &Path, target: Target) -> Vec<PathBuf> {
-    match target {
-        Target::Render => ["ron", "rib", "render"].iter().map(|d| corpus.join(d)).collect(),
-        t => vec![corpus.join(t.name())],
-    }
+    let dirs: &[&str] = match target {
+        Target::Ron => &["seeds/ron", "ron"],
+        Target::Rib => &["seeds/rib", "rib"],
+        Target::Render => &["seeds/ron", "seeds/rib", "ron", "rib", "render"],
+    };
+    dirs.iter().map(|d| corpus.join(d)).collect()
 }
 
 /// Where a run writes the inputs that found new coverage: the corpus itself with `--save`,
@@ -255,8 +260,9 @@ fn replay(args: &[String]) -> Result<u8, String> {
     Ok(u8::from(failed))
 }
 
-/// `cmin TARGET DIR... --into DIR`: for every edge, the smallest input covering it; their
-/// union is written to the folder after `--into`.
+/// `cmin TARGET DIR... --into DIR`: a small set of the inputs (in bytes) that together take
+/// the edges the inputs take (but those only one input would add), written to the folder
+/// after `--into`.
 fn cmin(args: &[String]) -> Result<u8, String> {
     let [target, rest @ ..] = args else { return Err("cmin: arguments".into()) };
     let target = Target::parse(target).ok_or_else(|| format!("unknown target {target}"))?;
@@ -274,6 +280,7 @@ fn cmin(args: &[String]) -> Result<u8, String> {
     inputs.sort_by_key(|(p, b)| (b.len(), p.clone()));
     inputs.dedup_by(|a, b| a.1 == b.1);
     let mut best: HashMap<u32, usize> = HashMap::new();
+    let mut edges_of: Vec<Vec<u32>> = Vec::with_capacity(inputs.len());
     for (i, (_, input)) in inputs.iter().enumerate() {
         coverage::clear();
         let pairs = match target {
@@ -297,13 +304,38 @@ fn cmin(args: &[String]) -> Result<u8, String> {
                 }
             }
         };
-        for (edge, _) in pairs {
+        for &(edge, _) in &pairs {
             best.entry(edge).or_insert(i);
         }
+        edges_of.push(pairs.into_iter().map(|(e, _)| e).collect());
     }
-    let mut keep: Vec<usize> = best.values().copied().collect();
+    // Greedy weighted set cover: repeatedly keep the input that takes the most edges not yet
+    // covered per byte (plus 64, so tiny inputs do not win on nothing). Scores only fall as
+    // edges get covered, so a popped score that is still the best after recounting is the
+    // best (lazy greedy).
+    let mut covered: HashSet<u32> = HashSet::new();
+    let score = |i: usize, covered: &HashSet<u32>| {
+        let new = edges_of[i].iter().filter(|e| !covered.contains(e)).count();
+        (new as u64 * 1_000_000 / (inputs[i].1.len() as u64 + 64), new)
+    };
+    let mut heap: BinaryHeap<(u64, Reverse<usize>)> =
+        (0..inputs.len()).map(|i| (score(i, &covered).0, Reverse(i))).collect();
+    let mut keep: Vec<usize> = Vec::new();
+    while let Some((s, Reverse(i))) = heap.pop() {
+        let (now, new) = score(i, &covered);
+        // An input that adds one edge alone is dropped: such edges are mostly noise (a hash
+        // map's probe sequence, seeded at random per process, takes its own edges).
+        if new < 2 {
+            continue;
+        }
+        if now < s && heap.peek().is_some_and(|&(top, _)| top > now) {
+            heap.push((now, Reverse(i)));
+            continue;
+        }
+        covered.extend(edges_of[i].iter().copied());
+        keep.push(i);
+    }
     keep.sort_unstable();
-    keep.dedup();
     fs::create_dir_all(&dst).map_err(|e| format!("{}: {e}", dst.display()))?;
     let mut bytes = 0;
     for &i in &keep {
@@ -315,12 +347,13 @@ fn cmin(args: &[String]) -> Result<u8, String> {
     }
     let _ = fs::remove_dir_all(&scratch);
     println!(
-        "cmin {}: {} inputs -> {} ({} bytes), {} edges",
+        "cmin {}: {} inputs ({} edges) -> {} ({} bytes, {} edges)",
         target.name(),
         inputs.len(),
+        best.len(),
         keep.len(),
         bytes,
-        best.len()
+        covered.len()
     );
     Ok(0)
 }

@@ -57,8 +57,7 @@ fn ci_run(target: &str, execs: u64) {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "the fuzzer found failures:\n{stdout}\n{stderr}");
     assert_eq!(figure(&stdout, target, "failures"), 0, "{stdout}");
-    let seeds = std::fs::read_dir(corpus().join(target)).map_or(0, |d| d.count()) as u64;
-    assert!(figure(&stdout, target, "execs") >= execs + seeds.min(1), "{stdout}");
+    assert!(figure(&stdout, target, "execs") > execs, "{stdout}");
     assert!(figure(&stdout, target, "accepted") > 0, "no scene loaded: {stdout}");
     eprintln!("{} ({:.1} s)", stdout.trim(), t.elapsed().as_secs_f64());
 }
