@@ -72,6 +72,9 @@ fn ci_rib_reader_state_machine_and_validator() {
     ci_run("rib", 250_000);
 }
 
+/// 200 renders: with seed 20, 400 reach the dicer's endless split of
+/// `regressions/dice-split-endless-huge-moving-mesh-point.ron` (ignored until the dicer's
+/// work bounds land; then this count can grow).
 #[test]
 fn ci_small_renders_under_a_memory_cap() {
     ci_run("render", 200);

@@ -33,6 +33,19 @@ fn replay_with(target: &str, file: &str, limits: &[&str]) {
     );
 }
 
+/// Every file in `regressions/` has its test here, named after it (`a-b.ron`: `fn a_b`).
+#[test]
+fn every_regression_file_has_its_test() {
+    let source = include_str!("regression.rs");
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("regressions");
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let name = entry.unwrap().file_name().to_string_lossy().into_owned();
+        let stem = name.split('.').next().unwrap().replace('-', "_");
+        assert!(source.contains(&format!("fn {stem}()")), "regressions/{name} has no test");
+        assert!(source.contains(&format!("\"{name}\"")), "no test replays regressions/{name}");
+    }
+}
+
 #[test]
 #[ignore = "owner: the lead (crates/dice work bounds): splitting never ends"]
 fn dice_split_endless_huge_patch_point() {
@@ -55,4 +68,10 @@ fn dice_csg_huge_operand_slow() {
 #[ignore = "owner: the lead (crates/dice work bounds): depth of field near the eye takes seconds"]
 fn dice_dof_near_eye_slow() {
     replay_with("render", "dice-dof-near-eye-slow.rib", &["--timeout", "2"]);
+}
+
+#[test]
+#[ignore = "owner: the lead (crates/dice work bounds): splitting never ends"]
+fn dice_split_endless_huge_moving_mesh_point() {
+    replay("render", "dice-split-endless-huge-moving-mesh-point.ron");
 }
