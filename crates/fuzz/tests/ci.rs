@@ -5,7 +5,8 @@
 //! the instrumented runs of `cargo xtask fuzz` grew: every target's seeds, then mutants of
 //! them. Any failure (a panic, a broken error promise, an abort, a hang, a render child
 //! killed or over its memory cap) fails the test, with the saved input's path in the message.
-//! The counts keep the three runs at about two minutes on two cores together.
+//! The counts keep the three runs at about a minute on two idle cores (they run in parallel),
+//! two under load.
 //!
 //! The canary tests plant a bug in the fuzzer's own process (`REYES_FUZZ_CANARY`) to show that
 //! a panic, an abort and a hang of a loader, and an abort and a hang of a render child, are
@@ -64,12 +65,12 @@ fn ci_run(target: &str, execs: u64) {
 
 #[test]
 fn ci_ron_loader_and_validator() {
-    ci_run("ron", 250_000);
+    ci_run("ron", 500_000);
 }
 
 #[test]
 fn ci_rib_reader_state_machine_and_validator() {
-    ci_run("rib", 250_000);
+    ci_run("rib", 500_000);
 }
 
 /// 200 renders: with seed 20, 400 reach the dicer's endless split of
