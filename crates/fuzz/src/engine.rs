@@ -5,7 +5,7 @@
 //! count class not seen before, save it under `crashes/` when it failed. Loader inputs run in
 //! this process; before each, the input is written to `OUT/current-TARGET`, so that when the
 //! worker dies (an abort, a stack overflow) or its watchdog ends it (a hang), the supervisor
-//! (`crate::supervise`) knows which input did it. A render input that loads runs in a child
+//! (`reyes-fuzz fuzz`, src/main.rs) knows which input did it. A render input that loads runs in a child
 //! process ([`render`]).
 //!
 //! Invariant: for a given seed, corpus and build the inputs tried are the same, in the same

@@ -429,7 +429,7 @@ fn supervise(
         }
         let status = cmd.status().map_err(|e| format!("cannot run a worker: {e}"))?;
         let report = Report::from_text(&fs::read_to_string(&status_path).unwrap_or_default());
-        let seeds_run = report.execs.min(left);
+        let done = report.execs.min(left);
         total.execs += report.execs;
         total.accepted += report.accepted;
         total.failing += report.failing;
@@ -473,7 +473,7 @@ fn supervise(
         if restart == MAX_RESTARTS || !seeded {
             break;
         }
-        left = left.saturating_sub(seeds_run.max(1));
+        left = left.saturating_sub(done.max(1));
         seed = rng.next_u64();
     }
     total.elapsed = start.elapsed();
