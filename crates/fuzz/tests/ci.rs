@@ -151,3 +151,19 @@ fn a_render_child_over_its_time_is_killed_and_a_failure() {
 fn a_render_child_panic_is_a_failure() {
     caught("render", "render-panic", "panic");
 }
+
+/// The same seed and corpus give the same run (what CI's fixed seeds rely on); another seed
+/// another run.
+#[test]
+fn a_run_repeats_for_its_seed() {
+    let run = |seed: &str| {
+        let dir = tempfile::tempdir().unwrap();
+        let args = ["--targets", "rib", "--execs", "5000", "--seed", seed];
+        let out = fuzz(&args, &corpus(), dir.path(), None);
+        let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+        (figure(&stdout, "rib", "execs"), figure(&stdout, "rib", "accepted"))
+    };
+    let a = run("5");
+    assert_eq!(a, run("5"));
+    assert_ne!(a, run("6"));
+}
