@@ -2,10 +2,12 @@
 //! `cargo xtask bless` (rewrite the references; look at the PNGs it writes first!),
 //! `cargo xtask bench` (time the benchmark scenes), `cargo xtask scaling` (peak memory of
 //! `heavy-motion` as its sphere count grows) and `cargo xtask study` (regenerate the
-//! sampling study's figures in docs/study/).
+//! sampling study's figures in docs/study/), `cargo xtask fuzz` (build the fuzzer with
+//! coverage instrumentation and run it; see docs/reliability.md).
 
 mod bench;
 mod compare;
+mod fuzz;
 mod study;
 
 use std::process::ExitCode;
@@ -14,7 +16,7 @@ use reyes_testkit::golden::{self, Outcome};
 
 fn usage() -> ExitCode {
     eprintln!(
-        "usage: cargo xtask <golden | bless [SCENE...] | bench [--runs N] [--threads T] [--baseline BIN] [SCENE...] | scaling [--threads T] [N...] | study [--quick] | compare A.exr B.exr>"
+        "usage: cargo xtask <golden | bless [SCENE...] | bench [--runs N] [--threads T] [--baseline BIN] [SCENE...] | scaling [--threads T] [N...] | study [--quick] | compare A.exr B.exr | fuzz [--execs N] [--renders N] [--targets ron,rib,render] [--seed S] [--save] [--time-limit SECS] | fuzz cmin>"
     );
     ExitCode::from(2)
 }
@@ -45,6 +47,15 @@ fn main() -> ExitCode {
             Ok(()) => ExitCode::SUCCESS,
             Err(e) => {
                 eprintln!("xtask compare: {e}");
+                ExitCode::FAILURE
+            }
+        };
+    }
+    if args.first().map(String::as_str) == Some("fuzz") {
+        return match fuzz::run(&root, &args[1..]) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(e) => {
+                eprintln!("xtask fuzz: {e}");
                 ExitCode::FAILURE
             }
         };
