@@ -47,31 +47,26 @@ fn every_regression_file_has_its_test() {
 }
 
 #[test]
-#[ignore = "owner: the lead (crates/dice work bounds): splitting never ends"]
 fn dice_split_endless_huge_patch_point() {
     replay("render", "dice-split-endless-huge-patch-point.ron");
 }
 
 #[test]
-#[ignore = "owner: the lead (crates/dice memory budget): fast motion explodes memory"]
 fn dice_fast_motion_memory() {
     replay("render", "dice-fast-motion-memory.rib");
 }
 
 #[test]
-#[ignore = "owner: the lead (crates/dice work bounds): a huge CSG operand is split for seconds"]
 fn dice_csg_huge_operand_slow() {
     replay_with("render", "dice-csg-huge-operand-slow.ron", &["--timeout", "2"]);
 }
 
 #[test]
-#[ignore = "owner: the lead (crates/dice work bounds): depth of field near the eye takes seconds"]
 fn dice_dof_near_eye_slow() {
     replay_with("render", "dice-dof-near-eye-slow.rib", &["--timeout", "2"]);
 }
 
 #[test]
-#[ignore = "owner: the lead (crates/dice work bounds): splitting never ends"]
 fn dice_split_endless_huge_moving_mesh_point() {
     replay("render", "dice-split-endless-huge-moving-mesh-point.ron");
 }
