@@ -70,3 +70,13 @@ fn dice_dof_near_eye_slow() {
 fn dice_split_endless_huge_moving_mesh_point() {
     replay("render", "dice-split-endless-huge-moving-mesh-point.ron");
 }
+
+#[test]
+fn budget_tiny_fov_lens() {
+    replay_with("render", "budget-tiny-fov-lens.ron", &["--timeout", "5"]);
+}
+
+#[test]
+fn budget_huge_patch_point() {
+    replay_with("render", "budget-huge-patch-point.rib", &["--timeout", "5"]);
+}
