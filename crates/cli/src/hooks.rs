@@ -9,6 +9,9 @@
 //!   file TMPNAME`) and wait likewise.
 //! - `REYES_TEST_NAMED_TEMPORARY=1`: write through a named temporary file even where an
 //!   unnamed one is possible, as on a file system without `O_TMPFILE`.
+//! - `REYES_TEST_SIGNALS=default`: handle SIGINT and SIGTERM even if they were ignored at
+//!   start, as for a job in the foreground of a terminal, whatever the disposition the test
+//!   harness itself inherited (a CI runner may start it as a background job).
 
 use std::path::Path;
 use std::time::{Duration, Instant};
@@ -33,6 +36,11 @@ pub(crate) fn pause() -> Pause {
         Ok("write") => Pause::Write,
         _ => Pause::Never,
     }
+}
+
+/// `REYES_TEST_SIGNALS=default`.
+pub(crate) fn signals_default() -> bool {
+    std::env::var_os("REYES_TEST_SIGNALS").is_some_and(|v| v == "default")
 }
 
 /// `REYES_TEST_NAMED_TEMPORARY=1`.

@@ -32,7 +32,10 @@ pub(crate) fn install(stop: bool) -> std::io::Result<()> {
         static XFSZ: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
         signal_hook::flag::register(SIGXFSZ, &XFSZ)?;
         if stop {
-            for signal in [SIGINT, SIGTERM].into_iter().filter(|&s| !ignored_at_start(s)) {
+            for signal in [SIGINT, SIGTERM]
+                .into_iter()
+                .filter(|&s| crate::hooks::signals_default() || !ignored_at_start(s))
+            {
                 // In this order: whoever sees the cancel flag finds the signal recorded.
                 signal_hook::flag::register_usize(signal, &RECEIVED, signal as usize)?;
                 signal_hook::flag::register(signal, reyes_render::cancel::flag())?;

@@ -14,8 +14,12 @@ use std::process::{Child, ChildStderr, Command, ExitStatus, Output, Stdio};
 
 use rustix::process::{Pid, Signal, kill_process};
 
+/// The binary, handling SIGINT and SIGTERM as a foreground job does even when this test
+/// process was started with them ignored (`REYES_TEST_SIGNALS=default`).
 fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_reyes-render"))
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_reyes-render"));
+    cmd.env("REYES_TEST_SIGNALS", "default");
+    cmd
 }
 
 /// A 640x480 sphere: about 250 kB of EXR, so several 64 KiB chunks.
