@@ -70,3 +70,27 @@ fn dice_dof_near_eye_slow() {
 fn dice_split_endless_huge_moving_mesh_point() {
     replay("render", "dice-split-endless-huge-moving-mesh-point.ron");
 }
+
+#[test]
+#[ignore = "owner: the lead (dicer work bounds): a camera 25 units back takes seconds"]
+fn render_far_camera_slow() {
+    replay_with("render", "render-far-camera-slow.rib", &["--timeout", "2"]);
+}
+
+#[test]
+#[ignore = "owner: the lead (dicer work and memory bounds): a mesh point at 1e15 takes seconds and 2 GB"]
+fn render_mesh_point_1e15_slow() {
+    replay_with("render", "render-mesh-point-1e15-slow.ron", &["--timeout", "2"]);
+}
+
+#[test]
+#[ignore = "owner: the lead (dicer work and memory bounds): a swinging camera takes seconds and 2 GB"]
+fn render_camera_swing_slow() {
+    replay_with("render", "render-camera-swing-slow.ron", &["--timeout", "2"]);
+}
+
+#[test]
+#[ignore = "owner: the lead (dicer work and memory bounds): depth of field, huge rotation axis"]
+fn render_dof_huge_axis_slow() {
+    replay_with("render", "render-dof-huge-axis-slow.rib", &["--timeout", "2"]);
+}
