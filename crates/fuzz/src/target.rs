@@ -254,12 +254,17 @@ pub fn render_child(input: &Path, out: &Path) -> u8 {
                 return 2;
             }
         };
-        let opts = reyes_render::RenderOptions { threads: Some(1), ..Default::default() };
+        // The memory budget the command line would use under this child's address-space cap.
+        let opts = reyes_render::RenderOptions {
+            threads: Some(1),
+            memory_limit: reyes_render::budget::default_memory_limit(),
+            ..Default::default()
+        };
         let rendered = match reyes_render::render(&scene, &opts) {
             Ok(r) => r,
             Err(e) => {
                 eprintln!("render: {e}");
-                return 1;
+                return e.exit_code();
             }
         };
         for ext in ["exr", "png"] {
