@@ -52,14 +52,7 @@ fn scene_error(dir: &Path, name: &str, from: &str, to: &str) -> String {
     err
 }
 
-fn files_in(dir: &Path) -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    v.sort();
-    v
-}
+use reyes_testkit::files::names as files_in;
 
 #[test]
 fn renders_the_demo_scene_to_exr_and_png() {

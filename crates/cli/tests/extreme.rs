@@ -64,10 +64,7 @@ fn capped(scene: &Path, args: &[&str]) -> Run {
     let code = status
         .code()
         .unwrap_or_else(|| panic!("{}: killed by a signal ({status})", scene.display()));
-    let left = std::fs::read_dir(dir.path())
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
+    let left = reyes_testkit::files::names(dir.path());
     Run {
         code,
         stderr: String::from_utf8_lossy(&output.stderr).into_owned(),
@@ -103,11 +100,7 @@ const CATALOGUE: &[(&str, i32)] = &[
 
 #[test]
 fn the_catalogue_lists_every_file() {
-    let mut files: Vec<String> = std::fs::read_dir(extreme(""))
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    files.sort();
+    let files = reyes_testkit::files::names(&extreme(""));
     let mut listed: Vec<String> = CATALOGUE.iter().map(|(n, _)| n.to_string()).collect();
     listed.sort();
     assert_eq!(files, listed);

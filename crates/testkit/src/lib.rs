@@ -11,6 +11,7 @@
 #![deny(missing_docs)]
 
 pub mod docs;
+pub mod files;
 pub mod fixtures;
 pub mod geometry;
 pub mod golden;
