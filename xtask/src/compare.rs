@@ -1,6 +1,8 @@
 //! `cargo xtask compare A.exr B.exr`: how closely two renders agree, as the peer comparison
 //! of `../shared/peers/README.md` measures it: PSNR over the whole image (values in 0..1,
 //! peak 1) of each of R, G, B and alpha, of RGB together, and each image's channel means.
+//! With `--diff OUT.png`, also how many pixels differ by more than 0.01 in some channel,
+//! and a picture of where: `|a - b|` times 10 per channel, alpha 1, to look at.
 
 use std::path::Path;
 
@@ -30,8 +32,10 @@ fn means(f: &Film) -> [f64; 4] {
 }
 
 pub fn run(args: &[String]) -> Result<(), String> {
-    let [a, b] = args else {
-        return Err("usage: cargo xtask compare A.exr B.exr".into());
+    let (a, b, diff) = match args {
+        [a, b] => (a, b, None),
+        [a, b, flag, out] if flag == "--diff" => (a, b, Some(out)),
+        _ => return Err("usage: cargo xtask compare A.exr B.exr [--diff OUT.png]".into()),
     };
     let read = |p: &str| reyes_film::read_exr(Path::new(p)).map_err(|e| e.to_string());
     let (fa, fb) = (read(a)?, read(b)?);
@@ -55,6 +59,31 @@ pub fn run(args: &[String]) -> Result<(), String> {
     for (name, f) in [(a, &fa), (b, &fb)] {
         let m = means(f);
         println!("means {name}: R {:.4} G {:.4} B {:.4} A {:.4}", m[0], m[1], m[2], m[3]);
+    }
+    if let Some(out) = diff {
+        let d: Vec<[f32; 4]> = fa
+            .rgba()
+            .iter()
+            .zip(fb.rgba())
+            .map(|(p, q)| [0, 1, 2, 3].map(|c| (p[c] - q[c]).abs()))
+            .collect();
+        let changed = d.iter().filter(|p| p.iter().any(|&v| v > 0.01)).count();
+        println!("pixels differing by more than 0.01: {changed} of {}", d.len());
+        let pixels: Vec<[f32; 4]> = d
+            .iter()
+            .map(|p| {
+                [
+                    (10.0 * p[0].max(p[3])).min(1.0),
+                    (10.0 * p[1].max(p[3])).min(1.0),
+                    (10.0 * p[2].max(p[3])).min(1.0),
+                    1.0,
+                ]
+            })
+            .collect();
+        let z = vec![0.0; pixels.len()];
+        let film = Film::from_pixels(fa.width(), fa.height(), pixels, z)
+            .ok_or_else(|| "difference image has the wrong size".to_string())?;
+        reyes_film::write(Path::new(out), &film).map_err(|e| e.to_string())?;
     }
     Ok(())
 }

@@ -194,7 +194,8 @@ impl<'a> Dicer<'a> {
         let camera = camera_motion.setup().clone();
         let shutter = ShutterTime::new(&scene.camera.shutter);
         let hider = &scene.hider;
-        let splitter = Splitter::new(&camera, frame, hider.shading_rate, hider.max_grid_size);
+        let splitter = Splitter::new(&camera, frame, hider.shading_rate, hider.max_grid_size)
+            .with_flatness(hider.flatness, hider.relative_flatness);
         let bucketer = Bucketer::new(frame, camera.lens(), camera.hither(), camera.yon());
         let csg = CsgSetup::new(scene);
         let rows = frame.buckets_y as usize;
@@ -252,7 +253,8 @@ impl<'a> Dicer<'a> {
             for surface in 0..motion.surface_count() {
                 dicer.stats.primitives += 1;
                 let poses = motion.poses(surface);
-                let patch = Patch::root();
+                let root = Patch::root();
+                let patch = root.with_extent(decide.extent(&poses, &root));
                 let (decision, top) = decide.decide_bound(&poses, &patch);
                 if decision == Decision::Cull {
                     dicer.stats.patches_culled += 1;
@@ -477,7 +479,7 @@ impl<'a> Dicer<'a> {
                     _ => {}
                 }
             }
-            Decision::Dice { nu, nv, limited } => {
+            Decision::Dice { nu, nv, limited, extra } => {
                 // Charge the grid before making it: a wave stops as soon as it is over.
                 let n = u64::from(nu) * u64::from(nv);
                 let before = self.charged.fetch_add(n, Ordering::Relaxed);
@@ -487,6 +489,7 @@ impl<'a> Dicer<'a> {
                 }
                 out.stats.grids += 1;
                 out.stats.depth_limited += u64::from(limited);
+                out.stats.flatness += u64::from(extra);
                 let (hither, yon) = (self.camera.hither(), self.camera.yon());
                 let mut em = Emitter::new(&self.bucketer, hither, yon, self.splitter.near());
                 em.dice(

@@ -145,6 +145,9 @@ pub struct DiceStats {
     pub depth_limited: u64,
     /// Grids diced.
     pub grids: u64,
+    /// Of the micropolygons diced, those the flatness rule (`hider.flatness`) added to what
+    /// the shading rate asked for: `nu * nv` minus the shading rate's grid, summed over grids.
+    pub flatness: u64,
     /// Micropolygons emitted (`mpolys.len()`).
     pub micropolygons: u64,
     /// Diced micropolygons dropped: a vertex nearer than hither/2 or not finite, entirely
@@ -170,6 +173,7 @@ impl DiceStats {
             patches_culled,
             depth_limited,
             grids,
+            flatness,
             micropolygons,
             culled,
             backfacing,
@@ -183,6 +187,7 @@ impl DiceStats {
         self.patches_culled += patches_culled;
         self.depth_limited += depth_limited;
         self.grids += grids;
+        self.flatness += flatness;
         self.micropolygons += micropolygons;
         self.backfacing += backfacing;
         self.culled += culled;

@@ -63,6 +63,9 @@ pub(crate) struct Patch {
     pub parent_count: u64,
     /// Consecutive splits down to this patch that did not make progress ([`STALL_RATIO`]).
     pub stalls: u32,
+    /// Raster extent of the whole primitive the patch was split from, the scale of the
+    /// relative flatness bound (infinite when unknown: the patch's own extent is used).
+    pub extent: f32,
 }
 
 impl Patch {
@@ -75,7 +78,13 @@ impl Patch {
             hither_splits: 0,
             parent_count: 0,
             stalls: 0,
+            extent: f32::INFINITY,
         }
+    }
+
+    /// The same patch as the root of a primitive of raster extent `extent`.
+    pub fn with_extent(self, extent: f32) -> Patch {
+        Patch { extent, ..self }
     }
 
     /// Parameter `k` of `n` equal steps across `range`, exact at both ends so that
@@ -130,8 +139,10 @@ pub(crate) enum Decision {
     /// Split it in half (`along_u`: halve the u range), `hither`: because it straddles hither;
     /// `count`: the micropolygons it would have been diced into (0 for a hither split).
     Split { along_u: bool, hither: bool, count: u64 },
-    /// Dice it into `nu x nv` micropolygons; `limited`: a split limit forced dicing.
-    Dice { nu: u32, nv: u32, limited: bool },
+    /// Dice it into `nu x nv` micropolygons; `limited`: a split limit forced dicing;
+    /// `extra`: of the `nu * nv`, those the flatness rule added to what the shading rate
+    /// asked for ([`Splitter::with_flatness`]).
+    Dice { nu: u32, nv: u32, limited: bool, extra: u32 },
 }
 
 /// The camera and frame facts the decisions need.
@@ -154,6 +165,11 @@ pub(crate) struct Splitter {
     /// Micropolygon side length in pixels: `sqrt(shading_rate)`.
     step: f32,
     max_grid: u64,
+    /// The flatness rule ([`Splitter::with_flatness`]): the largest distance in pixels
+    /// between a diced grid and the true surface, absolute and as a fraction of the
+    /// patch's raster extent (0: that bound is off).
+    flatness: f32,
+    relative_flatness: f32,
 }
 
 /// The test grid of a patch: camera-space points, row `j` (v) by column `i` (u).
@@ -210,7 +226,39 @@ impl Splitter {
             frustum,
             step: step(shading_rate),
             max_grid: u64::from(max_grid_size.max(1)),
+            flatness: 0.0,
+            relative_flatness: 0.0,
         }
+    }
+
+    /// The same decisions with the flatness rule: a grid is diced finely enough that every
+    /// point of the true surface lies within `min(flatness, relative * extent)` raster
+    /// pixels of the flat micropolygons, at every breakpoint and every lens position, where
+    /// `extent` is the patch's raster extent (see [`flat_counts`]). A bound of 0 is off; with
+    /// both off every decision is the shading rate's alone.
+    pub fn with_flatness(&self, flatness: f32, relative: f32) -> Splitter {
+        Splitter { flatness, relative_flatness: relative, ..self.clone() }
+    }
+
+    /// Raster extent of `patch` in `poses` for the relative flatness bound: the larger
+    /// side of its test points' raster bound, the smallest over the breakpoints (infinite
+    /// when some breakpoint has a point that is not in front of the eye).
+    pub fn extent(&self, poses: &[Pose<'_>], patch: &Patch) -> f32 {
+        let mut extent = f32::INFINITY;
+        for pose in poses {
+            let grid = self.test_grid(pose, patch);
+            let (mut lo, mut hi) = (Vec2::INFINITY, Vec2::NEG_INFINITY);
+            for p in grid.iter().flatten() {
+                if !(p.is_finite() && p.z >= self.near) {
+                    return f32::INFINITY;
+                }
+                let r = self.camera.eye_to_raster(*p);
+                lo = lo.min(r);
+                hi = hi.max(r);
+            }
+            extent = extent.min((hi - lo).max_element());
+        }
+        extent
     }
 
     /// The same decisions at another shading rate (an object's own `shading_rate`).
@@ -479,9 +527,14 @@ impl Splitter {
         }
         let count =
             |len: f32| ((f64::from(len) / f64::from(self.step)).ceil()).clamp(1.0, MAX_SIDE) as u64;
-        let (nu, nv) = (count(len_u), count(len_v));
+        let (shade_u, shade_v) = (count(len_u), count(len_v));
+        // The flatness rule, from the breakpoints the lengths came from.
+        let measured = if !on_screen.is_empty() { &on_screen[..] } else { facts };
+        let (flat_u, flat_v) = self.flat_counts(measured, patch, raster);
+        let (nu, nv) = (shade_u.max(flat_u), shade_v.max(flat_v));
         if nu * nv <= self.max_grid {
-            return Decision::Dice { nu: nu as u32, nv: nv as u32, limited: at_limit };
+            let extra = (nu * nv - shade_u * shade_v) as u32;
+            return Decision::Dice { nu: nu as u32, nv: nv as u32, limited: at_limit, extra };
         }
         let count = nu * nv;
         let stalled = stalls(patch.parent_count, count) && patch.stalls + 1 >= MAX_STALLS;
@@ -489,8 +542,149 @@ impl Splitter {
             return Decision::Split { along_u: len_u >= len_v, hither: false, count };
         }
         let (nu, nv) = clamp_grid(nu, nv, self.max_grid);
-        Decision::Dice { nu, nv, limited: true }
+        let (su, sv) = clamp_grid(shade_u, shade_v, self.max_grid);
+        let extra = (u64::from(nu) * u64::from(nv)).saturating_sub(u64::from(su) * u64::from(sv));
+        Decision::Dice { nu, nv, limited: true, extra: extra as u32 }
     }
+
+    /// Micropolygons per side `(nu, nv)` that the flatness rule asks for over the test grids
+    /// of `facts` (`(1, 1)` with the rule off), for points mapped to raster by `map`.
+    ///
+    /// A row of the diced grid is a polyline through points of the surface; between two of
+    /// them, `H` apart in the patch's parameter, the surface curve bulges from its chord by
+    /// at most `|f''| H^2 / 8` pixels, with `f''` its second derivative in raster. The test
+    /// points, `h = 1 / (TEST_N - 1)` apart, measure it: for three consecutive points
+    /// `a, b, c`, the distance `d` of `b` from the chord `ac` is `|f''| h^2 / 2` (the normal
+    /// part, as a bend; a curve whose image folds back on itself at a silhouette, so that
+    /// `b - a` and `c - b` point apart, is measured by half the whole second difference,
+    /// `|a - 2b + c| / 2 = |f''| h^2 / 2`, and the fold is then never missed, whichever side
+    /// of a test point it falls). Only the normal part of a straight image (a plane's rows under
+    /// perspective, bunched up but straight) counts for nothing, rightly: its flat
+    /// micropolygons are exact. So `n` micropolygons along the row keep the error within
+    /// `tol` when `d (TEST_N - 1)^2 / (4 n^2) <= tol`, where `tol` is the smaller of the
+    /// absolute bound and the relative one times the primitive's extent
+    /// ([`Patch::extent`]). With a lens, a point seen from lens
+    /// position `l` (`|l| <= 1`) moves by `l * coc(z)`: the bend is measured at the lens's
+    /// centre and around its rim, and the largest counts. The estimate is multiplied by [`FLAT_SAFETY`]
+    /// (an 8-point sampling of a full circle underestimates its curvature by 7%).
+    fn flat_counts(
+        &self,
+        facts: &[GridFacts<'_>],
+        patch: &Patch,
+        map: impl Fn(&Vec3) -> Option<Vec3>,
+    ) -> (u64, u64) {
+        if self.flatness <= 0.0 && self.relative_flatness <= 0.0 {
+            return (1, 1);
+        }
+        let (mut bend_u, mut bend_v) = (0.0_f32, 0.0_f32);
+        let mut extent = f32::INFINITY;
+        for f in facts {
+            let b = bends(f.grid, &map, self.lens.as_ref());
+            bend_u = bend_u.max(b.u);
+            bend_v = bend_v.max(b.v);
+            extent = extent.min(b.extent);
+        }
+        let mut tol = f32::INFINITY;
+        if self.flatness > 0.0 {
+            tol = self.flatness;
+        }
+        // The primitive's extent: the patch is part of a surface whose silhouette the
+        // relative bound is about (its own extent would tighten the bound split by split).
+        if patch.extent.is_finite() {
+            extent = patch.extent;
+        }
+        if self.relative_flatness > 0.0 && extent.is_finite() {
+            tol = tol.min(self.relative_flatness * extent);
+        }
+        // Below a millionth of a pixel nothing is measurable (and a point has no extent).
+        let tol = f64::from(tol.max(1e-6));
+        let need = |bend: f32| {
+            let n = (TEST_N - 1) as f64 * (FLAT_SAFETY * f64::from(bend) / (4.0 * tol)).sqrt();
+            if n.is_finite() { n.ceil().clamp(1.0, MAX_SIDE) as u64 } else { MAX_SIDE as u64 }
+        };
+        (need(bend_u), need(bend_v))
+    }
+}
+
+/// Factor on the measured bends of [`Splitter::flat_counts`].
+const FLAT_SAFETY: f64 = 1.25;
+
+/// Eight points of the lens's rim (unit radius) at which [`bends`] measures a defocused bend.
+const LENS_RIM: [[f32; 2]; 8] = [
+    [1.0, 0.0],
+    [std::f32::consts::FRAC_1_SQRT_2, std::f32::consts::FRAC_1_SQRT_2],
+    [0.0, 1.0],
+    [-std::f32::consts::FRAC_1_SQRT_2, std::f32::consts::FRAC_1_SQRT_2],
+    [-1.0, 0.0],
+    [-std::f32::consts::FRAC_1_SQRT_2, -std::f32::consts::FRAC_1_SQRT_2],
+    [0.0, -1.0],
+    [std::f32::consts::FRAC_1_SQRT_2, -std::f32::consts::FRAC_1_SQRT_2],
+];
+
+/// What [`bends`] measures of a test grid.
+struct Bends {
+    /// Largest bend `d` along a row (u) and along a column (v), in pixels.
+    u: f32,
+    v: f32,
+    /// Raster extent of the mapped points (the larger side of their bound; infinite when
+    /// none maps).
+    extent: f32,
+}
+
+/// The bends of a test grid in raster (see [`Splitter::flat_counts`]): points mapped by
+/// `map`, triples with an unmapped point skipped; with a `lens`, the largest bend over the
+/// lens's centre and [`LENS_RIM`].
+fn bends(grid: &TestGrid, map: impl Fn(&Vec3) -> Option<Vec3>, lens: Option<&LensSetup>) -> Bends {
+    let mapped = grid.map(|row| row.map(|p| map(&p).map(|r| (Vec2::new(r.x, r.y), p.z))));
+    // The bend of three raster points (see `Splitter::flat_counts`).
+    let bend3 = |a: Vec2, b: Vec2, c: Vec2| {
+        let (ab, bc, ac) = (b - a, c - b, c - a);
+        if ab.dot(bc) <= 0.0 || ac.length_squared() <= 0.0 {
+            0.5 * (a - 2.0 * b + c).length()
+        } else {
+            ab.perp_dot(ac).abs() / ac.length()
+        }
+    };
+    let bend = |a: Option<(Vec2, f32)>, b: Option<(Vec2, f32)>, c: Option<(Vec2, f32)>| {
+        let (Some((a, za)), Some((b, zb)), Some((c, zc))) = (a, b, c) else {
+            return 0.0;
+        };
+        let mut d = bend3(a, b, c);
+        if let Some(l) = lens {
+            // Seen from lens position `q` each point moves by `q * coc(z)`: the bend at the
+            // lens's centre and at eight points of its rim (a plane stays straight at every
+            // one, so a defocused plane is not diced finer for nothing).
+            let shift = |p: Vec2, z: f32, q: Vec2| {
+                let (cx, cy) = l.coc(z);
+                p + Vec2::new(q.x * cx, q.y * cy)
+            };
+            for q in LENS_RIM {
+                let q = Vec2::from(q);
+                d = d.max(bend3(shift(a, za, q), shift(b, zb, q), shift(c, zc, q)));
+            }
+        }
+        if d.is_finite() { d } else { f32::INFINITY }
+    };
+    let mut out = Bends { u: 0.0, v: 0.0, extent: f32::INFINITY };
+    let (mut lo, mut hi) = (Vec2::INFINITY, Vec2::NEG_INFINITY);
+    for j in 0..TEST_N {
+        for i in 0..TEST_N {
+            if let Some((r, _)) = mapped[j][i] {
+                lo = lo.min(r);
+                hi = hi.max(r);
+            }
+            if i + 2 < TEST_N {
+                out.u = out.u.max(bend(mapped[j][i], mapped[j][i + 1], mapped[j][i + 2]));
+            }
+            if j + 2 < TEST_N {
+                out.v = out.v.max(bend(mapped[j][i], mapped[j + 1][i], mapped[j + 2][i]));
+            }
+        }
+    }
+    if lo.x <= hi.x {
+        out.extent = (hi - lo).max_element();
+    }
+    out
 }
 
 /// True if a patch that would be diced into `count` micropolygons, split from a parent that

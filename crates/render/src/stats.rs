@@ -16,6 +16,8 @@ pub struct DiceSummary {
     pub splits: u64,
     /// Grids diced.
     pub grids: u64,
+    /// Micropolygons the flatness rule diced beyond the shading rate's grids.
+    pub flatness: u64,
     /// Micropolygons or patches culled.
     pub culled: u64,
     /// The most micropolygons held at once (lazy dicing keeps only the rows in flight).
@@ -183,12 +185,14 @@ impl RenderStats {
         );
         let _ = writeln!(
             s,
-            " Dicer: {} primitives, {} splits, {} grids, {} micropolygons, {} culled",
+            " Dicer: {} primitives, {} splits, {} grids, {} micropolygons, {} culled, {} diced \
+             for flatness",
             self.dice.primitives,
             self.dice.splits,
             self.dice.grids,
             self.micropolygons,
-            self.dice.culled
+            self.dice.culled,
+            self.dice.flatness
         );
         let _ = writeln!(
             s,

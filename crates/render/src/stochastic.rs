@@ -216,6 +216,7 @@ fn dice_summary(d: &DiceStats) -> DiceSummary {
         primitives: d.primitives,
         splits: d.splits,
         grids: d.grids,
+        flatness: d.flatness,
         culled: d.culled,
         peak_micropolygons: 0,
         eager: false,

@@ -73,6 +73,8 @@ fn the_full_example_parses_with_the_expected_values() {
             shading_rate: 1.0,
             seed: 0,
             max_grid_size: 256,
+            flatness: 0.05,
+            relative_flatness: 1.0 / 512.0,
             cull_back_faces: false,
             original: Original::default(),
         },

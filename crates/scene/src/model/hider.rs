@@ -29,6 +29,15 @@ pub struct Hider {
     pub seed: u64,
     /// Largest number of micropolygons in one diced grid; bigger primitives are split.
     pub max_grid_size: u32,
+    /// Geometric accuracy in raster pixels (>= 0; 0 turns the bound off): grids are diced
+    /// finely enough that the flat micropolygons lie within this distance of the true
+    /// surface, silhouettes included, whatever the shading rate (RenderMan's
+    /// `GeometricApproximation "flatness"`).
+    pub flatness: f32,
+    /// The same bound as a fraction of each patch's raster extent (>= 0; 0 is off); the
+    /// smaller of the two holds. What keeps small objects their true size: at 1/512 a disk's
+    /// polygon loses at most about 0.5% of its area, however small the disk.
+    pub relative_flatness: f32,
     /// Drop back-facing micropolygons of closed, opaque objects (RenderMan's `Sides 1`;
     /// pinhole cameras only): about half the micropolygons and sample tests of a scene of
     /// balls. Off by default, because the back faces also fill the cracks between grids
@@ -52,6 +61,8 @@ impl Default for Hider {
             shading_rate: 1.0,
             seed: 0,
             max_grid_size: 256,
+            flatness: 0.05,
+            relative_flatness: 1.0 / 512.0,
             cull_back_faces: false,
             original: Original::default(),
         }

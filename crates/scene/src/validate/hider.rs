@@ -3,7 +3,7 @@
 //!
 //! Invariant: reports at `hider.<field>` paths, as the source map spells them.
 
-use super::primitives::{Check, Interval, fail, int_in, positive, within};
+use super::primitives::{Check, Interval, UNIT, fail, int_in, non_negative, positive, within};
 use crate::filter::{self, FilterProblem};
 use crate::model::{Hider, HiderMethod, Scene};
 
@@ -30,6 +30,8 @@ pub(super) fn hider(h: &Hider, scene: &Scene) -> Check {
     if h.max_grid_size < 1 {
         return fail("hider.max_grid_size", format!("must be >= 1, got {}", h.max_grid_size));
     }
+    non_negative("hider.flatness", h.flatness)?;
+    within("hider.relative_flatness", h.relative_flatness, UNIT, "")?;
     Ok(())
 }
 
