@@ -244,11 +244,16 @@ impl<'a> Dicer<'a> {
                     leaf.is_some(),
                     dicer.camera.lens().is_none(),
                 );
-            // RenderMan's ShadingRate is an attribute: an object may dice at its own rate.
-            let splitter = object
-                .shading_rate
-                .filter(|&rate| rate != hider.shading_rate)
-                .map(|rate| dicer.splitter.with_shading_rate(rate));
+            // RenderMan's ShadingRate and flatness are attributes: an object may dice at its
+            // own rate and accuracy.
+            let rate = object.shading_rate.filter(|&rate| rate != hider.shading_rate);
+            let flatness = object.flatness.filter(|&f| f != hider.flatness);
+            let splitter = (rate.is_some() || flatness.is_some()).then(|| {
+                dicer
+                    .splitter
+                    .with_shading_rate(rate.unwrap_or(hider.shading_rate))
+                    .with_flatness(flatness.unwrap_or(hider.flatness), hider.relative_flatness)
+            });
             let decide = splitter.as_ref().unwrap_or(&dicer.splitter);
             for surface in 0..motion.surface_count() {
                 dicer.stats.primitives += 1;

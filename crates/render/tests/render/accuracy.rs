@@ -35,6 +35,17 @@ fn cell_areas(
     shading_rate: f32,
     flatness: Option<(f32, f32)>,
 ) -> Vec<f64> {
+    cell_areas_with(shape, extra, "", shading_rate, flatness)
+}
+
+/// [`cell_areas`] with `fields` (RON, each followed by a comma) in every object.
+fn cell_areas_with(
+    shape: &str,
+    extra: &str,
+    fields: &str,
+    shading_rate: f32,
+    flatness: Option<(f32, f32)>,
+) -> Vec<f64> {
     let size = CELLS * CELL;
     let half = size as f32 / 2.0;
     let mut rng = Uniform::new(0x5eed_0019);
@@ -46,7 +57,7 @@ fn cell_areas(
             let y = half - (j * CELL) as f32 - CELL as f32 / 2.0 + rng.range(-0.5, 0.5);
             objects.push_str(&format!(
                 "(shape: {shape}, transform: [{extra}Translate(({x}, {y}, 10.0))],
-                  material: Constant(color: (1.0, 1.0, 1.0))),\n"
+                  {fields} material: Constant(color: (1.0, 1.0, 1.0))),\n"
             ));
         }
     }
@@ -129,6 +140,19 @@ fn without_the_flatness_rule_small_spheres_shrink() {
         mean < exact * (1.0 - BOUND) - 3.0 * se,
         "area {mean:.4} of {exact:.4} without the rule"
     );
+}
+
+/// An object's own `flatness` (RenderMan's attribute) holds where the scene's is off.
+#[test]
+fn an_objects_own_flatness_holds() {
+    let r = 1.5_f64;
+    let exact = std::f64::consts::PI * r * r;
+    let shape = format!("Sphere(radius: {r})");
+    let off = Some((0.0, 0.0));
+    let (mean, se) = mean_se(&cell_areas_with(&shape, "", "flatness: Some(0.002),", 1.0, off));
+    assert!((mean / exact - 1.0).abs() <= BOUND && se / exact < BOUND / 3.0, "{mean} of {exact}");
+    let (mean, se) = mean_se(&cell_areas_with(&shape, "", "", 1.0, off));
+    assert!(mean < exact * (1.0 - BOUND) - 3.0 * se, "{mean} of {exact} without it");
 }
 
 #[test]

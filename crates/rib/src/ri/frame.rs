@@ -278,6 +278,23 @@ impl Machine {
                 self.attributes.shading_rate = rate;
                 Ok(())
             }
+            K::GeometricApproximation => {
+                let kind = r.string(0).unwrap_or("");
+                let value = r.float(1).unwrap_or(0.0);
+                if !value.is_finite() {
+                    return Err(r.error(format!("value must be finite, got {value}")));
+                }
+                if kind.eq_ignore_ascii_case("flatness") {
+                    if value < 0.0 {
+                        return Err(r.error(format!("flatness must be >= 0, got {value}")));
+                    }
+                    self.attributes.flatness = Some(value);
+                } else {
+                    let w = r.warning(format!("\"{kind}\" is not supported: ignored"));
+                    self.warn_once(format!("geometric approximation {kind}"), w);
+                }
+                Ok(())
+            }
             K::Sides => {
                 let n = r.int(0).unwrap_or(2);
                 if n != 1 && n != 2 {

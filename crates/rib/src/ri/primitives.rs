@@ -112,6 +112,7 @@ impl Machine {
         object.matte = a.matte;
         let attributes =
             ObjectAttributes { shading_rate: a.shading_rate, lights: a.lights_on.clone() };
+        object.flatness = a.flatness;
         if a.sides == 1 {
             let w = r.warning("Sides 1 is not supported yet: the primitive is two-sided");
             self.warn_once("sides 1", w);

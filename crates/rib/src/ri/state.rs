@@ -124,6 +124,8 @@ pub(crate) struct Attributes {
     pub opacity: [f32; 3],
     pub surface: SurfaceShader,
     pub shading_rate: f32,
+    /// `GeometricApproximation "flatness"`, when given (else the model's default).
+    pub flatness: Option<f32>,
     pub sides: i32,
     pub reverse_orientation: bool,
     pub matte: bool,
@@ -141,6 +143,7 @@ impl Default for Attributes {
             opacity: [1.0; 3],
             surface: SurfaceShader { name: None, params: Vec::new(), at: None },
             shading_rate: 1.0,
+            flatness: None,
             sides: 2,
             reverse_orientation: false,
             matte: false,

@@ -49,6 +49,7 @@ fn cases() -> Vec<(&'static str, String)> {
         ("shutter closing before it opens", "Shutter 1 0 Projection \"perspective\" WorldBegin Sphere 1 -1 1 360 WorldEnd".into()),
         ("focal distance behind the lens", "DepthOfField 2.8 1 -3 Projection \"perspective\" WorldBegin Sphere 1 -1 1 360 WorldEnd".into()),
         ("shading rate zero", w("ShadingRate 0")),
+        ("negative flatness", w("GeometricApproximation \"flatness\" -1")),
         ("three sides", w("Sides 3")),
         ("unknown orientation", w("Orientation \"sideways\"")),
         ("skew of parallel vectors", w("Skew 30 1 0 0 2 0 0")),

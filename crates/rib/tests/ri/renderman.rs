@@ -86,6 +86,22 @@ fn shading_rate_and_light_sets_are_per_object() {
     assert_eq!(lights, [Some(vec![0, 1]), Some(vec![0, 2]), Some(vec![0, 1]), None]);
 }
 
+#[test]
+fn geometric_approximation_flatness_is_per_object() {
+    let s = scene(&world(
+        "Sphere 1 -1 1 360
+         AttributeBegin
+           GeometricApproximation \"flatness\" 0.5
+           Sphere 1 -1 1 360
+           GeometricApproximation \"motionfactor\" 1
+           Sphere 1 -1 1 360
+         AttributeEnd
+         Sphere 1 -1 1 360",
+    ));
+    let flatness: Vec<Option<f32>> = s.objects.iter().map(|o| o.flatness).collect();
+    assert_eq!(flatness, [None, Some(0.5), Some(0.5), None]);
+}
+
 /// `U M G M^T V^T` of the Specification at `(u, v)`, written out for one coordinate: `m` as
 /// RtBasis stores it (rows), `g` the 4 x 4 control values, `g[j][i]` at u-index i, v-index j.
 fn spec_patch(m: &[[f64; 4]; 4], g: &[[f64; 4]; 4], u: f64, v: f64) -> f64 {

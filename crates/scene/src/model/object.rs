@@ -62,6 +62,11 @@ pub struct Object {
     /// pixels (> 0) for its split and dice decisions. `None`: the scene's `hider.shading_rate`.
     #[serde(default)]
     pub shading_rate: Option<f32>,
+    /// RenderMan's `GeometricApproximation "flatness"` as an attribute of this object: the
+    /// geometric accuracy in pixels (>= 0) of its dicing. `None`: the scene's
+    /// `hider.flatness`.
+    #[serde(default)]
+    pub flatness: Option<f32>,
     /// The lights that illuminate this object (RenderMan's `Illuminate` and attribute-scoped
     /// lights): indices into `Scene::lights`, each at most once, ambient lights included.
     /// `None`: every light of the scene.
@@ -103,6 +108,7 @@ impl Object {
             pattern: None,
             roll: None,
             shading_rate: None,
+            flatness: None,
             lights: None,
         }
     }

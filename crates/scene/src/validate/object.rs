@@ -8,8 +8,8 @@
 use super::keys::keys;
 use super::material::material;
 use super::primitives::{
-    Check, UNIT, fail, finite_all, finite_each, int_in, nonzero_vector, positive, spread, unit_rgb,
-    within,
+    Check, UNIT, fail, finite_all, finite_each, int_in, non_negative, nonzero_vector, positive,
+    spread, unit_rgb, within,
 };
 use super::shape::{shape, transforms};
 use crate::model::{Object, Pattern, Roll, Shape, Shutter, Transform};
@@ -41,6 +41,9 @@ pub(super) fn object(at: &str, object: &Object, shutter: &Shutter, lights: usize
     }
     if let Some(rate) = object.shading_rate {
         positive(&format!("{at}.shading_rate"), rate)?;
+    }
+    if let Some(flatness) = object.flatness {
+        non_negative(&format!("{at}.flatness"), flatness)?;
     }
     if let Some(set) = &object.lights {
         light_set(&format!("{at}.lights"), set, lights)?;

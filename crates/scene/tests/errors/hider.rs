@@ -19,6 +19,9 @@ pub(crate) const CASES: &[Case] = &[
     Case { name: "unknown RenderMan filter", from: "Gaussian", to: "RiLanczos", field: "hider.filter.kind", at: Some((4, 49)) },
     Case { name: "bucket size 0", from: "(4, 4),", to: "(4, 4), bucket_size: (0, 16),", field: "hider.bucket_size[0]", at: Some((4, 48)) },
     Case { name: "shading rate 0", from: "(4, 4),", to: "(4, 4), shading_rate: 0.0,", field: "hider.shading_rate", at: Some((4, 48)) },
+    Case { name: "flatness negative", from: "(4, 4),", to: "(4, 4), flatness: -0.1,", field: "hider.flatness", at: Some((4, 44)) },
+    Case { name: "flatness NaN", from: "(4, 4),", to: "(4, 4), flatness: NaN,", field: "hider.flatness", at: Some((4, 44)) },
+    Case { name: "relative flatness above 1", from: "(4, 4),", to: "(4, 4), relative_flatness: 2.0,", field: "hider.relative_flatness", at: Some((4, 53)) },
     Case { name: "max grid size 0", from: "(4, 4),", to: "(4, 4), max_grid_size: 0,", field: "hider.max_grid_size", at: Some((4, 49)) },
     // Added with the hardening of #20.
     Case { name: "jitter not a bool", from: "(4, 4),", to: "(4, 4), jitter: 1,", field: "hider.jitter", at: Some((4, 42)) },

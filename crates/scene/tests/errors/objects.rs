@@ -42,6 +42,7 @@ pub(crate) const CASES: &[Case] = &[
     Case { name: "deformation of a nurbs with 3 points", from: "Sphere(radius: 1.0)", to: "NuPatch(nu: 2, uorder: 2, uknot: [0.0, 0.0, 1.0, 1.0], umin: 0.0, umax: 1.0, nv: 2, vorder: 2, vknot: [0.0, 0.0, 1.0, 1.0], vmin: 0.0, vmax: 1.0, points: [(0.0, 0.0, 0.0, 1.0), (1.0, 0.0, 0.0, 1.0), (0.0, 1.0, 0.0, 1.0), (1.0, 1.0, 0.0, 1.0)]), deform: [(time: 0.0, points: [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (1.0, 1.0, 0.0)]), (time: 1.0, points: [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)])]", field: "objects[0].deform[1].points", at: Some((7, 392)) },
     Case { name: "object shading rate 0", from: "material:", to: "shading_rate: Some(0.0), material:", field: "objects[0].shading_rate", at: Some((7, 62)) },
     Case { name: "object shading rate negative", from: "material:", to: "shading_rate: Some(-0.5), material:", field: "objects[0].shading_rate", at: Some((7, 62)) },
+    Case { name: "object flatness negative", from: "material:", to: "flatness: Some(-1.0), material:", field: "objects[0].flatness", at: Some((7, 58)) },
     Case { name: "object shading rate NaN", from: "material:", to: "shading_rate: Some(NaN), material:", field: "objects[0].shading_rate", at: Some((7, 62)) },
     Case { name: "light set index out of range", from: "material:", to: "lights: Some([0, 2]), material:", field: "objects[0].lights[1]", at: Some((7, 65)) },
     Case { name: "light set with a light twice", from: "material:", to: "lights: Some([1, 0, 1]), material:", field: "objects[0].lights[2]", at: Some((7, 68)) },
