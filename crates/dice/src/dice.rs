@@ -7,7 +7,9 @@
 //! shutter open (time 0) and are the same in every segment. For a segment `[t_a, t_b]` an
 //! emitted micropolygon has `v` = the positions at `t_a`, `speed` = positions at `t_b` minus
 //! those at `t_a`, `time = [t_a, t_b]`, and `MOVING` iff some speed is non-zero or the segment
-//! is not the whole shutter; every vertex is finite with `z >= hither/2` at both ends; it is
+//! is not the whole shutter (a moving cell that comes nearer than `hither/2` during its
+//! segment is emitted over the part of it in front of that, from positions between
+//! breakpoints: see `Emitter::in_front`); every vertex is finite with `z >= hither/2` at both ends; it is
 //! not entirely in front of hither at both ends nor entirely beyond yon at both ends; it
 //! carries `HITHER_YON_CROSSING` iff some vertex is outside `[hither, yon]` at either end;
 //! and it touches at least one bucket. Consecutive segments over which a micropolygon does
@@ -99,6 +101,10 @@ struct Kept {
 /// [`Kept::to`] of a micropolygon that does not move.
 const STILL: u32 = u32::MAX;
 
+/// Tag of [`Kept::from`] and [`Kept::to`] naming an entry of [`Grid::extra`] (positions at a
+/// time between breakpoints) rather than a breakpoint.
+const EXTRA: u32 = 1 << 31;
+
 /// A diced grid, stored compactly: its vertices once (each is shared by up to four
 /// micropolygons) and a short record per kept micropolygon, from which
 /// [`Grid::micropolygon`] builds the record the hider reads, bit for bit the one the dicer
@@ -118,6 +124,14 @@ pub(crate) struct Grid {
     labels: Labels,
     /// Kept micropolygons, in emission order (cell order, then time order).
     kept: Vec<Kept>,
+    /// Camera-space position of vertex `c` at breakpoint `b`, `cam[b * count + c]`, kept
+    /// only for a moving grid some vertex of which comes nearer than `near` at some
+    /// breakpoint (else empty): what [`Emitter::emit`] needs to keep the part of a
+    /// micropolygon's motion in front of the eye.
+    cam: Vec<Vec3>,
+    /// Cell positions at times between breakpoints (where such a micropolygon's kept part
+    /// of its segment begins or ends), named by `EXTRA | index` in [`Kept`].
+    extra: Vec<Quad>,
 }
 
 impl Grid {
@@ -132,6 +146,8 @@ impl Grid {
         self.trans.shrink_to_fit();
         self.pos.shrink_to_fit();
         self.kept.shrink_to_fit();
+        self.cam = Vec::new();
+        self.extra.shrink_to_fit();
     }
 
     /// Corner vertices of cell `cell`: `(i,j), (i+1,j), (i+1,j+1), (i,j+1)`.
@@ -149,6 +165,12 @@ impl Grid {
         self.corners(cell).map(|c| self.pos[base + c])
     }
 
+    /// The positions a [`Kept`] end names: breakpoint `b`, or an entry of `extra`.
+    #[inline]
+    fn end(&self, cell: u32, b: u32) -> Quad {
+        if b & EXTRA != 0 { self.extra[(b & !EXTRA) as usize] } else { self.quad(cell, b) }
+    }
+
     /// Kept micropolygon `k`.
     #[inline]
     pub fn micropolygon(&self, k: usize) -> Micropolygon {
@@ -158,10 +180,10 @@ impl Grid {
     #[inline]
     fn build(&self, m: &Kept) -> Micropolygon {
         let corners = self.corners(m.cell);
-        let from = self.quad(m.cell, m.from);
+        let from = self.end(m.cell, m.from);
         let mut speed = [[0.0_f32; 3]; 4];
         if m.to != STILL {
-            let to = self.quad(m.cell, m.to);
+            let to = self.end(m.cell, m.to);
             for (s, (p, q)) in speed.iter_mut().zip(from.iter().zip(&to)) {
                 *s = [q[0] - p[0], q[1] - p[1], q[2] - p[2]];
             }
@@ -206,6 +228,8 @@ pub(crate) struct Emitter<'b> {
     /// The grid's winding sign when its back faces may be culled: a cell is front-facing
     /// where `sign * (raster signed area) > 0` ([`Emitter::calibrate`]).
     cull: Option<f32>,
+    /// The camera, while emitting a grid that comes near the eye ([`Grid::cam`]).
+    camera: Option<CameraSetup>,
 }
 
 impl<'b> Emitter<'b> {
@@ -220,6 +244,8 @@ impl<'b> Emitter<'b> {
                 pos: Vec::new(),
                 labels: Labels { flags: 0, csg_tree: 0, csg_node: 0, glass_opacity: 0.0 },
                 kept: Vec::new(),
+                cam: Vec::new(),
+                extra: Vec::new(),
             },
             ranges: Vec::new(),
             bucketer,
@@ -232,6 +258,7 @@ impl<'b> Emitter<'b> {
             moving: 0,
             backfacing: 0,
             cull: None,
+            camera: None,
         }
     }
 
@@ -263,6 +290,9 @@ impl<'b> Emitter<'b> {
         g.pos.reserve_exact(count * poses.len());
         g.kept.clear();
         g.kept.reserve_exact(nu * nv);
+        g.cam.clear();
+        g.extra.clear();
+        let moving = poses.len() > 1;
         self.ranges.clear();
         self.ranges.reserve_exact(nu * nv);
         let project = |p_camera: Vec3| {
@@ -319,14 +349,25 @@ impl<'b> Emitter<'b> {
                         g.pos.push(project(p_camera));
                         g.color.push(color);
                         g.trans.push(trans);
+                        if moving {
+                            g.cam.push(p_camera);
+                        }
                     } else {
                         let p_object = pose.surface.position(u, v);
-                        g.pos.push(project(pose.moment.world_and_camera(p_object).1));
+                        let p_camera = pose.moment.world_and_camera(p_object).1;
+                        g.pos.push(project(p_camera));
+                        g.cam.push(p_camera);
                     }
                 }
             }
         }
         self.cull = if object.cull_back { self.calibrate(&cosines) } else { None };
+        // Camera-space positions are needed only where some vertex comes near the eye.
+        if self.grid.cam.iter().all(|p| p.z >= self.near) {
+            self.grid.cam = Vec::new();
+        } else {
+            self.camera = Some(camera.clone());
+        }
         let mut quads = std::mem::take(&mut self.quads);
         for cell in 0..(nu * nv) as u32 {
             let v = self.grid.quad(cell, 0);
@@ -445,6 +486,60 @@ impl<'b> Emitter<'b> {
         })
     }
 
+    /// The part of cell `cell`'s motion from breakpoint `from` to breakpoint `to` (over
+    /// `time`) during which every vertex is at least `near` in front of the eye: its
+    /// positions at the start and end of that part and the part's times, or `None` if there
+    /// is no such part (or a position is not finite). Camera-space positions move linearly
+    /// between breakpoints, so each vertex is in front of `near` over one interval of the
+    /// segment, and all four over the intersection of theirs.
+    fn in_front(
+        &self,
+        cell: u32,
+        from: u32,
+        to: u32,
+        time: [f32; 2],
+    ) -> Option<(Quad, Quad, [f32; 2])> {
+        let g = &self.grid;
+        let count = g.count as usize;
+        let corners = g.corners(cell);
+        let at = |b: u32| corners.map(|c| g.cam[b as usize * count + c]);
+        let (p, q) = (at(from), at(to));
+        let (mut lo, mut hi) = (0.0_f32, 1.0_f32);
+        for (p, q) in p.iter().zip(&q) {
+            if !(p.is_finite() && q.is_finite()) {
+                return None;
+            }
+            match (p.z >= self.near, q.z >= self.near) {
+                (true, true) => {}
+                (false, false) => return None,
+                // Where z(s) = p.z + s (q.z - p.z) reaches `near`.
+                (true, false) => hi = hi.min((p.z - self.near) / (p.z - q.z)),
+                (false, true) => lo = lo.max((self.near - p.z) / (q.z - p.z)),
+            }
+        }
+        // A part too short to hold a sample time is not worth a record.
+        if hi - lo <= 1e-6 || hi.is_nan() || lo.is_nan() {
+            return None;
+        }
+        let project = |s: f32| {
+            let mut quad = [[0.0_f32; 3]; 4];
+            for (k, (p, q)) in p.iter().zip(&q).enumerate() {
+                let c = crate::motion::lerp(*p, *q, s);
+                // Rounding may leave a vertex a hair nearer than `near` at the crossing.
+                let c = Vec3::new(c.x, c.y, c.z.max(self.near));
+                let r = self.camera.as_ref()?.eye_to_raster(c);
+                if !r.is_finite() {
+                    return None;
+                }
+                quad[k] = [r.x, r.y, c.z];
+            }
+            Some(quad)
+        };
+        let span = time[1] - time[0];
+        let t = [time[0] + lo * span, if hi >= 1.0 { time[1] } else { time[0] + hi * span }];
+        Some((project(lo)?, project(hi)?, t))
+    }
+
     /// Classify one micropolygon of cell `cell` over its segment `time` (at breakpoint
     /// `from` at the start, at `to` at the end, or at `from` throughout when `to` is `None`)
     /// against the depth limits and buckets, and keep it or drop it.
@@ -460,8 +555,26 @@ impl<'b> Emitter<'b> {
             }
         }
         usable &= zmax.is_finite();
+        if !usable {
+            // A moving micropolygon that comes nearer than `near` (or passes behind the
+            // eye) during its segment keeps the part of the segment it is in front of it.
+            if let Some((to_b, _)) = to
+                && from.0 & EXTRA == 0
+                && !self.grid.cam.is_empty()
+                && let Some((a, b, t)) = self.in_front(cell, from.0, to_b, time)
+            {
+                let ia = EXTRA | self.grid.extra.len() as u32;
+                self.grid.extra.push(a);
+                let ib = EXTRA | self.grid.extra.len() as u32;
+                self.grid.extra.push(b);
+                self.emit(cell, (ia, &a), Some((ib, &b)), t);
+                return;
+            }
+            self.culled += 1;
+            return;
+        }
         // All in front of hither, or all beyond yon, at both ends.
-        if !usable || zmax < self.hither || zmin > self.yon {
+        if zmax < self.hither || zmin > self.yon {
             self.culled += 1;
             return;
         }

@@ -27,8 +27,7 @@
 //!   point and up before building the basis, deformation keys lerp control points.
 //! * **Bound.** A patch is judged on an 8x8 test grid of camera-space points per breakpoint.
 //!   It is culled if at every breakpoint all test points are in front of hither, or at every
-//!   one all are beyond yon, or every segment between breakpoints has an end where all are
-//!   nearer than `hither / 2` (its micropolygons would all be dropped), or (when all are in
+//!   one all are beyond yon, or (when all are in
 //!   front of the eye) the union over the breakpoints of its projected bounds misses the
 //!   bucket grid, or (pinhole camera, some points at or behind the eye) at every breakpoint
 //!   all points lie outside the same side plane of the view frustum (through the eye for a
@@ -40,10 +39,12 @@
 //!   A bicubic patch-mesh sub-patch or NURBS span (a rational Bezier patch) also bounds each
 //!   piece by its control hull, which encloses it whatever its curvature.
 //! * **Split.** A patch straddling hither at any breakpoint (some test z below it, not all)
-//!   is halved along its longer camera-space direction, at most 20 times; then it is diced
+//!   is halved along its longer camera-space direction, at most 12 times; then it is diced
 //!   anyway. Otherwise the longest projected row and column over all breakpoints give
 //!   `nu = ceil(len_u / sqrt(rate))`, `nv` likewise (so the grid is near the shading rate at
-//!   every time), `rate` the object's own `shading_rate` or else `hider.shading_rate`;
+//!   every time), `rate` the object's own `shading_rate` or else `hider.shading_rate`, or
+//!   more where the flatness rule asks for more (`Splitter::with_flatness`: the grid within
+//!   `min(flatness, relative_flatness * extent)` pixels of the true surface);
 //!   above `max_grid_size` micropolygons the patch is halved along the longer projected
 //!   direction (at most 40 splits deep, beyond which the grid is shrunk). One decision holds
 //!   for every breakpoint, so all times share one grid topology.
@@ -57,8 +58,13 @@
 //!   micropolygon still over the whole shutter is one record with time `[0, 1]` and zero
 //!   speed, so a still scene diced exactly as before motion existed.
 //!
-//! Eye plane: no vertex with `z <= 0` is projected. A micropolygon with a vertex nearer
-//! than `hither / 2` (at either end of its segment) is dropped for that segment: the hider's `bounddof` assumes nothing nearer, splitting
+//! Eye plane: no vertex with `z <= 0` is projected. A still micropolygon with a vertex nearer
+//! than `hither / 2` is dropped; a moving one keeps the part of its segment during which
+//! every vertex is at least `hither / 2` deep (camera-space positions move linearly, so that
+//! is one interval, computed exactly from the camera-space positions the grid keeps for
+//! grids that come near the eye), as a micropolygon over that part of the shutter whose
+//! ends are the projections of the moving points: an object passing the eye keeps what is
+//! seen of it in front of hither. Below `hither / 2` the hider's `bounddof` assumes nothing nearer, splitting
 //! has made such quads tiny in parameter space, and at `z < hither/2` a micropolygon that
 //! also reaches past hither would span a depth range huge compared to its size, i.e. it is
 //! seen nearly edge-on and covers almost nothing. One with some vertex outside

@@ -388,10 +388,10 @@ impl Splitter {
         // Breakpoints ending a segment some micropolygon may be seen in; only they count.
         let mut live = vec![false; per_time.len()];
         if let [one] = per_time.as_slice() {
-            live[0] = !self.unseen(one.as_ref(), one.as_ref(), false);
+            live[0] = !self.unseen(one.as_ref(), one.as_ref());
         } else {
             for (k, w) in per_time.windows(2).enumerate() {
-                if !self.unseen(w[0].as_ref(), w[1].as_ref(), true) {
+                if !self.unseen(w[0].as_ref(), w[1].as_ref()) {
                     live[k] = true;
                     live[k + 1] = true;
                 }
@@ -453,22 +453,22 @@ impl Splitter {
     }
 
     /// True if no micropolygon of the segment from test grid `a` to test grid `b` (the same
-    /// grid for a still patch; `segment` false) can be kept and touch a bucket, even
-    /// allowing for bulges between test points. A kept micropolygon has usable vertices at
-    /// both ends (for a segment: none nearer than `near`), is not all in front of hither at
-    /// both ends nor all beyond yon at both ends, and moves linearly in raster space and
-    /// depth, so it stays within the union of its two end bounds.
-    fn unseen(&self, a: Option<&GridFacts<'_>>, b: Option<&GridFacts<'_>>, segment: bool) -> bool {
+    /// grid for a still patch) can be kept and touch a bucket, even
+    /// allowing for bulges between test points. A kept micropolygon is not all in front of
+    /// hither at both ends nor all beyond yon at both ends (its camera-space points move
+    /// linearly, so it is then so throughout), and moves linearly in raster space and depth
+    /// between its two end bounds. A moving one that comes nearer than `near` keeps the part
+    /// of its segment in front of it (the emitter's `in_front`), whose ends lie between the
+    /// segment's: so a segment with one end entirely near the eye, or behind it, may still
+    /// be seen (an object passing the eye during the shutter).
+    fn unseen(&self, a: Option<&GridFacts<'_>>, b: Option<&GridFacts<'_>>) -> bool {
         let (Some(a), Some(b)) = (a, b) else {
             return true;
         };
         let mz = |f: &GridFacts<'_>| MARGIN_FRACTION * (f.hi.z - f.lo.z);
         let nearer = |f: &GridFacts<'_>, depth: f32| f.hi.z + mz(f) < depth;
         let beyond = |f: &GridFacts<'_>| f.lo.z - mz(f) > self.yon;
-        if (segment && (nearer(a, self.near) || nearer(b, self.near)))
-            || (nearer(a, self.hither) && nearer(b, self.hither))
-            || (beyond(a) && beyond(b))
-        {
+        if (nearer(a, self.hither) && nearer(b, self.hither)) || (beyond(a) && beyond(b)) {
             return true;
         }
         // Screen: the margin-grown raster bounds of both ends miss the bucket grid.

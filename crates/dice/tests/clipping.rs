@@ -121,3 +121,55 @@ fn sphere_around_the_eye_is_cut_at_hither() {
         }
     }
 }
+
+/// A square facing the camera, moving from depth 2 straight through the eye to depth -2
+/// over the shutter (camera-space z = 2 - 4t at every vertex): every micropolygon keeps the
+/// part of the shutter during which it is at least hither / 2 deep, `t` in
+/// `[0, (2 - hither / 2) / 4]`, ending exactly there at depth hither / 2 and at its true
+/// position (the perspective image of the linearly moving point), with no vertex nearer.
+/// (Before, the dicer dropped every micropolygon whose vertices came nearer than hither / 2
+/// at either end of its segment: the whole square.)
+#[test]
+fn a_patch_moving_through_the_eye_keeps_its_part_in_front() {
+    let pts = [[-0.5, -0.5, 0.0], [0.5, -0.5, 0.0], [-0.5, 0.5, 0.0], [0.5, 0.5, 0.0]];
+    let mut o = object(Shape::BilinearPatch { points: pts }, vec![]);
+    o.motion = vec![
+        reyes_scene::TransformKey {
+            time: 0.0,
+            transform: vec![Transform::Translate([0.0, 0.0, 2.0])],
+        },
+        reyes_scene::TransformKey {
+            time: 1.0,
+            transform: vec![Transform::Translate([0.0, 0.0, -2.0])],
+        },
+    ];
+    let mut cam = camera_ahead(90.0, None);
+    cam.shutter = reyes_scene::Shutter { open: 0.0, close: 1.0, ..reyes_scene::Shutter::default() };
+    let s = scene(64, 64, cam, vec![o]);
+    let near = 0.5 * s.camera.hither;
+    let end = (2.0 - near) / 4.0;
+    let (d, _) = dice(&s);
+    assert!(!d.mpolys.is_empty(), "{:?}", d.stats);
+    let cam = CameraSetup::new(&s);
+    for mp in &d.mpolys {
+        assert!(mp.has(flags::MOVING));
+        assert_eq!(mp.time[0], 0.0);
+        assert!((mp.time[1] - end).abs() < 1e-5, "time {:?}, expected [0, {end}]", mp.time);
+        for (v, s) in mp.v.iter().zip(&mp.speed) {
+            assert_eq!(v[2], 2.0, "depth at open");
+            let z1 = v[2] + s[2];
+            // (`v + speed` rounds: the stored end is `near`, the sum within an ulp of 2.)
+            assert!((z1 - near).abs() < 1e-6, "depth {z1} at the end");
+            // The end position is the projection of the point at depth `near`: the point's
+            // camera x, y do not change (it moves along z), so raster scales by 2 / near
+            // about the centre.
+            let centre = cam.raster_centre();
+            for a in 0..2 {
+                let c = [centre.x, centre.y][a];
+                let want = c + (v[a] - c) * 2.0 / near;
+                let got = v[a] + s[a];
+                assert!((got - want).abs() <= 1e-3 * want.abs().max(1.0), "{got} vs {want}");
+            }
+        }
+    }
+}
