@@ -3,7 +3,8 @@
 //! `cargo xtask bench` (time the benchmark scenes), `cargo xtask scaling` (peak memory of
 //! `heavy-motion` as its sphere count grows) and `cargo xtask study` (regenerate the
 //! sampling study's figures in docs/study/), `cargo xtask fuzz` (build the fuzzer with
-//! coverage instrumentation and run it; see docs/reliability.md).
+//! coverage instrumentation and run it; see docs/reliability.md), `cargo xtask geometry`
+//! (the coverage of small spheres against their radius, docs/geometry.md).
 
 mod bench;
 mod compare;
@@ -16,7 +17,7 @@ use reyes_testkit::golden::{self, Outcome};
 
 fn usage() -> ExitCode {
     eprintln!(
-        "usage: cargo xtask <golden | bless [SCENE...] | bench [--runs N] [--threads T] [--baseline BIN] [SCENE...] | scaling [--threads T] [N...] | study [--quick] | compare A.exr B.exr | fuzz [--execs N] [--renders N] [--targets ron,rib,render] [--seed S] [--save] [--time-limit SECS] | fuzz cmin>"
+        "usage: cargo xtask <golden | bless [SCENE...] | bench [--runs N] [--threads T] [--baseline BIN] [SCENE...] | scaling [--threads T] [N...] | study [--quick] | geometry [--quick] | compare A.exr B.exr [--diff OUT.png] | fuzz [--execs N] [--renders N] [--targets ron,rib,render] [--seed S] [--save] [--time-limit SECS] | fuzz cmin>"
     );
     ExitCode::from(2)
 }
@@ -56,6 +57,15 @@ fn main() -> ExitCode {
             Ok(()) => ExitCode::SUCCESS,
             Err(e) => {
                 eprintln!("xtask fuzz: {e}");
+                ExitCode::FAILURE
+            }
+        };
+    }
+    if args.first().map(String::as_str) == Some("geometry") {
+        return match study::geometry::run(&root, &args[1..]) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(e) => {
+                eprintln!("xtask geometry: {e}");
                 ExitCode::FAILURE
             }
         };

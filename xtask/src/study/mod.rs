@@ -18,6 +18,7 @@ use plotters::prelude::*;
 use plotters::style::{FontStyle, register_font};
 mod edges;
 mod figures;
+pub mod geometry;
 mod patterns;
 
 use edges::{EdgeCase, EdgeStudy, Measured, fit_slope};

@@ -1,13 +1,10 @@
 //! Geometry keeps its true size: small objects cover their exact projected area whatever the
 //! shading rate (the dicer's flatness rule, `hider.flatness` and `hider.relative_flatness`).
 //!
-//! Each test renders a field of copies of one small shape under an orthographic camera
-//! whose screen window makes one world unit one pixel, one copy per 16 x 16 pixel cell at
-//! a pseudo-random sub-pixel offset, white and `Constant`, with 8 x 8 samples and a 1-pixel
-//! box filter. With that filter every sample counts in exactly one pixel with weight 1/64,
-//! so a cell's summed alpha is the fraction of its samples that see the shape times the
-//! cell's area: an unbiased estimate of the shape's projected area (stratified sampling
-//! never biases coverage). The mean over the cells is compared with the exact area.
+//! Each test renders a field of 256 copies of one small shape (`reyes_testkit::coverage`):
+//! one per 16 x 16 pixel cell, orthographic, 8 x 8 samples, a 1-pixel box filter, so each
+//! cell's summed alpha is an unbiased estimate of the shape's projected area (stratified
+//! sampling never biases coverage). The mean over the cells is compared with the exact area.
 //!
 //! Tolerance: the issue's bound, 2% of the area. The estimate's own noise must be well
 //! inside it for the comparison to mean anything, so each test also measures the standard
@@ -19,75 +16,29 @@
 //! 2% / 3.
 
 use reyes_render::{RenderOptions, render};
-use reyes_testkit::fixtures::parse;
-use reyes_testkit::random::Uniform;
+use reyes_testkit::coverage::{Field, mean_se};
 
-/// Cells across and down, and the cell size in pixels.
-const CELLS: u32 = 16;
-const CELL: u32 = 16;
-
-/// Summed alpha of each cell of a field of `shape` (RON, with its own `transform` list
-/// entries `extra`, each followed by a comma, applied before the translation to the cell), at `shading_rate`, with the
-/// flatness rule as given (`None`: the defaults).
-fn cell_areas(
-    shape: &str,
-    extra: &str,
-    shading_rate: f32,
-    flatness: Option<(f32, f32)>,
-) -> Vec<f64> {
-    cell_areas_with(shape, extra, "", shading_rate, flatness)
-}
-
-/// [`cell_areas`] with `fields` (RON, each followed by a comma) in every object.
+/// Summed alpha of each cell of a 16 x 16 field of `shape` (after the RON transforms
+/// `transform`, with the RON object fields `fields`) at `shading_rate`, with the flatness
+/// rule as given (`None`: the defaults).
 fn cell_areas_with(
     shape: &str,
-    extra: &str,
+    transform: &str,
     fields: &str,
     shading_rate: f32,
     flatness: Option<(f32, f32)>,
 ) -> Vec<f64> {
-    let size = CELLS * CELL;
-    let half = size as f32 / 2.0;
-    let mut rng = Uniform::new(0x5eed_0019);
-    let mut objects = String::new();
-    for j in 0..CELLS {
-        for i in 0..CELLS {
-            // Cell centre in screen units (= pixels), plus an offset of up to a pixel.
-            let x = (i * CELL) as f32 + CELL as f32 / 2.0 - half + rng.range(-0.5, 0.5);
-            let y = half - (j * CELL) as f32 - CELL as f32 / 2.0 + rng.range(-0.5, 0.5);
-            objects.push_str(&format!(
-                "(shape: {shape}, transform: [{extra}Translate(({x}, {y}, 10.0))],
-                  {fields} material: Constant(color: (1.0, 1.0, 1.0))),\n"
-            ));
-        }
-    }
     let flat = flatness
         .map_or(String::new(), |(abs, rel)| format!("flatness: {abs}, relative_flatness: {rel},"));
-    let scene = parse(&format!(
-        "Scene(image: (width: {size}, height: {size}),
-           camera: (eye: (0.0, 0.0, 0.0), look_at: (0.0, 0.0, 1.0), projection: Orthographic,
-                    screen_window: Some(({l}, {half}, {l}, {half})), hither: 0.1, yon: 100.0),
-           hider: (pixel_samples: (8, 8), filter: (kind: Box, width: 1.0), seed: 19,
-                   shading_rate: {shading_rate}, {flat}),
-           objects: [{objects}])",
-        l = -half
-    ));
-    let film = render(&scene, &RenderOptions::default()).unwrap().film;
-    let rgba = film.rgba();
-    let mut cells = vec![0.0_f64; (CELLS * CELLS) as usize];
-    for (k, p) in rgba.iter().enumerate() {
-        let (x, y) = (k as u32 % size, k as u32 / size);
-        cells[((y / CELL) * CELLS + x / CELL) as usize] += f64::from(p[3]);
-    }
-    cells
+    let hider = format!("shading_rate: {shading_rate}, {flat}");
+    let field = Field { shape, transform, fields, hider: &hider, cells: 16, cell: 16 };
+    let film = render(&field.scene(), &RenderOptions::default()).unwrap().film;
+    field.cell_sums(&film)
 }
 
-/// Mean and standard error of the mean.
-fn mean_se(v: &[f64]) -> (f64, f64) {
-    let n = v.len() as f64;
-    let mean = v.iter().sum::<f64>() / n;
-    let var = v.iter().map(|a| (a - mean).powi(2)).sum::<f64>() / (n - 1.0);
-    (mean, (var / n).sqrt())
+/// [`cell_areas_with`] without object fields.
+fn cell_areas(shape: &str, transform: &str, rate: f32, flatness: Option<(f32, f32)>) -> Vec<f64> {
+    cell_areas_with(shape, transform, "", rate, flatness)
 }
 
 /// The issue's bound on the relative coverage error.
