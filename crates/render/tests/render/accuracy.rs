@@ -93,6 +93,36 @@ fn without_the_flatness_rule_small_spheres_shrink() {
     );
 }
 
+/// Under motion the rule holds at every breakpoint: the camera pans 4 pixels during the
+/// shutter, so every sphere's image moves 4 pixels within its cell and its summed alpha is
+/// still the disk's area (the time integral of a translated disk).
+#[test]
+fn moving_small_spheres_keep_their_projected_area() {
+    for (rule, rel) in [(true, None), (false, Some((0.0, 0.0)))] {
+        let r = 0.75_f64;
+        let shape = format!("Sphere(radius: {r})");
+        let hider = rel.map_or(String::new(), |(a, b): (f32, f32)| {
+            format!("flatness: {a}, relative_flatness: {b},")
+        });
+        let field =
+            Field { shape: &shape, transform: "", fields: "", hider: &hider, cells: 16, cell: 16 };
+        let mut scene = field.scene();
+        let c = scene.camera.clone();
+        let moved = |dx: f32| reyes_scene::CameraKey {
+            time: dx / 4.0,
+            eye: [c.eye[0] + dx, c.eye[1], c.eye[2]],
+            look_at: [c.look_at[0] + dx, c.look_at[1], c.look_at[2]],
+            up: c.up,
+        };
+        scene.camera.motion = vec![moved(0.0), moved(4.0)];
+        let film = render(&scene, &RenderOptions::default()).unwrap().film;
+        let (mean, se) = mean_se(&field.cell_sums(&film));
+        let exact = std::f64::consts::PI * r * r;
+        let within = (mean / exact - 1.0).abs() <= BOUND && se / exact < BOUND / 3.0;
+        assert_eq!(within, rule, "rule {rule}: area {mean:.4} of {exact:.4} (+- {se:.4})");
+    }
+}
+
 /// An object's own `flatness` (RenderMan's attribute) holds where the scene's is off.
 #[test]
 fn an_objects_own_flatness_holds() {
