@@ -3,6 +3,7 @@
 //! pixel filters, both hiders against each other, the RenderMan geometry (hyperboloids, patch
 //! meshes, NURBS), and RenderMan's cameras, lights and materials.
 
+mod aovs;
 mod camera;
 mod csg;
 mod filters;
