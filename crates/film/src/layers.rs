@@ -360,6 +360,11 @@ pub fn bayer8(x: u32, y: u32) -> f32 {
     (m as f32 + 0.5) / 64.0
 }
 
+/// `v` as a channel stores it: rounded to half for a half channel.
+pub fn as_stored(v: f32, half: bool) -> f32 {
+    if half { f16::from_f32(v).to_f32() } else { v }
+}
+
 /// One channel of a file read back by [`read_layers`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct ReadChannel {
@@ -410,4 +415,97 @@ pub fn read_layers(path: &Path) -> std::result::Result<Vec<ReadChannel>, FilmErr
         }
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bayer_thresholds_are_the_64_levels_once_each() {
+        let mut seen: Vec<u32> =
+            (0..64).map(|k| (bayer8(k % 8, k / 8) * 64.0 - 0.5) as u32).collect();
+        seen.sort_unstable();
+        assert_eq!(seen, (0..64).collect::<Vec<_>>());
+        // The 2x2 corner is the classic [[0, 2], [3, 1]] pattern at the top level (times 16).
+        assert_eq!(
+            [bayer8(0, 0), bayer8(1, 0), bayer8(0, 1), bayer8(1, 1)].map(|t| (t * 64.0) as u32),
+            [0, 32, 48, 16]
+        );
+    }
+
+    #[test]
+    fn dither_preserves_the_mean_of_a_flat_area() {
+        // Over an 8x8 tile the thresholds are (k + 0.5) / 64, k = 0..63, so the mean of
+        // floor(255 v + t) is 255 v to within half of 1/64 (the level spacing).
+        let view = PngView { exposure: 0.0, background: None, dither: true };
+        for code in [0.2_f32, 17.3, 100.5, 128.9, 254.2] {
+            let encoded = code / 255.0;
+            let linear = crate::srgb_decode(encoded);
+            let mut sum = 0.0;
+            for y in 0..8 {
+                for x in 0..8 {
+                    let q = view_pixel([linear, linear, linear, 1.0], (x, y), &view);
+                    assert!((f32::from(q[0]) - 255.0 * crate::srgb_encode(linear)).abs() < 1.0);
+                    sum += f32::from(q[0]);
+                }
+            }
+            let exact = 255.0 * crate::srgb_encode(linear);
+            assert!(
+                (sum / 64.0 - exact).abs() <= 0.5 / 64.0 + 1e-3,
+                "{code}: {} vs {exact}",
+                sum / 64.0
+            );
+        }
+    }
+
+    #[test]
+    fn exposure_and_background_are_applied_in_linear_light() {
+        let plain = PngView { exposure: 0.0, background: None, dither: false };
+        // One stop doubles linear light: 0.25 -> 0.5.
+        let up = PngView { exposure: 1.0, ..plain };
+        assert_eq!(
+            view_pixel([0.25, 0.25, 0.25, 1.0], (0, 0), &up),
+            view_pixel([0.5, 0.5, 0.5, 1.0], (0, 0), &plain)
+        );
+        // Half coverage of premultiplied 0.2 over a background of 0.6: 0.2 + 0.5 * 0.6 = 0.5,
+        // opaque.
+        let over = PngView { background: Some([0.6, 0.6, 0.6]), ..plain };
+        assert_eq!(
+            view_pixel([0.2, 0.2, 0.2, 0.5], (3, 5), &over),
+            view_pixel([0.5, 0.5, 0.5, 1.0], (0, 0), &plain)
+        );
+        // Without dither, the nearest code, as the plain writer.
+        assert_eq!(
+            view_pixel([0.5, 0.25, 0.0, 0.5], (0, 0), &plain),
+            crate::output::png_pixel([0.5, 0.25, 0.0, 0.5])
+        );
+    }
+
+    #[test]
+    fn header_attributes_are_put_in_name_order() {
+        // A hand-made single-part header: magic, version, then "b" before "a", then 0.
+        let mut bytes = vec![0x76, 0x2f, 0x31, 0x01, 2, 0, 0, 0];
+        let attr = |name: &str, v: u8| {
+            let mut a = name.as_bytes().to_vec();
+            a.extend_from_slice(b"\0int\0");
+            a.extend_from_slice(&4i32.to_le_bytes());
+            a.extend_from_slice(&[v, 0, 0, 0]);
+            a
+        };
+        bytes.extend(attr("b", 2));
+        bytes.extend(attr("a", 1));
+        bytes.push(0);
+        bytes.extend_from_slice(b"rest");
+        let mut expect = bytes[..8].to_vec();
+        expect.extend(attr("a", 1));
+        expect.extend(attr("b", 2));
+        expect.push(0);
+        expect.extend_from_slice(b"rest");
+        assert_eq!(sort_header_attributes(&mut bytes), Ok(()));
+        assert_eq!(bytes, expect);
+        // Truncated: an error, not a panic.
+        let mut short = expect[..12].to_vec();
+        assert!(sort_header_attributes(&mut short).is_err());
+    }
 }

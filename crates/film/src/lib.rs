@@ -32,7 +32,8 @@ pub use atomic::{WriteOptions, remove_stale_temporaries};
 pub use error::FilmError;
 pub use kernel::{bessel_j1, weight};
 pub use layers::{
-    AovLayer, Metadata, Picture, ReadChannel, bayer8, read_layers, view_pixel, write_picture,
+    AovLayer, Metadata, Picture, ReadChannel, as_stored, bayer8, read_layers, view_pixel,
+    write_picture,
 };
 pub use output::{read_exr, srgb_decode, srgb_encode, write, write_with};
 pub use table::{FilterTable, border_for_width};

@@ -131,7 +131,7 @@ pub(crate) fn encode_png_bytes(
 }
 
 /// One premultiplied linear pixel to 8-bit straight sRGB colour and linear alpha.
-fn png_pixel(p: [f32; 4]) -> [u8; 4] {
+pub(crate) fn png_pixel(p: [f32; 4]) -> [u8; 4] {
     let a = p[3];
     let straight = |c: f32| if a > 0.0 { c / a } else { 0.0 };
     [
