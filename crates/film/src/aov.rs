@@ -138,7 +138,11 @@ pub fn splat_aovs(
                     let pixel = (wy - j) * bwu + (wx - i);
                     let tap = j * fw + i;
                     for k in 0..ns {
-                        let f = f64::from(weights[k * per_sample + tap]);
+                        let w = weights[k * per_sample + tap];
+                        if w == 0.0 {
+                            continue; // adds exactly nothing
+                        }
+                        let f = f64::from(w);
                         let base = (pixel * ns + k) * ch;
                         for (a, &c) in acc.iter_mut().zip(&filtered) {
                             *a += f * f64::from(s.values[base + c]);

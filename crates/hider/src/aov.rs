@@ -122,12 +122,6 @@ pub(crate) struct Sources<'a> {
 }
 
 impl Sources<'_> {
-    /// Interpolation weights of point `p` for a geometric value: bilinear at the sample
-    /// ([`bilinear_weights`]), or vertex 0's.
-    fn weights(&self, p: &VisPoint, interpolate: bool) -> [f32; 4] {
-        if interpolate { bilinear_weights(&p.v) } else { [1.0, 0.0, 0.0, 0.0] }
-    }
-
     /// `len` floats at `offset` of point `point`'s vertex data, weighted by `w`.
     fn vertex(&self, plan: &AovPlan, point: u32, offset: usize, w: [f32; 4], out: &mut [f32]) {
         let m = self.point_mp[point as usize] as usize;
@@ -156,6 +150,11 @@ impl Sources<'_> {
             let p = &self.points[f as usize];
             if p.flags & LERP_DONE != 0 { p.minz } else { lerpz(&p.v) }
         });
+        // The front point's bilinear weights, solved once for all its geometric values.
+        let mut bilinear: Option<[f32; 4]> = None;
+        let mut geometric = |f: u32| -> [f32; 4] {
+            *bilinear.get_or_insert_with(|| bilinear_weights(&self.points[f as usize].v))
+        };
         let mut at = 0;
         let mut bg = 0;
         for value in &plan.values {
@@ -168,12 +167,11 @@ impl Sources<'_> {
                 (_, None) => o.copy_from_slice(&plan.background[bg..bg + n]),
                 (AovValue::Depth, Some(_)) => o[0] = depth,
                 (AovValue::Velocity, Some(f)) => {
-                    let p = &self.points[f as usize];
                     let mp = &self.mpolys[self.point_mp[f as usize] as usize];
                     let span = mp.time[1] - mp.time[0];
                     o.fill(0.0);
                     if mp.has(flags::MOVING) && span > 0.0 {
-                        let w = bilinear_weights(&p.v);
+                        let w = geometric(f);
                         for (k, wk) in w.iter().enumerate() {
                             o[0] += wk * (mp.speed[k][0] / span);
                             o[1] += wk * (mp.speed[k][1] / span);
@@ -181,7 +179,7 @@ impl Sources<'_> {
                     }
                 }
                 (AovValue::Vertex { offset, interpolate, .. }, Some(f)) => {
-                    let w = self.weights(&self.points[f as usize], interpolate);
+                    let w = if interpolate { geometric(f) } else { [1.0, 0.0, 0.0, 0.0] };
                     self.vertex(plan, f, offset, w, o);
                 }
             }
