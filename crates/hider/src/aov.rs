@@ -255,7 +255,7 @@ pub fn bilinear_weights(v: &[[f32; 3]; 4]) -> [f32; 4] {
     let (k2, k1, k0) = (cross(g, f), cross(e, f) + cross(h, g), cross(h, e));
     let scale = k1.abs().max(k0.abs()).max(k2.abs());
     let in_unit = |t: f64| (-1e-4..=1.0 + 1e-4).contains(&t);
-    let v_root = if !(scale > 0.0) || !scale.is_finite() {
+    let v_root = if scale.is_nan() || scale <= 0.0 || !scale.is_finite() {
         None
     } else if k2.abs() <= 1e-9 * scale {
         (k1 != 0.0).then(|| -k0 / k1)

@@ -234,10 +234,10 @@ fn the_shading_components_add_up_to_the_beauty() {
     for y in 0..72 {
         for x in 0..96 {
             let beauty = r.film.pixel(x, y).unwrap_or_default();
-            for c in 0..3 {
-                let b = f64::from(beauty[c]);
+            for (c, &value) in beauty.iter().enumerate().take(3) {
+                let b = f64::from(value);
                 // Ci is the beauty, bit for bit: the same composite, the same splat.
-                assert_eq!(aov(&r, "Ci", x, y, c).to_bits(), beauty[c].to_bits(), "({x},{y})");
+                assert_eq!(aov(&r, "Ci", x, y, c).to_bits(), value.to_bits(), "({x},{y})");
                 // Each point's terms add up to its colour to f32 rounding (a few ulps of
                 // values <= 1), then both are composited and filtered with the same weights
                 // (summed in f64): a few 1e-7 relative plus 1e-7 absolute.
@@ -312,8 +312,8 @@ fn every_hider_path_gives_the_same_beauty_with_aovs() {
         let ci = b.aovs.as_ref().map(|x| x.film.clone());
         let ci = ci.unwrap_or_else(|| panic!("{file}: no AOVs"));
         for (k, p) in b.film.rgba().iter().enumerate() {
-            for c in 0..3 {
-                assert_eq!(ci.data()[k * ci.channels() + c].to_bits(), p[c].to_bits(), "{file}");
+            for (c, v) in p.iter().enumerate().take(3) {
+                assert_eq!(ci.data()[k * ci.channels() + c].to_bits(), v.to_bits(), "{file}");
             }
         }
     }
