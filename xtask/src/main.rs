@@ -91,14 +91,30 @@ fn main() -> ExitCode {
             let mut failed = 0;
             for case in &cases {
                 match golden::check(&root, case) {
-                    Ok(Outcome::Pass(c)) => println!(
-                        "pass {:<16} mean {:.2e} max {:.2e} (tolerance {:.2e} / {:.2e})",
-                        case.name(),
-                        c.mean.iter().cloned().fold(0.0, f32::max),
-                        c.max.iter().cloned().fold(0.0, f32::max),
-                        c.mean_tolerance,
-                        c.max_tolerance
-                    ),
+                    Ok(Outcome::Pass(c)) => {
+                        println!(
+                            "pass {:<16} mean {:.2e} max {:.2e} (tolerance {:.2e} / {:.2e})",
+                            case.name(),
+                            c.mean.iter().cloned().fold(0.0, f32::max),
+                            c.max.iter().cloned().fold(0.0, f32::max),
+                            c.mean_tolerance,
+                            c.max_tolerance
+                        );
+                        // A scene with AOVs: every layer against the reference's.
+                        match golden::check_aovs(&root, case) {
+                            Ok(f) if f.is_empty() => {}
+                            Ok(f) => {
+                                failed += 1;
+                                for line in f {
+                                    println!("FAIL {:<16} {line}", case.name());
+                                }
+                            }
+                            Err(e) => {
+                                failed += 1;
+                                println!("ERROR {:<15} {e}", case.name());
+                            }
+                        }
+                    }
                     Ok(Outcome::Fail(c, path)) => {
                         failed += 1;
                         println!(

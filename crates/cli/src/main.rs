@@ -321,13 +321,25 @@ fn render_frame(
         on_bucket: Some(&tick),
         memory_limit,
     };
+    let started = Instant::now();
     let rendered = render(scene, &opts);
+    let render_time = started.elapsed();
     drop(progress);
     let mut rendered = rendered.map_err(|e| match (e, signals::received()) {
         (RenderError::Cancelled, Some(stop)) => Exit::stopped(stop, main),
         (e, _) => Exit::error(e.exit_code(), format_args!("{}: {e}", args.scene.display())),
     })?;
 
+    let mut metadata = reyes_film::Metadata::for_scene(scene, &args.scene.display().to_string());
+    if scene.outputs.render_time {
+        metadata.render_time = Some(render_time.as_secs_f32());
+    }
+    let picture = reyes_film::Picture {
+        film: &rendered.film,
+        aovs: rendered.aovs.as_ref().map(|a| (&a.film, a.layers.as_slice())),
+        outputs: &scene.outputs,
+        metadata: &metadata,
+    };
     let t = Instant::now();
     for path in std::iter::once(main).chain(extras.iter().map(PathBuf::as_path)) {
         let pause = |temporary: Option<&Path>| {
@@ -340,7 +352,7 @@ fn render_frame(
             after_first_chunk: Some(&pause),
             named_temporary: hooks.named_temporary,
         };
-        reyes_film::write_with(path, &rendered.film, &opts).map_err(|e| {
+        reyes_film::write_picture(path, &picture, &opts).map_err(|e| {
             match (e, signals::received()) {
                 (FilmError::Interrupted { path }, Some(stop)) => Exit::stopped(stop, &path),
                 (e, _) => Exit::error(1, e),

@@ -11,7 +11,7 @@ mod resolve;
 mod tree;
 mod visible;
 
-pub use resolve::{Composite, MatteRule, Resolver, resolve_sample};
+pub use resolve::{Composite, MatteRule, Resolver, Trace, resolve_sample, resolve_sample_traced};
 pub use tree::{
     CsgExpr, CsgNode, CsgOp, CsgOrder, CsgTree, MAX_SLOTS, csg_resolve_surface, csg_resolve_tree,
     extract_csgnode, extract_csgtree, mergelists, resolve_tree_at_sample, sortlist,

@@ -64,9 +64,43 @@ impl Composite {
 /// `C *= a + (1 - a) * c_behind` with `a` the glass's `glasshackopacity`.
 pub fn resolve_sample(
     points: &mut [VisPoint],
+    head: u32,
+    resolver: &Resolver,
+    lerps: &mut u64,
+) -> Composite {
+    resolve_sample_traced(points, head, resolver, lerps, &mut ())
+}
+
+/// What [`resolve_sample_traced`] reports of the composite it computes, so that other values
+/// of the same points (AOVs) can be composited with exactly the same weights.
+pub trait Trace {
+    /// Point `point` was composited behind per-channel transmittance `weight` (its colour
+    /// added as `weight * color` unless `holdout`, a matte under the holdout rule).
+    fn add(&mut self, point: u32, weight: [f32; 3], holdout: bool);
+    /// Everything accumulated so far was multiplied by `factor` (Appendix A's glass hack).
+    fn scale(&mut self, factor: [f32; 3]);
+    /// The sample's colour was dropped (a matte at the back under the original rule).
+    fn zero(&mut self);
+}
+
+/// No trace: [`resolve_sample`].
+impl Trace for () {
+    #[inline(always)]
+    fn add(&mut self, _: u32, _: [f32; 3], _: bool) {}
+    #[inline(always)]
+    fn scale(&mut self, _: [f32; 3]) {}
+    #[inline(always)]
+    fn zero(&mut self) {}
+}
+
+/// [`resolve_sample`], reporting each compositing step to `trace` in the order it is done.
+/// The composite is the same, bit for bit.
+pub fn resolve_sample_traced<T: Trace>(
+    points: &mut [VisPoint],
     mut head: u32,
     resolver: &Resolver,
     lerps: &mut u64,
+    trace: &mut T,
 ) -> Composite {
     let rule = resolver.matte;
     let mut c = [0.0f32; 3];
@@ -97,6 +131,7 @@ pub fn resolve_sample(
         any = true;
         last_flags = p.flags;
         let holdout = rule == MatteRule::Holdout && p.flags & MATTE != 0;
+        trace.add(front, t, holdout);
         for k in 0..3 {
             if !holdout {
                 c[k] += t[k] * p.color[k];
@@ -108,9 +143,12 @@ pub fn resolve_sample(
             let behind = sortfront(points, &mut head, lerps);
             let g = p.glass_opacity;
             let cb = points[behind as usize].color;
+            let mut factor = [0.0; 3];
             for k in 0..3 {
-                c[k] *= g + (1.0 - g) * cb[k];
+                factor[k] = g + (1.0 - g) * cb[k];
+                c[k] *= factor[k];
             }
+            trace.scale(factor);
         }
         if p.flags & OPAQUE != 0 {
             z = if p.flags & LERP_DONE != 0 {
@@ -128,6 +166,7 @@ pub fn resolve_sample(
     match rule {
         MatteRule::Original => {
             if last_flags & MATTE != 0 {
+                trace.zero();
                 return Composite { rgb: [0.0; 3], alpha: 0.0, z };
             }
             let alpha =

@@ -20,6 +20,7 @@
 use glam::{Mat3, Vec3};
 use reyes_hider::{Micropolygon, flags};
 
+use crate::aov::VertexAovs;
 use crate::bucket::{BucketRange, Bucketer};
 use crate::camera::{CameraSetup, Viewer};
 use crate::hook::{VertexContext, VertexShader};
@@ -55,6 +56,8 @@ pub(crate) struct ObjectContext<'a> {
     /// a back-facing micropolygon always lies behind a front-facing one of the same object
     /// at every sample that could see it ([`cull_back_faces`]).
     pub cull_back: bool,
+    /// The per-vertex AOV layout when the scene writes AOVs, and the object's ids.
+    pub aov: Option<(std::sync::Arc<VertexAovs>, [f32; 2])>,
 }
 
 /// What every micropolygon of one object carries besides its geometry and colour.
@@ -132,6 +135,9 @@ pub(crate) struct Grid {
     /// Cell positions at times between breakpoints (where such a micropolygon's kept part
     /// of its segment begins or ends), named by `EXTRA | index` in [`Kept`].
     extra: Vec<Quad>,
+    /// Per-vertex AOV values, `aov_stride` floats per vertex (empty without AOVs).
+    aov: Vec<f32>,
+    aov_stride: usize,
 }
 
 impl Grid {
@@ -145,6 +151,7 @@ impl Grid {
         self.color.shrink_to_fit();
         self.trans.shrink_to_fit();
         self.pos.shrink_to_fit();
+        self.aov.shrink_to_fit();
         self.kept.shrink_to_fit();
         self.cam = Vec::new();
         self.extra.shrink_to_fit();
@@ -175,6 +182,18 @@ impl Grid {
     #[inline]
     pub fn micropolygon(&self, k: usize) -> Micropolygon {
         self.build(&self.kept[k])
+    }
+
+    /// Append kept micropolygon `k`'s AOV values, vertex by vertex (`4 * stride` floats;
+    /// nothing without AOVs).
+    pub fn micropolygon_aovs(&self, k: usize, out: &mut Vec<f32>) {
+        let st = self.aov_stride;
+        if st == 0 {
+            return;
+        }
+        for c in self.corners(self.kept[k].cell) {
+            out.extend_from_slice(&self.aov[c * st..(c + 1) * st]);
+        }
     }
 
     #[inline]
@@ -246,6 +265,8 @@ impl<'b> Emitter<'b> {
                 kept: Vec::new(),
                 cam: Vec::new(),
                 extra: Vec::new(),
+                aov: Vec::new(),
+                aov_stride: 0,
             },
             ranges: Vec::new(),
             bucketer,
@@ -293,6 +314,10 @@ impl<'b> Emitter<'b> {
         g.cam.clear();
         g.extra.clear();
         let moving = poses.len() > 1;
+        g.aov.clear();
+        g.aov_stride = object.aov.as_ref().map_or(0, |(a, _)| a.stride());
+        g.aov.reserve_exact(count * g.aov_stride);
+        let world_to_camera = camera.world_to_camera();
         self.ranges.clear();
         self.ranges.reserve_exact(nu * nv);
         let project = |p_camera: Vec3| {
@@ -351,6 +376,29 @@ impl<'b> Emitter<'b> {
                         g.trans.push(trans);
                         if moving {
                             g.cam.push(p_camera);
+                        }
+                        if let Some((layout, ids)) = &object.aov {
+                            let n_camera =
+                                world_to_camera.transform_vector3(n_world).normalize_or_zero();
+                            g.aov.extend_from_slice(&n_camera.to_array());
+                            g.aov.extend_from_slice(&p_camera.to_array());
+                            g.aov.extend_from_slice(&[u, v, ids[0], ids[1]]);
+                            for group in &layout.groups {
+                                // Local illumination's terms; the ray-traced shader's are not
+                                // split (the render refuses component AOVs with it).
+                                let terms = match &hook {
+                                    None => object.shader.components(
+                                        p_world,
+                                        n_world,
+                                        sp.tint,
+                                        group.as_deref(),
+                                    ),
+                                    Some(_) => [glam::Vec3::ZERO; 3],
+                                };
+                                for t in terms {
+                                    g.aov.extend_from_slice(&t.to_array());
+                                }
+                            }
                         }
                     } else {
                         let p_object = pose.surface.position(u, v);
@@ -693,5 +741,6 @@ pub(crate) fn object_context(
         labels,
         hook: None,
         cull_back: false,
+        aov: None,
     }
 }

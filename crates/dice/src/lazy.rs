@@ -35,6 +35,7 @@ use rayon::prelude::*;
 use reyes_hider::{CsgTree, Frame, Micropolygon};
 use reyes_scene::Scene;
 
+use crate::aov::VertexAovs;
 use crate::bucket::{BucketRange, Bucketer};
 use crate::camera::{self, CameraSetup};
 use crate::csg::CsgSetup;
@@ -199,6 +200,8 @@ impl<'a> Dicer<'a> {
         let bucketer = Bucketer::new(frame, camera.lens(), camera.hither(), camera.yon());
         let csg = CsgSetup::new(scene);
         let rows = frame.buckets_y as usize;
+        let aovs = VertexAovs::for_scene(scene).map(std::sync::Arc::new);
+        let ids = if aovs.is_some() { crate::aov::object_ids(scene) } else { Vec::new() };
         let mut dicer = Dicer {
             frame: *frame,
             camera,
@@ -237,6 +240,7 @@ impl<'a> Dicer<'a> {
             );
             ctx.hook =
                 options.vertex_shader.map(|shader| dice::Hook { shader, object: i, surface: 0 });
+            ctx.aov = aovs.as_ref().map(|a| (a.clone(), ids[i]));
             ctx.cull_back = scene.hider.cull_back_faces
                 && dice::cull_back_faces(
                     object,
@@ -394,6 +398,20 @@ impl<'a> Dicer<'a> {
                 let grid = self.slots[s as usize].grid.as_ref();
                 grid.expect("a listed grid is kept until its last row").micropolygon(i as usize)
             }));
+        }
+    }
+
+    /// Copy the AOV values of the micropolygons touching bucket `b` into `out`, in
+    /// [`Dicer::copy_bucket`]'s order, `4 * stride` floats each ([`VertexAovs`]); nothing
+    /// when the scene writes no AOVs.
+    pub fn copy_bucket_aovs(&self, b: usize, out: &mut Vec<f32>) {
+        out.clear();
+        if let Some(list) = self.lists.get(b) {
+            for &(s, i) in list {
+                let grid = self.slots[s as usize].grid.as_ref();
+                let grid = grid.expect("a listed grid is kept until its last row");
+                grid.micropolygon_aovs(i as usize, out);
+            }
         }
     }
 

@@ -97,6 +97,7 @@
 //! default because back faces also fill the cracks above.
 #![deny(missing_docs)]
 
+mod aov;
 mod bucket;
 mod camera;
 mod csg;
@@ -109,6 +110,7 @@ mod shapes;
 mod split;
 mod spot;
 
+pub use aov::{VertexAovs, object_ids};
 pub use bucket::screen_bound;
 pub use camera::{CameraSetup, Viewer};
 pub use csg::CsgSetup;

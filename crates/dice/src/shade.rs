@@ -52,7 +52,16 @@ pub struct Shader {
     ambient: Vec3,
     lights: Vec<DirectLight>,
     viewer: Viewer,
+    /// Each ambient light's scene index and `intensity * color`, in the order `ambient`
+    /// sums them (for the shading components of a light group).
+    ambient_each: Vec<(usize, Vec3)>,
+    /// The scene index of each of `lights`.
+    light_index: Vec<usize>,
 }
+
+/// The premultiplied ambient, diffuse and specular terms of one shaded point
+/// ([`Shader::components`]).
+pub type Components = [Vec3; 3];
 
 /// `d^2` below which a point light is taken to sit on the surface and is ignored.
 const MIN_DIST2: f32 = 1e-20;
@@ -60,21 +69,22 @@ const MIN_DIST2: f32 = 1e-20;
 impl Shader {
     /// Set up the shading of `material` under `lights`, seen from `eye_world`.
     pub fn new(material: &Material, lights: &[Light], eye_world: Vec3) -> Shader {
-        Shader::with_lights(material, lights.iter(), Viewer::Eye(eye_world))
+        Shader::with_lights(material, lights.iter().enumerate(), Viewer::Eye(eye_world))
     }
 
     /// Set up the shading of `object`'s material under the lights of the scene's `lights`
     /// that illuminate it ([`Object::lit_by`]: all of them without a light set), seen by
     /// `viewer`.
     pub fn for_object(object: &Object, lights: &[Light], viewer: Viewer) -> Shader {
-        let lit = lights.iter().enumerate().filter(|(i, _)| object.lit_by(*i)).map(|(_, l)| l);
+        let lit = lights.iter().enumerate().filter(|(i, _)| object.lit_by(*i));
         Shader::with_lights(&object.material, lit, viewer)
     }
 
-    /// Set up the shading of `material` under `lights`, in order, seen by `viewer`.
+    /// Set up the shading of `material` under `lights` (with their scene indices), in order,
+    /// seen by `viewer`.
     fn with_lights<'l>(
         material: &Material,
-        lights: impl Iterator<Item = &'l Light>,
+        lights: impl Iterator<Item = (usize, &'l Light)>,
         viewer: Viewer,
     ) -> Shader {
         let (model, cs, os) = match *material {
@@ -102,9 +112,14 @@ impl Shader {
         };
         let mut ambient = Vec3::ZERO;
         let mut direct = Vec::new();
-        for light in lights {
+        let (mut ambient_each, mut light_index) = (Vec::new(), Vec::new());
+        for (index, light) in lights {
+            let before = direct.len();
             match *light {
-                Light::Ambient { color, intensity } => ambient += intensity * Vec3::from(color),
+                Light::Ambient { color, intensity } => {
+                    ambient += intensity * Vec3::from(color);
+                    ambient_each.push((index, intensity * Vec3::from(color)));
+                }
                 Light::Distant { from, to, color, intensity, .. } => {
                     // A light with from == to has no direction and lights nothing.
                     if let Some(l) = (Vec3::from(from) - Vec3::from(to)).try_normalize() {
@@ -124,8 +139,18 @@ impl Shader {
                 // Area lights are sampled by the ray-traced shading (reyes-shade).
                 Light::Area { .. } => {}
             }
+            light_index.extend(std::iter::repeat_n(index, direct.len() - before));
         }
-        Shader { model, cs: Vec3::from(cs), os: Vec3::from(os), ambient, lights: direct, viewer }
+        Shader {
+            model,
+            cs: Vec3::from(cs),
+            os: Vec3::from(os),
+            ambient,
+            lights: direct,
+            viewer,
+            ambient_each,
+            light_index,
+        }
     }
 
     /// True if the material is fully opaque in every channel.
@@ -205,21 +230,78 @@ impl Shader {
             cs
         } else {
             let (n, v) = facing(p_world, n_world, self.viewer.seen_from(p_world));
-            let lights = self.lights.iter().filter_map(|light| match *light {
-                DirectLight::Distant { l, cl } => Some((l, cl)),
-                DirectLight::Point { from, cl } => {
-                    let d = from - p_world;
-                    let d2 = d.length_squared();
-                    if !d2.is_finite() || d2 <= MIN_DIST2 {
-                        return None;
-                    }
-                    Some((d / d2.sqrt(), cl / d2))
-                }
-                DirectLight::Spot(spot) => spot.arriving(p_world),
-            });
-            self.illuminate(cs, n, v, lights)
+            self.illuminate(cs, n, v, self.arriving(p_world).map(|(_, l, cl)| (l, cl)))
         };
         ((self.os * ci).to_array(), (Vec3::ONE - self.os).to_array())
+    }
+
+    /// The direct lights arriving at `p_world`: each one's position in `lights`, unit vector
+    /// toward it and colour arriving (a point light at the point contributes nothing).
+    fn arriving(&self, p_world: Vec3) -> impl Iterator<Item = (usize, Vec3, Vec3)> + '_ {
+        self.lights.iter().enumerate().filter_map(move |(k, light)| match *light {
+            DirectLight::Distant { l, cl } => Some((k, l, cl)),
+            DirectLight::Point { from, cl } => {
+                let d = from - p_world;
+                let d2 = d.length_squared();
+                if !d2.is_finite() || d2 <= MIN_DIST2 {
+                    return None;
+                }
+                Some((k, d / d2.sqrt(), cl / d2))
+            }
+            DirectLight::Spot(spot) => spot.arriving(p_world).map(|(l, cl)| (k, l, cl)),
+        })
+    }
+
+    /// The shading components at a point, as [`Shader::shade`] sees it, premultiplied by
+    /// opacity: `[ambient, diffuse, specular]` (RenderMan's `__ambient`, `__diffuse`,
+    /// `__specular`). With `group`, only the lights whose scene indices it lists; without,
+    /// every light and the terms no light causes (a Constant material's colour and the
+    /// DefaultSurface headlight's `ka`, counted as ambient, and its `kd (N.V)^2`, counted as
+    /// diffuse). Without a group the three add up to [`Shader::shade`]'s colour to within
+    /// float rounding: they are the same products, summed in a different order.
+    pub fn components(
+        &self,
+        p_world: Vec3,
+        n_world: Vec3,
+        tint: Vec3,
+        group: Option<&[u32]>,
+    ) -> Components {
+        let cs = self.cs * tint;
+        let in_group = |index: usize| group.is_none_or(|g| g.iter().any(|&i| i as usize == index));
+        let ungrouped = group.is_none();
+        let mut ambient = Vec3::ZERO;
+        for &(index, cl) in &self.ambient_each {
+            if in_group(index) {
+                ambient += cl;
+            }
+        }
+        let (n, v) = facing(p_world, n_world, self.viewer.seen_from(p_world));
+        let lights = || {
+            self.arriving(p_world)
+                .filter(|&(k, _, _)| in_group(self.light_index[k]))
+                .map(|(_, l, cl)| (l, cl))
+        };
+        let c = match self.model {
+            Model::Constant => [if ungrouped { cs } else { Vec3::ZERO }, Vec3::ZERO, Vec3::ZERO],
+            Model::Matte { ka, kd } => {
+                let (diffuse, _) = direct(n, None, lights());
+                [cs * (ka * ambient), cs * (kd * diffuse), Vec3::ZERO]
+            }
+            Model::Plastic { ka, kd, ks, exponent, specular } => {
+                let (diffuse, spec) = direct(n, Some((v, exponent)), lights());
+                [cs * (ka * ambient), cs * (kd * diffuse), specular * ks * spec]
+            }
+            Model::Metal { ka, ks, exponent } => {
+                let (_, spec) = direct(n, Some((v, exponent)), lights());
+                [cs * (ka * ambient), Vec3::ZERO, cs * (ks * spec)]
+            }
+            Model::Headlight { ka, kd } if ungrouped => {
+                let d = n.dot(v);
+                [cs * ka, cs * (kd * d * d), Vec3::ZERO]
+            }
+            Model::Headlight { .. } => [Vec3::ZERO; 3],
+        };
+        c.map(|term| self.os * term)
     }
 }
 

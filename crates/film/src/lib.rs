@@ -13,9 +13,11 @@
 //! original 1985 shapes are behind [`reyes_scene::Original`].
 #![deny(missing_docs)]
 
+pub mod aov;
 pub mod atomic;
 pub mod error;
 pub mod image;
+pub mod layers;
 pub mod output;
 pub mod table;
 pub mod window;
@@ -25,9 +27,14 @@ pub mod window;
 pub use reyes_scene::filter::{kernel, renderman};
 
 pub use self::image::Film;
+pub use aov::{AovChannels, AovFilm, AovSamples, AovWindow, splat_aovs};
 pub use atomic::{WriteOptions, remove_stale_temporaries};
 pub use error::FilmError;
 pub use kernel::{bessel_j1, weight};
+pub use layers::{
+    AovLayer, Metadata, Picture, ReadChannel, as_stored, bayer8, read_layers, view_pixel,
+    write_picture,
+};
 pub use output::{read_exr, srgb_decode, srgb_encode, write, write_with};
 pub use table::{FilterTable, border_for_width};
 pub use window::{Window, splat};

@@ -16,12 +16,12 @@ use crate::{Film, FilmError};
 
 /// Output formats, chosen by extension.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Format {
+pub(crate) enum Format {
     Exr,
     Png,
 }
 
-fn format_of(path: &Path) -> Result<Format, FilmError> {
+pub(crate) fn format_of(path: &Path) -> Result<Format, FilmError> {
     let ext = path.extension().and_then(OsStr::to_str).map(str::to_ascii_lowercase);
     match ext.as_deref() {
         Some("exr") => Ok(Format::Exr),
@@ -62,11 +62,11 @@ pub fn write_with(path: &Path, film: &Film, opts: &WriteOptions) -> Result<(), F
     }
 }
 
-fn io_error(path: &Path, source: std::io::Error) -> FilmError {
+pub(crate) fn io_error(path: &Path, source: std::io::Error) -> FilmError {
     FilmError::Io { path: path.to_path_buf(), source }
 }
 
-fn exr_error(path: &Path, source: exr::error::Error) -> FilmError {
+pub(crate) fn exr_error(path: &Path, source: exr::error::Error) -> FilmError {
     match source {
         exr::error::Error::Io(source) => io_error(path, source),
         source => FilmError::Exr { path: path.to_path_buf(), source },
@@ -96,13 +96,34 @@ fn encode_exr(path: &Path, film: &Film, w: &mut (impl Write + Seek)) -> Result<(
 }
 
 fn encode_png(path: &Path, film: &Film, w: &mut impl Write) -> Result<(), FilmError> {
-    use image::ImageEncoder;
     let mut bytes = Vec::with_capacity(film.rgba().len() * 4);
     for p in film.rgba() {
         bytes.extend_from_slice(&png_pixel(*p));
     }
+    encode_png_bytes(path, film, &bytes, w)
+}
+
+/// The 8-bit RGBA of `film` through the view transform `view` ([`crate::view_pixel`]).
+pub(crate) fn png_bytes(film: &Film, view: &reyes_scene::PngView) -> Vec<u8> {
+    let mut bytes = Vec::with_capacity(film.rgba().len() * 4);
+    let w = film.width().max(1) as usize;
+    for (i, p) in film.rgba().iter().enumerate() {
+        let (x, y) = ((i % w) as u32, (i / w) as u32);
+        bytes.extend_from_slice(&crate::view_pixel(*p, (x, y), view));
+    }
+    bytes
+}
+
+/// Encode 8-bit RGBA `bytes` of `film`'s size as PNG.
+pub(crate) fn encode_png_bytes(
+    path: &Path,
+    film: &Film,
+    bytes: &[u8],
+    w: &mut impl Write,
+) -> Result<(), FilmError> {
+    use image::ImageEncoder;
     image::codecs::png::PngEncoder::new(w)
-        .write_image(&bytes, film.width(), film.height(), image::ExtendedColorType::Rgba8)
+        .write_image(bytes, film.width(), film.height(), image::ExtendedColorType::Rgba8)
         .map_err(|e| match e {
             image::ImageError::IoError(source) => io_error(path, source),
             source => FilmError::Png { path: path.to_path_buf(), source },
@@ -110,7 +131,7 @@ fn encode_png(path: &Path, film: &Film, w: &mut impl Write) -> Result<(), FilmEr
 }
 
 /// One premultiplied linear pixel to 8-bit straight sRGB colour and linear alpha.
-fn png_pixel(p: [f32; 4]) -> [u8; 4] {
+pub(crate) fn png_pixel(p: [f32; 4]) -> [u8; 4] {
     let a = p[3];
     let straight = |c: f32| if a > 0.0 { c / a } else { 0.0 };
     [

@@ -25,8 +25,11 @@
 //! `bucket/lanes.rs`; the loop that drives them is here.
 
 use reyes_csg::{
-    Composite, LERP_DONE, NIL, Resolver, VisPoint, lerpz, resolve_sample, shepard_weights,
+    Composite, LERP_DONE, NIL, Resolver, VisPoint, lerpz, resolve_sample, resolve_sample_traced,
+    shepard_weights,
 };
+
+use crate::aov::{AovPlan, Sources};
 
 use crate::mpoly::{Micropolygon, flags};
 use crate::samples::{BucketSamples, Needs};
@@ -110,6 +113,8 @@ fn stretch(
 /// What one micropolygon contributes to every visible point it creates.
 struct Surface<'a> {
     mp: &'a Micropolygon,
+    /// Its index in the bucket's micropolygons.
+    index: u32,
     zmin: f32,
     zmax: f32,
     crossing: bool,
@@ -252,6 +257,9 @@ impl Hider {
             next: scratch.heads[nsample],
         });
         scratch.heads[nsample] = index;
+        if scratch.keep_mp {
+            scratch.point_mp.push(s.index);
+        }
         true
     }
 
@@ -264,6 +272,7 @@ impl Hider {
         mpolys: &[Micropolygon],
         list: &[u32],
         scratch: &mut Scratch,
+        aov: Option<(&AovPlan, &[f32])>,
     ) {
         let frame = &self.frame;
         let (left, top) = frame.bucket_origin(bucket);
@@ -274,6 +283,8 @@ impl Hider {
         scratch.heads.clear();
         scratch.heads.resize(n, NIL);
         scratch.points.clear();
+        scratch.point_mp.clear();
+        scratch.keep_mp = aov.is_some();
         let mut samples = std::mem::take(&mut scratch.samples);
         // Times are read only by path M, lens positions only with a lens.
         let needs = Needs {
@@ -306,12 +317,13 @@ impl Hider {
 
             let surface_z = |lo: [f32; 3], hi: [f32; 3]| Surface {
                 mp,
+                index: m,
                 zmin: lo[2],
                 zmax: hi[2],
                 crossing: mp.has(flags::HITHER_YON_CROSSING),
             };
             if mp.has(flags::MOVING) || !mp.whole_shutter() {
-                b.path_moving(mp, &vertex, lo, hi);
+                b.path_moving(mp, m, &vertex, lo, hi);
             } else if self.config.lens.is_some() {
                 b.path_lens(&surface_z(lo, hi), &vertex, lo, hi);
             } else {
@@ -330,20 +342,61 @@ impl Hider {
         let mut lerps = 0;
         let resolver =
             Resolver { matte: self.config.matte, trees: &self.csg, order: self.config.csg_order };
-        let out = scratch.rgba.iter_mut().zip(scratch.z.iter_mut());
-        for ((rgba, z), &head) in out.zip(&scratch.heads) {
-            let c = if head == NIL {
-                Composite::EMPTY
-            } else {
-                resolve_sample(&mut scratch.points, head, &resolver, &mut lerps)
-            };
-            *rgba = [c.rgb[0], c.rgb[1], c.rgb[2], c.alpha];
-            *z = c.z;
+        if let Some((plan, data)) = aov {
+            self.resolve_aovs(plan, (mpolys, data), &resolver, &mut lerps, scratch);
+        } else {
+            let out = scratch.rgba.iter_mut().zip(scratch.z.iter_mut());
+            for ((rgba, z), &head) in out.zip(&scratch.heads) {
+                let c = if head == NIL {
+                    Composite::EMPTY
+                } else {
+                    resolve_sample(&mut scratch.points, head, &resolver, &mut lerps)
+                };
+                *rgba = [c.rgb[0], c.rgb[1], c.rgb[2], c.alpha];
+                *z = c.z;
+            }
         }
         scratch.stats.lerps += lerps;
         scratch.stats.resolve_ns += t_resolve.elapsed().as_nanos() as u64;
         scratch.samples = samples;
         scratch.slices = slices;
+    }
+}
+
+impl Hider {
+    /// `CSGResolve` of every sample with the AOVs of `plan`: the same composites as the plain
+    /// loop (traced), then each sample's AOV values from its steps.
+    fn resolve_aovs(
+        &self,
+        plan: &AovPlan,
+        (mpolys, data): (&[Micropolygon], &[f32]),
+        resolver: &Resolver,
+        lerps: &mut u64,
+        scratch: &mut Scratch,
+    ) {
+        let n = scratch.heads.len();
+        let channels = plan.channels();
+        scratch.aov.clear();
+        scratch.aov.resize(n * channels, 0.0);
+        scratch.front_z.clear();
+        scratch.front_z.resize(n, f32::INFINITY);
+        let mut steps = std::mem::take(&mut scratch.steps);
+        for k in 0..n {
+            let head = scratch.heads[k];
+            steps.0.clear();
+            let c = if head == NIL {
+                Composite::EMPTY
+            } else {
+                resolve_sample_traced(&mut scratch.points, head, resolver, lerps, &mut steps)
+            };
+            scratch.rgba[k] = [c.rgb[0], c.rgb[1], c.rgb[2], c.alpha];
+            scratch.z[k] = c.z;
+            let sources =
+                Sources { points: &scratch.points, point_mp: &scratch.point_mp, mpolys, data };
+            let out = &mut scratch.aov[k * channels..(k + 1) * channels];
+            scratch.front_z[k] = sources.sample(plan, &steps.0, out);
+        }
+        scratch.steps = steps;
     }
 }
 
@@ -522,6 +575,7 @@ impl Bucket<'_> {
     fn path_moving(
         &mut self,
         mp: &Micropolygon,
+        index: u32,
         vertex: &[[f32; 3]; 4],
         mut lo: [f32; 3],
         mut hi: [f32; 3],
@@ -531,8 +585,13 @@ impl Bucket<'_> {
         // z range over the whole segment: the visible points' depth range.
         lo[2] += slo[2].min(0.0);
         hi[2] += shi[2].max(0.0);
-        let surf =
-            Surface { mp, zmin: lo[2], zmax: hi[2], crossing: mp.has(flags::HITHER_YON_CROSSING) };
+        let surf = Surface {
+            mp,
+            index,
+            zmin: lo[2],
+            zmax: hi[2],
+            crossing: mp.has(flags::HITHER_YON_CROSSING),
+        };
         let lens = hider.config.lens;
         if let Some(l) = &lens {
             l.grow(&mut lo, &mut hi, hider.config.hither, hider.config.yon);

@@ -8,6 +8,7 @@
 //! Map of Appendix A functions to this crate: see docs/appendix-a.md.
 #![deny(missing_docs)]
 
+pub mod aov;
 mod bucket;
 pub mod frame;
 pub mod inside;
@@ -16,6 +17,7 @@ pub mod mpoly;
 pub mod samples;
 pub mod tables;
 
+pub use aov::{AovPlan, AovValue, bilinear_weights};
 pub use bucket::gouraud;
 pub use frame::{Frame, border_for_filter_width};
 pub use lens::LensSetup;
@@ -155,6 +157,13 @@ pub struct Scratch {
     rgba: Vec<[f32; 4]>,
     z: Vec<f32>,
     slices: bucket::SliceSamples,
+    /// With AOVs: the micropolygon of each visible point, each sample's AOV values
+    /// (`pixel*NS + s` times the plan's channels), its front depth, and one sample's steps.
+    keep_mp: bool,
+    point_mp: Vec<u32>,
+    aov: Vec<f32>,
+    front_z: Vec<f32>,
+    steps: aov::Steps,
     /// Statistics accumulated by every bucket this scratch has rendered.
     pub stats: Stats,
 }
@@ -173,6 +182,20 @@ pub struct BucketOutput<'a> {
     pub rgba: &'a [[f32; 4]],
     /// Depth of the opaque surface that ended each sample's composite, or +inf.
     pub z: &'a [f32],
+}
+
+/// One bucket's per-sample result with AOVs ([`Hider::render_bucket_aovs`]), indexed as
+/// [`BucketOutput`].
+#[derive(Debug, Clone, Copy)]
+pub struct AovBucketOutput<'a> {
+    /// The beauty, exactly as [`Hider::render_bucket`] gives it.
+    pub beauty: BucketOutput<'a>,
+    /// The plan's channels of every sample, `[(pixel*NS + s) * channels + c]`.
+    pub aov: &'a [f32],
+    /// Depth of each sample's front-most visible point, opaque or not, or +inf.
+    pub front_z: &'a [f32],
+    /// The bucket's samples (positions for the nearest-sample filter).
+    pub samples: &'a BucketSamples,
 }
 
 impl Hider {
@@ -249,8 +272,27 @@ impl Hider {
         list: &[u32],
         scratch: &'s mut Scratch,
     ) -> BucketOutput<'s> {
-        self.sample_bucket(bucket, mpolys, list, scratch);
+        self.sample_bucket(bucket, mpolys, list, scratch, None);
         BucketOutput { rgba: &scratch.rgba, z: &scratch.z }
+    }
+
+    /// [`Hider::render_bucket`] with the AOVs of `plan`: `data` holds the per-vertex AOV
+    /// values of `mpolys`, `4 * plan.stride` floats per micropolygon, in the same order.
+    pub fn render_bucket_aovs<'s>(
+        &self,
+        bucket: usize,
+        (mpolys, data): (&[Micropolygon], &[f32]),
+        list: &[u32],
+        plan: &AovPlan,
+        scratch: &'s mut Scratch,
+    ) -> AovBucketOutput<'s> {
+        self.sample_bucket(bucket, mpolys, list, scratch, Some((plan, data)));
+        AovBucketOutput {
+            beauty: BucketOutput { rgba: &scratch.rgba, z: &scratch.z },
+            aov: &scratch.aov,
+            front_z: &scratch.front_z,
+            samples: &scratch.samples,
+        }
     }
 
     /// The samples of bucket `bucket` (positions bucket-local), for study and tests.

@@ -313,6 +313,7 @@ pub(crate) fn member(
                 objects: vec![object.clone()],
                 solids: Vec::new(),
                 raytrace: scene.raytrace,
+                outputs: Default::default(),
             };
             Ok((Member::Mesh(Box::new(Tracer::new(&alone))), bounds))
         }

@@ -15,6 +15,7 @@
 //! output is bit-identical for any thread count and scheduling.
 #![deny(missing_docs)]
 
+pub mod aovs;
 pub mod budget;
 pub mod cancel;
 mod error;
@@ -51,6 +52,8 @@ pub struct Rendered {
     pub film: Film,
     /// What it took.
     pub stats: RenderStats,
+    /// The AOVs, when the scene writes any.
+    pub aovs: Option<aovs::RenderedAovs>,
 }
 
 /// Render a validated scene: with the ray-tracing hider when the scene asks for it, else

@@ -17,12 +17,13 @@ use std::time::{Duration, Instant};
 
 use rayon::prelude::*;
 use reyes_dice::{DiceError, DiceOptions, DiceStats, Dicer};
-use reyes_film::{Film, Window};
+use reyes_film::{AovFilm, AovSamples, AovWindow, Film, Window};
 use reyes_hider::Scratch;
 use reyes_scene::Scene;
 use reyes_shade::{RayVertexShader, Shading};
 use reyes_trace::Tracer;
 
+use crate::aovs::{AovSetup, RenderedAovs};
 use crate::cancel;
 use crate::pool::{self, Pool};
 use crate::settings::{Stages, frame_for, shutter_shape};
@@ -45,6 +46,9 @@ pub(crate) fn render_stochastic(
 /// Render `scene` with the stochastic hider and ray-traced vertex shading. The statistics
 /// gain the vertex and secondary-ray counts.
 fn render_shaded(scene: &Scene, opts: &RenderOptions) -> Result<Rendered, RenderError> {
+    if AovSetup::has_components(scene) {
+        return Err(RenderError::ComponentsNeedLocalShading);
+    }
     let t0 = Instant::now();
     let tracer = Tracer::new(scene);
     let shading = Shading::new(scene, &tracer);
@@ -103,6 +107,9 @@ struct Buffers {
     mpolys: Vec<reyes_hider::Micropolygon>,
     /// `0..n`: the indices of `mpolys`.
     list: Vec<u32>,
+    /// With AOVs: the per-vertex AOV values of `mpolys`, and the bucket's AOV window.
+    aov_data: Vec<f32>,
+    aov_window: AovWindow,
 }
 
 /// The bucket loop: per row of buckets, dice what it needs, render its buckets in parallel,
@@ -134,6 +141,10 @@ fn render_rows(
 
     let (mut t_hide, mut t_film) = (Duration::ZERO, Duration::ZERO);
     let mut film = Film::new(scene.image.width, scene.image.height);
+    let aov = AovSetup::for_scene(scene);
+    let mut aov_film = aov
+        .as_ref()
+        .map(|a| AovFilm::new(scene.image.width, scene.image.height, a.plan.channels()));
     let mut hider_stats = reyes_hider::Stats::default();
     let mut buckets_rendered = 0;
     let across = frame.buckets_x as usize;
@@ -155,8 +166,9 @@ fn render_rows(
                     // Skipped: the row is discarded below.
                     return (None, Default::default());
                 }
-                let result = if diced.bucket_len(b) == 0 {
-                    // Appendix A's `emptybucket`: nothing to display.
+                // Appendix A's `emptybucket`: nothing to display (but its AOVs' background).
+                let empty = diced.bucket_len(b) == 0;
+                let result = if empty && aov.is_none() {
                     (None, Default::default())
                 } else {
                     diced.copy_bucket(b, &mut buf.mpolys);
@@ -165,14 +177,48 @@ fn render_rows(
                         buf.list.extend(buf.list.len() as u32..n);
                     }
                     buf.scratch.stats = Default::default();
-                    let out = hider.render_bucket(
-                        b,
-                        &buf.mpolys,
-                        &buf.list[..n as usize],
-                        &mut buf.scratch,
-                    );
-                    pool::splat_bucket(&table, &frame, b, out.rgba, out.z, &mut buf.window);
-                    (Some(buf.window.clone()), buf.scratch.stats)
+                    let list = &buf.list[..n as usize];
+                    let aov_window = if let Some(a) = &aov {
+                        diced.copy_bucket_aovs(b, &mut buf.aov_data);
+                        let out = hider.render_bucket_aovs(
+                            b,
+                            (&buf.mpolys, &buf.aov_data),
+                            list,
+                            &a.plan,
+                            &mut buf.scratch,
+                        );
+                        let beauty = out.beauty;
+                        pool::splat_bucket(
+                            &table,
+                            &frame,
+                            b,
+                            beauty.rgba,
+                            beauty.z,
+                            &mut buf.window,
+                        );
+                        let samples = AovSamples {
+                            channels: a.plan.channels(),
+                            values: out.aov,
+                            front_z: out.front_z,
+                            x: &out.samples.x,
+                            y: &out.samples.y,
+                        };
+                        reyes_film::splat_aovs(
+                            &table,
+                            frame.bucket_origin(b),
+                            (frame.bucket_w, frame.bucket_h),
+                            &a.channels,
+                            &samples,
+                            &mut buf.aov_window,
+                        );
+                        Some(buf.aov_window.clone())
+                    } else {
+                        let out = hider.render_bucket(b, &buf.mpolys, list, &mut buf.scratch);
+                        pool::splat_bucket(&table, &frame, b, out.rgba, out.z, &mut buf.window);
+                        None
+                    };
+                    let window = (!empty).then(|| buf.window.clone());
+                    (window, (buf.scratch.stats, aov_window))
                 };
                 if let Some(cb) = opts.on_bucket {
                     cb();
@@ -186,7 +232,12 @@ fn render_rows(
         }
 
         let t = Instant::now();
-        buckets_rendered += pool::merge(&mut film, &results, |s| hider_stats.merge(s));
+        buckets_rendered += pool::merge(&mut film, &results, |(s, aov_window)| {
+            hider_stats.merge(s);
+            if let (Some(f), Some(w)) = (aov_film.as_mut(), aov_window) {
+                f.add(w);
+            }
+        });
         t_film += t.elapsed();
         if let (Some(limit), true) = (max_points, hider_stats.dropped_points > 0) {
             return Err(RenderError::VisiblePointBudget { limit });
@@ -208,7 +259,8 @@ fn render_rows(
         t_film,
         ..RenderStats::new(scene, hider.config(), frame)
     };
-    Ok(Rendered { film, stats })
+    let aovs = aov.zip(aov_film).map(|(a, film)| RenderedAovs { film, layers: a.layers });
+    Ok(Rendered { film, stats, aovs })
 }
 
 fn dice_summary(d: &DiceStats) -> DiceSummary {

@@ -139,3 +139,20 @@ fn the_document_covers_every_variant() {
         assert!(ron_blocks().iter().any(|b| b.contains(name)), "no ```ron example uses {name}");
     }
 }
+
+/// docs/outputs.md stays true: its example scene parses and validates, and the error it
+/// shows is the one validation gives.
+#[test]
+fn the_outputs_example_parses_and_its_error_is_shown() {
+    const OUTPUTS: &str = include_str!("../../../docs/outputs.md");
+    let blocks = reyes_testkit::docs::fenced_blocks(OUTPUTS, "ron");
+    assert_eq!(blocks.len(), 1, "one example in docs/outputs.md");
+    let scene = parse(&blocks[0], Path::new("outputs.ron")).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(scene.outputs.aovs.len(), 5);
+    let text =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes/aovs.ron"))
+            .unwrap_or_else(|e| panic!("{e}"));
+    let bad = text.replace("(source: ObjectId),", "(source: ObjectId, filter: Some(Filter)),");
+    let err = parse(&bad, Path::new("aovs.ron")).err().map(|e| e.to_string()).unwrap_or_default();
+    assert!(OUTPUTS.contains(&format!("`{err}`")), "docs/outputs.md should show {err}");
+}

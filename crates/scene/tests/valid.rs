@@ -106,6 +106,7 @@ fn the_full_example_parses_with_the_expected_values() {
         ],
         solids: vec![],
         raytrace: reyes_scene::RayTrace::default(),
+        outputs: Default::default(),
     };
     assert_eq!(scene, expected);
 }

@@ -54,6 +54,7 @@ pub fn scene(width: u32, height: u32, camera: Camera, objects: Vec<Object>) -> S
         objects,
         solids: Vec::new(),
         raytrace: Default::default(),
+        outputs: Default::default(),
     }
 }
 

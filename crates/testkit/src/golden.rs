@@ -9,6 +9,16 @@
 //! error allowed is `w_max * max(1, peak)` (one flipped sample in a pixel), and the mean
 //! absolute error allowed is that divided by 100 (such flips in at most 1% of pixels). A real
 //! regression (a shifted edge, a wrong colour, a lost object) exceeds both.
+//!
+//! A scene that writes AOVs has every layer compared too ([`check_aovs`]): a layer filtered
+//! with the beauty's filter under the same rule (its own peak); a layer of a pixel-own filter
+//! (`Zmin`, `Nearest`, `Min`, `Max`: ids, depth), where one flipped sample can change a pixel
+//! entirely, by the number of pixels that differ, at most 1%. Half layers are compared after
+//! rounding the render to half, as the reference was stored. A layer stored with lossy DWAA
+//! compression differs from the render by the codec's quantisation, which the format does not
+//! bound: it is checked only against gross regressions, a mean error of at most 0.5% and a
+//! maximum of 10% of the layer's peak (the codec's measured error on `aovs.ron` is a mean of
+//! 0.06% and a maximum of 1.7%).
 
 use std::path::{Path, PathBuf};
 
@@ -100,6 +110,13 @@ pub fn manifest(root: &Path) -> Result<Vec<Case>, GoldenError> {
 /// Render a case: its scene at the case's size (the fov spans the shorter side, so the
 /// framing is kept when the aspect ratio is), on all cores.
 pub fn render_case(root: &Path, case: &Case) -> Result<(Film, f32), GoldenError> {
+    let scene = case_scene(root, case)?;
+    let film = render(&scene, &RenderOptions::default()).map_err(err)?.film;
+    Ok((film, max_weight(&scene)?))
+}
+
+/// The case's scene at the case's size.
+fn case_scene(root: &Path, case: &Case) -> Result<reyes_scene::Scene, GoldenError> {
     let path = root.join("scenes").join(format!("{}.ron", case.scene));
     let mut scene = reyes_scene::load(&path).map_err(err)?;
     scene.image.width = case.width;
@@ -107,8 +124,71 @@ pub fn render_case(root: &Path, case: &Case) -> Result<(Film, f32), GoldenError>
     if let Some(method) = case.method {
         scene.hider.method = method;
     }
-    let film = render(&scene, &RenderOptions::default()).map_err(err)?.film;
-    Ok((film, max_weight(&scene)?))
+    Ok(scene)
+}
+
+/// Compare every AOV layer of a case whose scene writes AOVs with the reference's layer of
+/// the same name (see the module documentation). Returns one line per failing layer (empty:
+/// all pass, or the scene writes no AOVs).
+pub fn check_aovs(root: &Path, case: &Case) -> Result<Vec<String>, GoldenError> {
+    let scene = case_scene(root, case)?;
+    if scene.outputs.aovs.is_empty() {
+        return Ok(Vec::new());
+    }
+    let w_max = max_weight(&scene)?;
+    let rendered = render(&scene, &RenderOptions::default()).map_err(err)?;
+    let Some(aovs) = rendered.aovs else { return Err(err("the scene's AOVs were not rendered")) };
+    let reference_path = root.join("golden").join(format!("{}.exr", case.name()));
+    let reference = reyes_film::read_layers(&reference_path).map_err(err)?;
+    let n = (case.width * case.height) as usize;
+    let mut failures = Vec::new();
+    for (layer, aov) in aovs.layers.iter().zip(&scene.outputs.aovs) {
+        let pixel_own = aov.filter_or_default() != reyes_scene::AovFilter::Filter;
+        for (k, c) in layer.channels.iter().enumerate() {
+            let name = format!("{}.{c}", layer.name);
+            let Some(r) = reference.iter().find(|r| r.name == name) else {
+                failures.push(format!("{name}: not in the reference"));
+                continue;
+            };
+            if r.values.len() != n {
+                failures.push(format!("{name}: {} pixels, expected {n}", r.values.len()));
+                continue;
+            }
+            let actual =
+                aovs.film.data().iter().skip(layer.start + k).step_by(aovs.film.channels());
+            let actual = actual.map(|&v| reyes_film::as_stored(v, r.half));
+            let (mut sum, mut max, mut differ, mut peak) = (0.0f64, 0.0f32, 0usize, 1.0f32);
+            for (a, &b) in actual.zip(&r.values) {
+                let d = (a - b).abs();
+                let d = if d.is_nan() { f32::INFINITY } else { d };
+                sum += f64::from(d);
+                max = max.max(d);
+                differ += usize::from(a.to_bits() != b.to_bits());
+                peak = peak.max(b.abs());
+            }
+            let mean = (sum / n as f64) as f32;
+            if layer.compression == reyes_scene::Compression::Dwaa {
+                if mean > 5e-3 * peak || max > 0.1 * peak {
+                    failures.push(format!(
+                        "{name} (DWAA): mean error {mean:.3e}, max {max:.3e} (allowed {:.3e}, {:.3e})",
+                        5e-3 * peak,
+                        0.1 * peak
+                    ));
+                }
+            } else if pixel_own {
+                if differ * 100 > n {
+                    failures.push(format!("{name}: {differ} of {n} pixels differ (at most 1%)"));
+                }
+            } else if max > w_max * peak || mean > w_max * peak / 100.0 {
+                failures.push(format!(
+                    "{name}: mean error {mean:.3e}, max {max:.3e} (allowed {:.3e}, {:.3e})",
+                    w_max * peak / 100.0,
+                    w_max * peak
+                ));
+            }
+        }
+    }
+    Ok(failures)
 }
 
 /// The largest filter-table weight (in magnitude) of `scene`'s hider, the `w_max` of the
@@ -210,9 +290,25 @@ pub fn difference(a: &Film, b: &Film) -> Film {
 /// Render a case and write it as the new reference, plus a PNG beside it in `target/golden`
 /// to look at. Returns the PNG path.
 pub fn bless(root: &Path, case: &Case) -> Result<PathBuf, GoldenError> {
-    let (film, _) = render_case(root, case)?;
+    let scene = case_scene(root, case)?;
+    let rendered = render(&scene, &RenderOptions::default()).map_err(err)?;
+    let film = rendered.film;
     let reference = root.join("golden").join(format!("{}.exr", case.name()));
-    reyes_film::write(&reference, &film).map_err(err)?;
+    match &rendered.aovs {
+        // Every layer, as the binary writes it (the metadata names the scene file).
+        Some(aovs) => {
+            let name = format!("scenes/{}.ron", case.scene);
+            let metadata = reyes_film::Metadata::for_scene(&scene, &name);
+            let picture = reyes_film::Picture {
+                film: &film,
+                aovs: Some((&aovs.film, &aovs.layers)),
+                outputs: &scene.outputs,
+                metadata: &metadata,
+            };
+            reyes_film::write_picture(&reference, &picture, &Default::default()).map_err(err)?;
+        }
+        None => reyes_film::write(&reference, &film).map_err(err)?,
+    }
     let dir = out_dir(root);
     std::fs::create_dir_all(&dir).map_err(|e| err(format!("{}: {e}", dir.display())))?;
     let png = dir.join(format!("{}.png", case.name()));

@@ -4,6 +4,7 @@
 //! meshes, NURBS), and RenderMan's cameras, lights and materials.
 
 mod accuracy;
+mod aovs;
 mod camera;
 mod csg;
 mod filters;

@@ -100,7 +100,12 @@ fn golden_images() {
     let mut failures = Vec::new();
     for case in golden::manifest(&root).unwrap() {
         match golden::check(&root, &case).unwrap() {
-            Outcome::Pass(_) => {}
+            Outcome::Pass(_) => {
+                // A scene with AOVs: every layer against the reference's.
+                for f in golden::check_aovs(&root, &case).unwrap() {
+                    failures.push(format!("{}: {f}", case.name()));
+                }
+            }
             Outcome::Fail(c, path) => failures.push(format!(
                 "{}: mean {:?} max {:?} over tolerance {} / {}; see {}",
                 case.name(),

@@ -313,6 +313,7 @@ impl FrameBuild {
             objects: std::mem::take(&mut self.objects),
             solids: std::mem::take(&mut self.solids),
             raytrace: Default::default(),
+            outputs: reyes_scene::Outputs { aovs: o.aovs.clone(), ..Default::default() },
         };
         let displays = self.options.displays.clone();
         match reyes_scene::validate(scene) {

@@ -4,7 +4,7 @@
 //! Invariant: options are refused inside the world block, where the Specification freezes
 //! them; every value is checked where the model needs it checked first (sizes, counts, names).
 
-use reyes_scene::{FilterKind, HiderMethod};
+use reyes_scene::{Aov, AovFilter, AovSource, FilterKind, HiderMethod};
 
 use super::frame::Machine;
 use super::state::{Display, Projection};
@@ -134,6 +134,22 @@ impl Machine {
                     Some(n) => (true, n),
                     None => (false, name),
                 };
+                let mode = r.string(2).unwrap_or_default();
+                if let (true, Some(source)) = (extra, aov_source(mode)) {
+                    // An output variable: a layer of the main output (docs/outputs.md).
+                    let filter = r.param("filter").and_then(|p| p.strings()).and_then(|f| match f
+                        .first()
+                        .map(String::as_str)
+                    {
+                        Some("min") => Some(AovFilter::Min),
+                        Some("max") => Some(AovFilter::Max),
+                        Some("zmin") => Some(AovFilter::Zmin),
+                        Some("nearest") => Some(AovFilter::Nearest),
+                        _ => None,
+                    });
+                    o.aovs.push(Aov { filter, ..Aov::new(source) });
+                    return Ok(());
+                }
                 let d = Display {
                     name: name.to_string(),
                     driver: r.string(1).unwrap_or_default().to_string(),
@@ -214,4 +230,28 @@ impl Machine {
         }
         Ok(())
     }
+}
+
+/// The AOV a `Display` mode names: RenderMan's variable names (`"N"`, `"P"`, `"Ci"`, `"Oi"`,
+/// `"z"`, `"s"`, `"t"`, `"dPdtime"`, `"__ambient"`, `"__diffuse"`, `"__specular"`), the last
+/// word of a declared one (`"varying normal N"`), and `"id"` / `"object_id"` and
+/// `"material_id"`. The beauty's modes (`"rgba"`, `"rgb"`, `"rgbaz"`) are not AOVs.
+pub(crate) fn aov_source(mode: &str) -> Option<AovSource> {
+    let word = mode.split_whitespace().last().unwrap_or_default();
+    Some(match word {
+        "Ci" => AovSource::Ci,
+        "Oi" => AovSource::Oi,
+        "z" | "Z" => AovSource::Z,
+        "N" => AovSource::N,
+        "P" => AovSource::P,
+        "s" => AovSource::S,
+        "t" => AovSource::T,
+        "dPdtime" => AovSource::DPdtime,
+        "id" | "object_id" => AovSource::ObjectId,
+        "material_id" => AovSource::MaterialId,
+        "__ambient" => AovSource::Ambient,
+        "__diffuse" => AovSource::Diffuse,
+        "__specular" => AovSource::Specular,
+        _ => return None,
+    })
 }

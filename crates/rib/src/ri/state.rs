@@ -56,6 +56,8 @@ pub(crate) struct FrameOptions {
     pub pixel_samples: (u32, u32),
     pub filter: Filter,
     pub displays: Vec<Display>,
+    /// The AOVs named by `Display "+name"` lines whose mode is an output variable.
+    pub aovs: Vec<reyes_scene::Aov>,
     pub method: HiderMethod,
     pub jitter: bool,
     pub bucket_size: Option<(u32, u32)>,
@@ -87,6 +89,7 @@ impl Default for FrameOptions {
             // RiGaussianFilter 2 x 2 is the Specification's default filter.
             filter: Filter { kind: FilterKind::RiGaussian, width: 2.0, height: None },
             displays: Vec::new(),
+            aovs: Vec::new(),
             method: HiderMethod::Stochastic,
             jitter: true,
             bucket_size: None,

@@ -494,3 +494,33 @@ fn the_worked_example_of_docs_rib_md_loads_without_a_warning() {
         ref other => panic!("{other:?}"),
     }
 }
+
+#[test]
+fn display_lines_with_output_variables_become_aov_layers() {
+    use reyes_scene::{AovFilter, AovSource};
+    let text = format!(
+        "Display \"main.exr\" \"openexr\" \"rgba\"\n\
+         Display \"+n.exr\" \"openexr\" \"varying normal N\"\n\
+         Display \"+id.exr\" \"openexr\" \"id\" \"string filter\" \"nearest\"\n\
+         Display \"+depth.exr\" \"openexr\" \"z\" \"string filter\" \"min\"\n\
+         Display \"+diffuse.exr\" \"openexr\" \"color __diffuse\" \"string filter\" \"gaussian\"\n\
+         Display \"+copy.png\" \"file\" \"rgba\"\n{}",
+        world("Sphere 1 -1 1 360")
+    );
+    let loaded = rib(&text).unwrap_or_else(|e| panic!("{e}"));
+    let frame = &loaded.frames[0];
+    let aovs: Vec<_> = frame.scene.outputs.aovs.iter().map(|a| (a.source, a.filter)).collect();
+    assert_eq!(
+        aovs,
+        [
+            (AovSource::N, None),
+            (AovSource::ObjectId, Some(AovFilter::Nearest)),
+            (AovSource::Z, Some(AovFilter::Min)),
+            (AovSource::Diffuse, None),
+        ]
+    );
+    // Only the image display is an extra file; the variables are layers of the main output.
+    let extras: Vec<_> =
+        frame.displays.iter().filter(|d| d.extra).map(|d| d.name.as_str()).collect();
+    assert_eq!(extras, ["copy.png"]);
+}

@@ -18,6 +18,7 @@ mod hider;
 mod light;
 mod material;
 mod object;
+mod output;
 mod raytrace;
 mod shape;
 mod solid;
@@ -28,6 +29,7 @@ pub use hider::*;
 pub use light::*;
 pub use material::*;
 pub use object::*;
+pub use output::*;
 pub use raytrace::*;
 pub use shape::*;
 pub use solid::*;
@@ -62,6 +64,10 @@ pub struct Scene {
     /// Settings of the distributed ray tracing (shadows, glossy reflection, translucency).
     #[serde(default)]
     pub raytrace: RayTrace,
+    /// What the frame writes besides the beauty: AOVs, light groups, pixel types and
+    /// compression, the background depth, the PNG view transform (docs/outputs.md).
+    #[serde(default)]
+    pub outputs: Outputs,
 }
 
 fn default_up() -> V3 {

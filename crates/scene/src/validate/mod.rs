@@ -1,7 +1,7 @@
 //! Semantic validation of a deserialised [`Scene`]: ranges, finiteness and consistency.
 //!
 //! Invariants: checks run in a fixed order (image, camera, hider, lights, objects, solids,
-//! raytrace, each in field order) and stop at the first failure, so the reported error is stable; each failure
+//! raytrace, outputs, each in field order) and stop at the first failure, so the reported error is stable; each failure
 //! names the path of the offending value as the source map spells it (`objects[0].shape.radius`).
 //! Every `f32` is checked finite before any range test on it. No check can panic: geometric
 //! tests are done in `f64`, where products of finite `f32`s cannot overflow.
@@ -34,6 +34,7 @@ mod keys;
 mod light;
 mod material;
 mod object;
+mod output;
 mod primitives;
 mod raytrace;
 mod shape;
@@ -68,5 +69,6 @@ fn check_scene(scene: &Scene) -> Check {
         object::object(&format!("objects[{i}]"), object, shutter, scene.lights.len())?;
     }
     solid::solids(scene)?;
-    raytrace::raytrace(&scene.raytrace, scene)
+    raytrace::raytrace(&scene.raytrace, scene)?;
+    output::outputs(&scene.outputs, scene)
 }
