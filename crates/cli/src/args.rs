@@ -19,7 +19,8 @@ pub(crate) struct Args {
     /// Scene file: RON (docs/scene-format.md) or RIB, plain or gzipped (docs/rib.md), by its
     /// extension or else its content; - reads standard input.
     pub scene: PathBuf,
-    /// Output image: .exr (32-bit float RGBA plus Z) or .png (8-bit sRGB with alpha). Several
+    /// Output image: .exr (RGBA plus Z, and the scene's AOVs as layers) or .png (8-bit sRGB
+    /// with alpha, dithered; docs/outputs.md). Several
     /// frames (RIB FrameBegin) go to numbered files: a run of # or a %0Nd in the name takes
     /// the frame number, else it is inserted before the extension (out.0001.exr).
     #[arg(short, long, value_name = "FILE")]
@@ -50,6 +51,10 @@ pub(crate) struct Args {
     /// refused before it starts (exit 2); one that runs out while dicing stops (exit 1).
     #[arg(long, value_name = "SIZE", value_parser = reyes_render::budget::parse_size)]
     pub memory_limit: Option<u64>,
+    /// Write +inf depth where nothing is visible, instead of the scene's outputs.zbackground
+    /// (default 1e30, finite so that differences of two renders stay finite; docs/outputs.md).
+    #[arg(long)]
+    pub z_infinite: bool,
 }
 
 /// Volume and centre of mass of a closed object or CSG solid (patent FIG. 23), by stratified

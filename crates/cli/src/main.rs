@@ -161,6 +161,9 @@ fn render_main() -> Result<(), Exit> {
         .into_iter()
         .map(|frame| {
             let mut scene = frame.scene;
+            if args.z_infinite {
+                scene.outputs.zbackground = reyes_scene::ZBackground::Infinite;
+            }
             if let Some(seed) = args.seed {
                 scene.hider.seed = seed;
             }

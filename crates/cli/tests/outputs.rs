@@ -237,3 +237,24 @@ fn png_preview_dithers_composites_and_exposes() {
     assert_eq!(b[0], [0, 0, 255, 255]);
     assert!(b.iter().all(|p| p[3] == 255), "composited over a background: opaque");
 }
+
+#[test]
+fn background_depth_is_finite_unless_z_infinite_is_given() {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let scene = aovs_scene(dir.path(), "aovs.ron", |t| t);
+    let (finite, infinite) = (dir.path().join("f.exr"), dir.path().join("i.exr"));
+    render(&scene, &finite, &[]);
+    render(&scene, &infinite, &["--z-infinite"]);
+    let z = |p: &Path, name: &str| -> Vec<f32> {
+        let layers = reyes_film::read_layers(p).unwrap_or_else(|e| panic!("{e}"));
+        layers.into_iter().find(|c| c.name == name).map(|c| c.values).unwrap_or_default()
+    };
+    // Pixel (0, 0) sees the sky: nothing there.
+    for name in ["Z", "z.Z"] {
+        assert_eq!(z(&finite, name)[0], 1e30, "{name}");
+        assert_eq!(z(&infinite, name)[0], f32::INFINITY, "{name}");
+        // Elsewhere the same depths.
+        let (a, b) = (z(&finite, name), z(&infinite, name));
+        assert!(a.iter().zip(&b).all(|(a, b)| a == b || (*a == 1e30 && b.is_infinite())));
+    }
+}

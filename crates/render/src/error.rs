@@ -5,7 +5,7 @@ impl RenderError {
     /// the limit, like any other out-of-range setting), 1 for everything else.
     pub fn exit_code(&self) -> u8 {
         match self {
-            RenderError::WontFit { .. } | RenderError::ComponentsNeedLocalShading => 2,
+            RenderError::WontFit { .. } => 2,
             _ => 1,
         }
     }
@@ -45,11 +45,6 @@ pub enum RenderError {
     /// The thread pool could not be built.
     #[error("cannot start render threads: {0}")]
     Threads(#[from] rayon::ThreadPoolBuildError),
-    /// The scene asks for shading-component AOVs but is shaded by distributed rays.
-    #[error(
-        "outputs.aovs: Ambient, Diffuse and Specular are split from the built-in local illumination only, and this scene is shaded by distributed rays (shadows, area lights, reflection, refraction or patterns); remove those AOVs"
-    )]
-    ComponentsNeedLocalShading,
     /// [`crate::cancel::request`] was called: the render stopped before its last bucket.
     #[error("the render was cancelled")]
     Cancelled,

@@ -46,9 +46,8 @@ pub(crate) fn render_stochastic(
 /// Render `scene` with the stochastic hider and ray-traced vertex shading. The statistics
 /// gain the vertex and secondary-ray counts.
 fn render_shaded(scene: &Scene, opts: &RenderOptions) -> Result<Rendered, RenderError> {
-    if AovSetup::has_components(scene) {
-        return Err(RenderError::ComponentsNeedLocalShading);
-    }
+    // Validation refuses shading-component AOVs with ray-traced shading (outputs.rs).
+    debug_assert!(!AovSetup::has_components(scene));
     let t0 = Instant::now();
     let tracer = Tracer::new(scene);
     let shading = Shading::new(scene, &tracer);

@@ -85,6 +85,15 @@ fn every_rule_reports_one_line_at_its_field() {
         assert!(err.ends_with(expect), "{outputs}:\n  got    {err}\n  expect {expect}");
         assert!(err.starts_with("o.ron:") && !err.contains('\n'), "{err}");
     }
+    // Components need the local illumination: not with a shadowing light.
+    let shadows = BASE
+        .replace("OUTPUTS", "aovs: [(source: N), (source: Specular)]")
+        .replace("to: (0.0, 0.0, 0.0))]", "to: (0.0, 0.0, 0.0), shadows: true)]");
+    let err = parse(&shadows, Path::new("o.ron")).err().map(|e| e.to_string()).unwrap_or_default();
+    assert!(
+        err.contains(":6:42: outputs.aovs[1].source: Ambient, Diffuse and Specular are split"),
+        "{err}"
+    );
     // The ray-tracing hider writes no AOVs.
     let rt = BASE
         .replace("OUTPUTS", "aovs: [(source: N)]")

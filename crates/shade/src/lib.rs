@@ -90,7 +90,7 @@ pub use vertex::RayVertexShader;
 use glam::Vec3;
 use reyes_dice::{Shader, Viewer, facing};
 use reyes_sampling::Strata;
-use reyes_scene::{Light, Object, Scene, Shape};
+use reyes_scene::{Object, Scene, Shape};
 use reyes_trace::{Hit, Ray, Tracer};
 
 use crate::lights::{DirectLight, MIN_DIST2, ShutterNorm};
@@ -264,18 +264,7 @@ impl<'a> Shading<'a> {
     /// Whether shading `scene` needs anything beyond the dicer's local illumination: a
     /// shadowing or area light, a reflecting or refracting object, or a pattern.
     pub fn needed(scene: &Scene) -> bool {
-        let lights = scene.lights.iter().any(|l| match l {
-            Light::Ambient { .. } => false,
-            Light::Distant { shadows, .. }
-            | Light::Point { shadows, .. }
-            | Light::Spot { shadows, .. } => *shadows,
-            Light::Area { .. } => true,
-        });
-        lights
-            || scene
-                .objects
-                .iter()
-                .any(|o| o.reflect.is_some() || o.refract.is_some() || o.pattern.is_some())
+        scene.needs_ray_shading()
     }
 
     /// Premultiplied colour `Os * Ci` and transmittance `1 - Os` at a surface point, with

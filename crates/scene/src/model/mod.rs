@@ -70,6 +70,26 @@ pub struct Scene {
     pub outputs: Outputs,
 }
 
+impl Scene {
+    /// Whether shading needs anything beyond the dicer's local illumination: a shadowing or
+    /// area light, a reflecting or refracting object, or a pattern (then the distributed rays
+    /// of reyes-shade shade the vertices). Here so that validation and the renderer agree.
+    pub fn needs_ray_shading(&self) -> bool {
+        let lights = self.lights.iter().any(|l| match l {
+            Light::Ambient { .. } => false,
+            Light::Distant { shadows, .. }
+            | Light::Point { shadows, .. }
+            | Light::Spot { shadows, .. } => *shadows,
+            Light::Area { .. } => true,
+        });
+        lights
+            || self
+                .objects
+                .iter()
+                .any(|o| o.reflect.is_some() || o.refract.is_some() || o.pattern.is_some())
+    }
+}
+
 fn default_up() -> V3 {
     [0.0, 1.0, 0.0]
 }

@@ -83,6 +83,14 @@ pub(super) fn outputs(o: &Outputs, scene: &Scene) -> Check {
                 );
             }
         }
+        if aov.source.is_component() && scene.needs_ray_shading() {
+            return fail(
+                format!("{at}.source"),
+                "Ambient, Diffuse and Specular are split from the built-in local illumination \
+                 only, and this scene is shaded by distributed rays (shadows, area lights, \
+                 reflection, refraction or patterns)",
+            );
+        }
         match (&aov.light_group, aov.source.is_component()) {
             (Some(_), false) => {
                 return fail(
