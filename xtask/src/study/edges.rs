@@ -433,6 +433,30 @@ mod tests {
         assert!(sobol < 0.7 * random, "Sobol {sobol} vs random {random}");
     }
 
+    /// Not a test of the code: a quick look at one sampler against FIG. 6 at 64 and 256
+    /// samples per pixel (`cargo test -p xtask --release -- --ignored peek --nocapture`).
+    #[test]
+    #[ignore]
+    fn peek() {
+        let edges: usize =
+            std::env::var("PEEK_EDGES").ok().and_then(|v| v.parse().ok()).unwrap_or(16);
+        let study = EdgeStudy { edges, ..EdgeStudy::default() };
+        for case in EdgeCase::ALL {
+            for n in [8, 16] {
+                let f = study.measure(case, Sampler::Fig6, n).unwrap();
+                let s = study.measure(case, Sampler::Sobol, n).unwrap();
+                let j = study.measure(case, Sampler::SobolJoint, n).unwrap();
+                println!(
+                    "{case:?} {n}: fig6 {:.5}+-{:.5} sobol {:.3} joint {:.3}",
+                    f.rmse,
+                    f.se,
+                    s.rmse / f.rmse,
+                    j.rmse / f.rmse
+                );
+            }
+        }
+    }
+
     #[test]
     fn slope_of_a_power_law() {
         let xs = [1.0, 4.0, 16.0, 64.0];

@@ -38,6 +38,7 @@ fn colour(s: Sampler) -> RGBColor {
         Sampler::Fig6 => RGBColor(0, 114, 178),
         Sampler::Fig7 => RGBColor(0, 158, 115),
         Sampler::Sobol => RGBColor(213, 94, 0),
+        Sampler::SobolJoint => RGBColor(204, 121, 167),
     }
 }
 

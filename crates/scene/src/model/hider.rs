@@ -83,6 +83,10 @@ pub enum SpatialPattern {
     Random,
     /// Owen-scrambled Sobol (0,2) per pixel; needs power-of-two `pixel_samples`, else `Fig6`.
     Sobol,
+    /// One Owen-scrambled Sobol sequence over position, time and lens jointly per pixel, with
+    /// correlated multi-jittered offsets within each stratum (docs/sampling.md); needs
+    /// power-of-two `pixel_samples`, else `Fig6` (with a warning).
+    SobolJoint,
 }
 
 /// Temporal patterns of the patent (FIGS. 13-15), the counterparts in time of FIGS. 5-7.
