@@ -62,6 +62,10 @@ pub struct HiderConfig {
     pub matte: MatteRule,
     /// Depth comparison across CSG operands.
     pub csg_order: CsgOrder,
+    /// Move vertices linearly in raster space over a motion segment, as Appendix A did,
+    /// instead of along the projective path of a vertex moving linearly in eye space
+    /// (Appendix A's `ALPHABETA` hook, `beta = alpha / (alpha + (1 - alpha) z0/z1)`).
+    pub original_linear_motion: bool,
     /// Test every sample of the bucket against every micropolygon, with no bound culling.
     /// For tests and study: the image must not change, only the sample-test count.
     pub scan_all: bool,
@@ -86,6 +90,7 @@ impl Default for HiderConfig {
             original_moving_clip: false,
             matte: MatteRule::Holdout,
             csg_order: CsgOrder::Exact,
+            original_linear_motion: false,
             scan_all: false,
         }
     }

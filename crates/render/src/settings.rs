@@ -52,6 +52,7 @@ pub fn hider_config(scene: &Scene, camera: &CameraSetup) -> HiderConfig {
         original_moving_clip: h.original.moving_clip,
         matte: if h.original.matte { MatteRule::Original } else { MatteRule::Holdout },
         csg_order: if h.original.csg_order { CsgOrder::Original } else { CsgOrder::Exact },
+        original_linear_motion: h.original.linear_motion,
         scan_all: false,
     }
 }

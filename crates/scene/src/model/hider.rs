@@ -274,4 +274,8 @@ pub struct Original {
     /// Moving micropolygons that straddle hither or yon at a sample's time are rejected for
     /// that sample instead of clipped (3.6).
     pub moving_clip: bool,
+    /// Vertices move linearly in raster space over a motion segment (Appendix A), instead of
+    /// along the perspective-correct path of a vertex moving linearly in eye space (the
+    /// `ALPHABETA` time warp Appendix A declares but never uses).
+    pub linear_motion: bool,
 }
