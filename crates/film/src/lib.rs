@@ -17,6 +17,7 @@ pub mod atomic;
 pub mod error;
 pub mod image;
 pub mod output;
+pub mod points;
 pub mod table;
 pub mod window;
 
@@ -29,5 +30,6 @@ pub use atomic::{WriteOptions, remove_stale_temporaries};
 pub use error::FilmError;
 pub use kernel::{bessel_j1, weight};
 pub use output::{read_exr, srgb_decode, srgb_encode, write, write_with};
+pub use points::splat_points;
 pub use table::{FilterTable, border_for_width};
 pub use window::{Window, splat};

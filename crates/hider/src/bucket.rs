@@ -32,7 +32,10 @@ use crate::mpoly::{Micropolygon, flags};
 use crate::samples::{BucketSamples, Needs};
 use crate::{Hider, LensSetup, Scratch};
 
+mod adaptive;
 mod lanes;
+pub(crate) use adaptive::RefineScratch;
+pub use adaptive::{Adaptive, RefinedSample, disagree};
 use lanes::{
     Batch, Candidate, LANES, MovingSample, PinholeSample, Place, PlaceLens, PlaceMoving,
     PlacePinhole, inside_mask,

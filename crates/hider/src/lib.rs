@@ -16,7 +16,7 @@ pub mod mpoly;
 pub mod samples;
 pub mod tables;
 
-pub use bucket::gouraud;
+pub use bucket::{Adaptive, RefinedSample, disagree, gouraud};
 pub use frame::{Frame, border_for_filter_width};
 pub use lens::LensSetup;
 pub use mpoly::{Micropolygon, flags};
@@ -66,6 +66,8 @@ pub struct HiderConfig {
     /// instead of along the projective path of a vertex moving linearly in eye space
     /// (Appendix A's `ALPHABETA` hook, `beta = alpha / (alpha + (1 - alpha) z0/z1)`).
     pub original_linear_motion: bool,
+    /// Adaptive sampling (the patent's reduced-scale repetition), or `None` (the default).
+    pub adaptive: Option<Adaptive>,
     /// Test every sample of the bucket against every micropolygon, with no bound culling.
     /// For tests and study: the image must not change, only the sample-test count.
     pub scan_all: bool,
@@ -91,6 +93,7 @@ impl Default for HiderConfig {
             matte: MatteRule::Holdout,
             csg_order: CsgOrder::Exact,
             original_linear_motion: false,
+            adaptive: None,
             scan_all: false,
         }
     }
@@ -133,6 +136,10 @@ pub struct Stats {
     pub sample_ns: u64,
     /// Time spent resolving visible-point lists (`CSGResolve`), summed over threads, in ns.
     pub resolve_ns: u64,
+    /// Pixels refined by adaptive sampling.
+    pub refined_pixels: u64,
+    /// Samples added by adaptive sampling (beyond NS per pixel).
+    pub extra_samples: u64,
 }
 
 impl Stats {
@@ -147,6 +154,8 @@ impl Stats {
         self.points += o.points;
         self.sample_ns += o.sample_ns;
         self.resolve_ns += o.resolve_ns;
+        self.refined_pixels += o.refined_pixels;
+        self.extra_samples += o.extra_samples;
     }
 }
 
@@ -160,6 +169,7 @@ pub struct Scratch {
     rgba: Vec<[f32; 4]>,
     z: Vec<f32>,
     slices: bucket::SliceSamples,
+    refine: bucket::RefineScratch,
     /// Statistics accumulated by every bucket this scratch has rendered.
     pub stats: Stats,
 }
@@ -178,6 +188,10 @@ pub struct BucketOutput<'a> {
     pub rgba: &'a [[f32; 4]],
     /// Depth of the opaque surface that ended each sample's composite, or +inf.
     pub z: &'a [f32],
+    /// Adaptive sampling's samples, each with its true position and weight; the colours of
+    /// the refined pixels' own samples in `rgba` are zero (they stand for nothing). Empty
+    /// without [`HiderConfig::adaptive`].
+    pub refined: &'a [RefinedSample],
 }
 
 impl Hider {
@@ -255,7 +269,8 @@ impl Hider {
         scratch: &'s mut Scratch,
     ) -> BucketOutput<'s> {
         self.sample_bucket(bucket, mpolys, list, scratch);
-        BucketOutput { rgba: &scratch.rgba, z: &scratch.z }
+        self.refine_bucket(bucket, mpolys, list, scratch);
+        BucketOutput { rgba: &scratch.rgba, z: &scratch.z, refined: &scratch.refine.out }
     }
 
     /// The samples of bucket `bucket` (positions bucket-local), for study and tests.

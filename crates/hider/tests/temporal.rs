@@ -315,7 +315,8 @@ fn a_point_moving_in_depth_follows_the_projective_path() {
                 let wrong = slice.iter().map(|h| other(h.1)).sum::<f64>() / n;
                 // The bar's width at the slice's start (its widest there): projective, or, on
                 // the original's straight path, the straight interpolation of the end widths.
-                let w = if original { width(0.0) + ta * (width(1.0) - width(0.0)) } else { width(ta) };
+                let w =
+                    if original { width(0.0) + ta * (width(1.0) - width(0.0)) } else { width(ta) };
                 let tol = 4.0 * w / (12.0 * n).sqrt() + 1e-3;
                 assert!(
                     (centroid - want).abs() < tol,

@@ -53,6 +53,10 @@ pub fn hider_config(scene: &Scene, camera: &CameraSetup) -> HiderConfig {
         matte: if h.original.matte { MatteRule::Original } else { MatteRule::Holdout },
         csg_order: if h.original.csg_order { CsgOrder::Original } else { CsgOrder::Exact },
         original_linear_motion: h.original.linear_motion,
+        adaptive: (h.adaptive.max_level > 0).then_some(reyes_hider::Adaptive {
+            max_level: h.adaptive.max_level,
+            threshold: h.adaptive.threshold,
+        }),
         scan_all: false,
     }
 }

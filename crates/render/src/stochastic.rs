@@ -172,6 +172,9 @@ fn render_rows(
                         &mut buf.scratch,
                     );
                     pool::splat_bucket(&table, &frame, b, out.rgba, out.z, &mut buf.window);
+                    // Adaptive sampling's samples, at their true positions and weights.
+                    let refined = out.refined.iter().map(|r| ([r.x, r.y], r.weight, r.rgba));
+                    reyes_film::splat_points(&table, refined, &mut buf.window);
                     (Some(buf.window.clone()), buf.scratch.stats)
                 };
                 if let Some(cb) = opts.on_bucket {

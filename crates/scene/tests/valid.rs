@@ -74,6 +74,7 @@ fn the_full_example_parses_with_the_expected_values() {
             seed: 0,
             max_grid_size: 256,
             cull_back_faces: false,
+            adaptive: reyes_scene::Adaptive::default(),
             original: Original::default(),
         },
         lights: vec![

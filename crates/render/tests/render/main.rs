@@ -10,3 +10,4 @@ mod geometry;
 mod lens;
 mod pipeline;
 mod raytrace;
+mod sampling;

@@ -35,8 +35,31 @@ pub struct Hider {
     /// diced at different rates: without them a few silhouette and crack pixels lose
     /// coverage (on `scenes/bench/balls.ron` 1045 pixels change, by at most 0.08).
     pub cull_back_faces: bool,
+    /// Adaptive sampling (the patent's reduced-scale repetition of the pattern): off unless
+    /// `max_level` > 0.
+    pub adaptive: Adaptive,
     /// Switches that reproduce the original 1985 behaviour where it differs from ours.
     pub original: Original,
+}
+
+/// Adaptive sampling: after a pixel's samples, a pixel whose samples disagree (some channel
+/// of colour or alpha spreads by more than `threshold`) gets the same pattern again at half
+/// scale in each quadrant, and so on for quadrants that still disagree, down to `max_level`
+/// (docs/sampling.md). Stochastic hider only.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Adaptive {
+    /// Deepest refinement: 0 (the default) is off; a leaf of level L is 2^-L pixels across.
+    pub max_level: u32,
+    /// Largest spread (max - min) of any channel among a region's samples that does not
+    /// refine it.
+    pub threshold: f32,
+}
+
+impl Default for Adaptive {
+    fn default() -> Self {
+        Adaptive { max_level: 0, threshold: 0.1 }
+    }
 }
 
 impl Default for Hider {
@@ -53,6 +76,7 @@ impl Default for Hider {
             seed: 0,
             max_grid_size: 256,
             cull_back_faces: false,
+            adaptive: Adaptive::default(),
             original: Original::default(),
         }
     }
