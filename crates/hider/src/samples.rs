@@ -263,6 +263,7 @@ impl BucketSamples {
             true => (vec![0u32; ns], vec![[0u32; 2]; ns], vec![0u32; ns]),
             false => (Vec::new(), Vec::new(), Vec::new()),
         };
+        let mut joint_points = Vec::with_capacity(if joint { ns } else { 0 });
         let (mut cmj_x, mut cmj_y) =
             (vec![0u32; tables.nx as usize], vec![0u32; tables.ny as usize]);
         let (mut net_xy, mut net_t, mut net_l) = match sobol {
@@ -306,8 +307,9 @@ impl BucketSamples {
                     shuffle(&mut cmj_x, spec.seed, &[0xc31a, gx, gy]);
                     shuffle(&mut cmj_y, spec.seed, &[0xc31b, gx, gy]);
                     let (ny, fine) = (tables.ny as u64, 32 - m);
-                    for j in 0..ns as u32 {
-                        let p = sc.point(j);
+                    sc.block(m, &mut joint_points);
+                    for (j, p) in joint_points.iter().enumerate() {
+                        let j = j as u32;
                         let (cx, cy, s) = cell(p.xy);
                         // Correlated multi-jitter within the stratum: column cx's points take
                         // the x sub-strata perm_y(row), row cy's the y sub-strata perm_x(col).

@@ -191,6 +191,34 @@ impl JointScramble {
         }
     }
 
+    /// Points `0..2^m` of [`JointScramble::point`], into `out`, the same values computed
+    /// faster: the shuffled indices of the block share their bits above `m`, and every Sobol
+    /// dimension is linear over XOR, so that shared part is evaluated once and each point
+    /// only over its low `m` bits.
+    pub fn block(&self, m: u32, out: &mut Vec<JointPoint>) {
+        out.clear();
+        let low = ((1u64 << m) - 1) as u32;
+        let high = nested_uniform_scramble(0, self.index) & !low;
+        let dims = |j: u32| {
+            [
+                j.reverse_bits(),
+                sobol_dim1(j),
+                sobol_dim(&SOBOL_DIM2, j),
+                sobol_dim(&SOBOL_DIM3, j),
+                sobol_dim(&SOBOL_DIM4, j),
+            ]
+        };
+        let base = dims(high);
+        let c = &self.coord;
+        for i in 0..=low {
+            let j = nested_uniform_scramble(i, self.index);
+            debug_assert_eq!(j & !low, high);
+            let d = dims(j & low);
+            let v = |k: usize| nested_uniform_scramble(base[k] ^ d[k], c[k]);
+            out.push(JointPoint { xy: [v(0), v(1)], t: v(2), lens: [v(3), v(4)] });
+        }
+    }
+
     /// Point `i` of the scrambled joint sequence. For any `m`, points `0..2^m` have `xy` a
     /// (0,m,2)-net, `(xy, t)` a (1,m,3)-net, and each of `t`, `lens[0]` and `lens[1]` one
     /// point in each `[k/2^m, (k+1)/2^m)`.
@@ -313,6 +341,21 @@ mod tests {
     }
 
     #[test]
+    fn a_block_is_its_points() {
+        for seed in 0..8u64 {
+            let sc = JointScramble::new(seed, &[seed, 1]);
+            let mut out = Vec::new();
+            for m in 0..=10u32 {
+                sc.block(m, &mut out);
+                assert_eq!(out.len(), 1 << m);
+                for (i, p) in out.iter().enumerate() {
+                    assert_eq!(*p, sc.point(i as u32), "seed {seed} m {m} point {i}");
+                }
+            }
+        }
+    }
+
+    #[test]
     fn joint_prefixes_are_nets_in_every_dimension_group() {
         for seed in 0..12u64 {
             let sc = JointScramble::new(seed, &[3, seed]);
@@ -321,9 +364,8 @@ mod tests {
                 let block = &pts[..1 << m];
                 let xy: Vec<_> = block.iter().map(|p| p.xy).collect();
                 assert!(is_02_net(&xy, m), "seed {seed} m {m}: positions");
-                for (d, get) in
-                    [|p: &JointPoint| p.t, |p| p.lens[0], |p| p.lens[1]].iter().enumerate()
-                {
+                let dims: [fn(&JointPoint) -> u32; 3] = [|p| p.t, |p| p.lens[0], |p| p.lens[1]];
+                for (d, get) in dims.iter().enumerate() {
                     let mut seen = vec![false; 1 << m];
                     for p in block {
                         let k = if m == 0 { 0 } else { (get(p) >> (32 - m)) as usize };
