@@ -107,7 +107,7 @@ mod tests {
         let t =
             FilterTable::new(FilterKind::Box, 1.0, 2, 2, &grid(2), &Original::default()).unwrap();
         let mut w = Window::new();
-        splat(&t, 0, 0, 2, 2, &vec![[0.0; 4]; 16], &vec![1.0; 16], &mut w);
+        splat(&t, 0, 0, 2, 2, &[[0.0; 4]; 16], &[1.0; 16], &mut w);
         let pts = (0..64).map(|i| {
             ([1.0 + (i % 8) as f32 / 8.0 + 0.01, (i / 8) as f32 / 8.0 + 0.01], 1.0 / 64.0, [1.0; 4])
         });

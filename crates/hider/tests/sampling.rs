@@ -310,7 +310,7 @@ fn joint_pixels_have_one_sample_per_time_slice_and_lens_cell() {
                     }
                 }
                 let mut seen = vec![false; ns];
-                for lambda in 0..ns {
+                for (lambda, cell) in loc.iter().enumerate() {
                     let s = smp.by_lens[lambda * p_count + pixel] as usize;
                     let k = s * p_count + pixel;
                     // Back from the lens sample to its unit-square cell.
@@ -329,7 +329,7 @@ fn joint_pixels_have_one_sample_per_time_slice_and_lens_cell() {
                     let near =
                         |w: f32, n: u32| ((w * n as f32) - (w * n as f32).round()).abs() < 1e-4;
                     if !(near(u, nx) || near(v, ny)) {
-                        assert_eq!([cx / nx as f32, cy / ny as f32], loc[lambda], "{what}");
+                        assert_eq!([cx / nx as f32, cy / ny as f32], *cell, "{what}");
                     }
                     let q = (cx as u32 * ny + cy as u32).min(ns as u32 - 1) as usize;
                     assert!(

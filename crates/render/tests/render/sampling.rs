@@ -30,7 +30,8 @@ fn exr_bytes(scene: &Scene, threads: usize) -> Vec<u8> {
 
 #[test]
 fn new_sampling_options_are_byte_identical_for_any_thread_count() {
-    let cases: [(&str, fn(&mut Scene)); 4] = [
+    type Edit = fn(&mut Scene);
+    let cases: [(&str, Edit); 4] = [
         ("SobolJoint", |s| s.hider.pattern = SpatialPattern::SobolJoint),
         ("adaptive", |s| {
             s.hider.adaptive.max_level = 2;
