@@ -136,6 +136,7 @@ impl Hider {
             }
         }
         scratch.stats.refined_pixels += rs.todo.len() as u64;
+        let points_before = scratch.points.len();
         let resolver =
             Resolver { matte: self.config.matte, trees: &self.csg, order: self.config.csg_order };
         for level in 1..=ad.max_level {
@@ -224,6 +225,7 @@ impl Hider {
             }
         }
         scratch.stats.peak_points = scratch.stats.peak_points.max(scratch.points.len() as u64);
+        scratch.stats.points += (scratch.points.len() - points_before) as u64;
         scratch.refine = rs;
     }
 
