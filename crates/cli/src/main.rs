@@ -185,6 +185,9 @@ fn render_main() -> Result<(), Exit> {
                     )
                 })?;
             }
+            if let Some(w) = reyes_render::settings::pattern_fallback(&scene) {
+                say(format_args!("{}: warning: {w}", args.scene.display()));
+            }
             let main = output::frame_path(&args.output, frame.number, numbered);
             let extras = frame
                 .displays

@@ -407,3 +407,44 @@ fn setup_failures_are_scene_errors() {
     assert!(err.contains("narrow.rib:2:1: PixelFilter: hider.filter: the filter is zero"), "{err}");
     assert!(!Path::new(out).exists());
 }
+
+#[test]
+fn sobol_patterns_without_power_of_two_samples_fall_back_with_a_warning() {
+    // The fall-back to FIG. 6 is reported, once, on one line; a power-of-two count is silent,
+    // and the fallen-back render is the FIG. 6 render byte for byte.
+    let dir = tempfile::tempdir().unwrap();
+    let mut files = Vec::new();
+    for (name, pattern, samples) in [
+        ("j3", "SobolJoint", "(3, 3)"),
+        ("s3", "Sobol", "(3, 3)"),
+        ("f3", "Fig6", "(3, 3)"),
+        ("j4", "SobolJoint", "(4, 2)"),
+    ] {
+        let scene = scene_with(dir.path(), &format!("{name}.ron"), |t| {
+            t.replace(
+                "pixel_samples: (2, 2)",
+                &format!("pixel_samples: {samples}, pattern: {pattern}"),
+            )
+        });
+        let out = dir.path().join(format!("{name}.exr"));
+        let o = run(&[scene.to_str().unwrap(), "-o", out.to_str().unwrap(), "-q"]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let err = stderr(&o);
+        if name.ends_with('3') && pattern != "Fig6" {
+            assert_eq!(err.lines().count(), 1, "{err}");
+            assert!(
+                err.contains(&format!(
+                    "{name}.ron: warning: hider.pattern: {pattern} needs power-of-two pixel_samples; 3 x 3 renders with Fig6"
+                )),
+                "{err}"
+            );
+        } else {
+            assert!(err.is_empty(), "{name}: {err}");
+        }
+        files.push(reyes_film::read_exr(&out).unwrap());
+    }
+    // The same pixels, bit for bit (the files differ in the header's `reyesScene`, which
+    // names the scene file).
+    assert!(files[0] == files[2], "SobolJoint at 3 x 3 is FIG. 6");
+    assert!(files[1] == files[2], "Sobol at 3 x 3 is FIG. 6");
+}

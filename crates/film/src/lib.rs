@@ -19,6 +19,7 @@ pub mod error;
 pub mod image;
 pub mod layers;
 pub mod output;
+pub mod points;
 pub mod table;
 pub mod window;
 
@@ -36,5 +37,6 @@ pub use layers::{
     write_picture,
 };
 pub use output::{read_exr, srgb_decode, srgb_encode, write, write_with};
+pub use points::splat_points;
 pub use table::{FilterTable, border_for_width};
 pub use window::{Window, splat};

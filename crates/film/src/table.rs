@@ -25,6 +25,10 @@ pub struct FilterTable {
     ns: usize,
     weights: Vec<f32>,
     box_fast: bool,
+    /// The sum the weights were divided by, and the kernel's switches: what a sample away
+    /// from its stratum centre needs to be weighed alike ([`crate::splat_points`]).
+    sum: f64,
+    original: Original,
 }
 
 impl FilterTable {
@@ -99,7 +103,24 @@ impl FilterTable {
             ns: shape.ns,
             weights,
             box_fast: unit_box && width == 1.0 && height == 1.0,
+            sum,
+            original: *original,
         })
+    }
+
+    /// The weight, on the table's scale, of a sample that stands for the fraction `area` of a
+    /// pixel, at offset `(dx, dy)` from a pixel's centre: `kernel(dx, dy) * area * NS / sum`.
+    /// A sample of the table (area `1/NS`, at its stratum's centre) gets exactly its entry.
+    pub fn weight_at(&self, dx: f32, dy: f32, area: f32) -> f64 {
+        let k = reyes_scene::filter::kernel::weight(
+            self.kind,
+            self.width,
+            self.height,
+            dx,
+            dy,
+            &self.original,
+        );
+        f64::from(k) * f64::from(area) * self.ns as f64 / self.sum
     }
 
     /// The kernel.

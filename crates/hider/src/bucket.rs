@@ -35,7 +35,10 @@ use crate::mpoly::{Micropolygon, flags};
 use crate::samples::{BucketSamples, Needs};
 use crate::{Hider, LensSetup, Scratch};
 
+mod adaptive;
 mod lanes;
+pub(crate) use adaptive::RefineScratch;
+pub use adaptive::{Adaptive, RefinedSample, disagree};
 use lanes::{
     Batch, Candidate, LANES, MovingSample, PinholeSample, Place, PlaceLens, PlaceMoving,
     PlacePinhole, inside_mask,
@@ -602,6 +605,7 @@ impl Bucket<'_> {
             return;
         }
         let inv_len = 1.0 / (t1 - t0);
+        let warp = Warp::new(mp, !hider.config.original_linear_motion);
         let slice_box = |tau: usize| {
             let [ta, tb] = hider.slice_times[tau];
             if tb < t0 || ta >= t1 {
@@ -609,6 +613,7 @@ impl Bucket<'_> {
             }
             let aa = (ta.max(t0) - t0) * inv_len;
             let ab = (tb.min(t1) - t0) * inv_len;
+            let (aa, ab) = warp.range(aa, ab);
             Some([
                 lo[0] + (aa * slo[0]).min(ab * slo[0]),
                 hi[0] + (aa * shi[0]).max(ab * shi[0]),
@@ -625,9 +630,13 @@ impl Bucket<'_> {
         let reach = &smp.reach_time;
         let bw = self.bw;
         let row_span = |tau: usize, y: usize, span: (i32, i32)| {
+            if !warp.narrows() {
+                return span;
+            }
             let [ta, tb] = hider.slice_times[tau];
             let aa = (ta.max(t0) - t0) * inv_len;
             let ab = (tb.min(t1) - t0) * inv_len;
+            let (aa, ab) = warp.range(aa, ab);
             let r = &reach[tau];
             let (y_lo, y_hi) = (y as f32 + r[2] - ROW_SLACK, y as f32 + r[3] + ROW_SLACK);
             let Some((a0, a1)) = stretch(aa, ab, lo[1], slo[1], y_hi, hi[1], shi[1], y_lo) else {
@@ -648,13 +657,83 @@ impl Bucket<'_> {
             }
         };
         let (v, speed) = (transpose(vertex), transpose(&mp.speed));
-        if lens.is_some() {
-            let place = PlaceMoving::<true> { v, speed };
-            self.scan(&place, &surf, &smp.reach_time, slice_box, row_span, rows);
-        } else {
-            let place = PlaceMoving::<false> { v, speed };
-            self.scan(&place, &surf, &smp.reach_time, slice_box, row_span, rows);
+        let z1 = std::array::from_fn(|j| mp.v[j][2] + mp.speed[j][2]);
+        match (lens.is_some(), warp.on) {
+            (true, false) => {
+                let place = PlaceMoving::<true, false> { v, speed, z1 };
+                self.scan(&place, &surf, &smp.reach_time, slice_box, row_span, rows);
+            }
+            (false, false) => {
+                let place = PlaceMoving::<false, false> { v, speed, z1 };
+                self.scan(&place, &surf, &smp.reach_time, slice_box, row_span, rows);
+            }
+            (true, true) => {
+                let place = PlaceMoving::<true, true> { v, speed, z1 };
+                self.scan(&place, &surf, &smp.reach_time, slice_box, row_span, rows);
+            }
+            (false, true) => {
+                let place = PlaceMoving::<false, true> { v, speed, z1 };
+                self.scan(&place, &surf, &smp.reach_time, slice_box, row_span, rows);
+            }
         }
+    }
+}
+
+/// Path M's perspective-correct time warp (Appendix A's `ALPHABETA`) for one micropolygon,
+/// as its bounds see it. Vertex `j` has made the fraction `beta_j(alpha) = alpha / (alpha +
+/// (1 - alpha) r_j)` of its raster displacement at `alpha`, with `r_j = z0/z1` its depth ratio
+/// over the segment (1 for a vertex whose depth does not change). Each `beta_j` increases
+/// with `alpha` and decreases with `r_j`, so over `[aa, ab]` every vertex's `beta` lies in
+/// `[beta(aa; r_max), beta(ab; r_min)]`, and since every `beta` is in `[0, 1]`, the box
+/// `lo + beta * [min speed, max speed]` over that range holds the micropolygon: the bounds
+/// stay conservative. The row spans of path M assume one parameter for all four vertices,
+/// which holds only if every `r_j` is the same; otherwise rows are not narrowed.
+#[derive(Debug, Clone, Copy)]
+struct Warp {
+    /// Some vertex's depth changes and the warp is asked for.
+    on: bool,
+    r_min: f32,
+    r_max: f32,
+}
+
+impl Warp {
+    /// Relative slack on the warped range, against the rounding of `alpha z1 / z` in the
+    /// sample test versus `alpha / (alpha + (1 - alpha) r)` here.
+    const SLACK: f32 = 1.0e-6;
+
+    fn new(mp: &Micropolygon, perspective: bool) -> Warp {
+        let (mut r_min, mut r_max) = (f32::INFINITY, f32::NEG_INFINITY);
+        let mut on = false;
+        for j in 0..4 {
+            let dz = mp.speed[j][2];
+            let r = if dz == 0.0 { 1.0 } else { mp.v[j][2] / (mp.v[j][2] + dz) };
+            on |= dz != 0.0;
+            r_min = r_min.min(r);
+            r_max = r_max.max(r);
+        }
+        Warp { on: on && perspective, r_min, r_max }
+    }
+
+    fn beta(a: f32, r: f32) -> f32 {
+        a / (a + (1.0 - a) * r)
+    }
+
+    /// The range of every vertex's `beta` over `alpha` in `[aa, ab]` (the identity when off).
+    #[inline]
+    fn range(&self, aa: f32, ab: f32) -> (f32, f32) {
+        if !self.on {
+            return (aa, ab);
+        }
+        let lo = Warp::beta(aa, self.r_max) - Warp::SLACK;
+        let hi = Warp::beta(ab, self.r_min) + Warp::SLACK;
+        // NaN-safe: 0/0 at alpha = 0 cannot happen (r > 0), but keep the ends in [0, 1].
+        (lo.max(0.0), hi.min(1.0))
+    }
+
+    /// Whether path M's row spans may treat the four vertices as one parameter.
+    #[inline]
+    fn narrows(&self) -> bool {
+        !self.on || self.r_min == self.r_max
     }
 }
 

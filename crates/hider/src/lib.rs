@@ -18,7 +18,7 @@ pub mod samples;
 pub mod tables;
 
 pub use aov::{AovPlan, AovValue, bilinear_weights};
-pub use bucket::gouraud;
+pub use bucket::{Adaptive, RefinedSample, disagree, gouraud};
 pub use frame::{Frame, border_for_filter_width};
 pub use lens::LensSetup;
 pub use mpoly::{Micropolygon, flags};
@@ -64,6 +64,12 @@ pub struct HiderConfig {
     pub matte: MatteRule,
     /// Depth comparison across CSG operands.
     pub csg_order: CsgOrder,
+    /// Move vertices linearly in raster space over a motion segment, as Appendix A did,
+    /// instead of along the projective path of a vertex moving linearly in eye space
+    /// (Appendix A's `ALPHABETA` hook, `beta = alpha / (alpha + (1 - alpha) z0/z1)`).
+    pub original_linear_motion: bool,
+    /// Adaptive sampling (the patent's reduced-scale repetition), or `None` (the default).
+    pub adaptive: Option<Adaptive>,
     /// Test every sample of the bucket against every micropolygon, with no bound culling.
     /// For tests and study: the image must not change, only the sample-test count.
     pub scan_all: bool,
@@ -88,6 +94,8 @@ impl Default for HiderConfig {
             original_moving_clip: false,
             matte: MatteRule::Holdout,
             csg_order: CsgOrder::Exact,
+            original_linear_motion: false,
+            adaptive: None,
             scan_all: false,
         }
     }
@@ -130,6 +138,10 @@ pub struct Stats {
     pub sample_ns: u64,
     /// Time spent resolving visible-point lists (`CSGResolve`), summed over threads, in ns.
     pub resolve_ns: u64,
+    /// Pixels refined by adaptive sampling.
+    pub refined_pixels: u64,
+    /// Samples added by adaptive sampling (beyond NS per pixel).
+    pub extra_samples: u64,
 }
 
 impl Stats {
@@ -144,6 +156,8 @@ impl Stats {
         self.points += o.points;
         self.sample_ns += o.sample_ns;
         self.resolve_ns += o.resolve_ns;
+        self.refined_pixels += o.refined_pixels;
+        self.extra_samples += o.extra_samples;
     }
 }
 
@@ -164,6 +178,7 @@ pub struct Scratch {
     aov: Vec<f32>,
     front_z: Vec<f32>,
     steps: aov::Steps,
+    refine: bucket::RefineScratch,
     /// Statistics accumulated by every bucket this scratch has rendered.
     pub stats: Stats,
 }
@@ -182,6 +197,10 @@ pub struct BucketOutput<'a> {
     pub rgba: &'a [[f32; 4]],
     /// Depth of the opaque surface that ended each sample's composite, or +inf.
     pub z: &'a [f32],
+    /// Adaptive sampling's samples, each with its true position and weight; the colours of
+    /// the refined pixels' own samples in `rgba` are zero (they stand for nothing). Empty
+    /// without [`HiderConfig::adaptive`].
+    pub refined: &'a [RefinedSample],
 }
 
 /// One bucket's per-sample result with AOVs ([`Hider::render_bucket_aovs`]), indexed as
@@ -273,7 +292,8 @@ impl Hider {
         scratch: &'s mut Scratch,
     ) -> BucketOutput<'s> {
         self.sample_bucket(bucket, mpolys, list, scratch, None);
-        BucketOutput { rgba: &scratch.rgba, z: &scratch.z }
+        self.refine_bucket(bucket, mpolys, list, scratch);
+        BucketOutput { rgba: &scratch.rgba, z: &scratch.z, refined: &scratch.refine.out }
     }
 
     /// [`Hider::render_bucket`] with the AOVs of `plan`: `data` holds the per-vertex AOV
@@ -288,7 +308,7 @@ impl Hider {
     ) -> AovBucketOutput<'s> {
         self.sample_bucket(bucket, mpolys, list, scratch, Some((plan, data)));
         AovBucketOutput {
-            beauty: BucketOutput { rgba: &scratch.rgba, z: &scratch.z },
+            beauty: BucketOutput { rgba: &scratch.rgba, z: &scratch.z, refined: &[] },
             aov: &scratch.aov,
             front_z: &scratch.front_z,
             samples: &scratch.samples,

@@ -24,7 +24,7 @@ pub mod owen;
 use reyes_sampling::{hash, unit};
 
 use crate::tables::{Table, Tables};
-use owen::{Scramble, to_unit, to_unit_16};
+use owen::{JointScramble, Scramble, to_unit, to_unit_16};
 pub use reyes_sampling::ShutterShape;
 
 /// Spatial pattern (FIGS. 3, 5, 6, 7 of the patent).
@@ -49,6 +49,15 @@ pub enum Pattern {
     /// with the positions as for FIG. 6. Needs `nx` and `ny` to be powers of two and a
     /// one-to-one `Location`; otherwise FIG. 6 is used instead.
     Sobol,
+    /// Joint: per pixel, one Owen-scrambled Sobol sequence over position, time and lens
+    /// together ([`owen::JointScramble`]): dimensions 0-2 are (x, y, t), a (1,m,3)-net, and
+    /// the lens is a (0,m,2)-net on an index map of dimension 3, so a moving or defocused edge,
+    /// whose integrand couples position with time or lens, is stratified jointly. The net
+    /// picks each sample's spatial stratum, time and lens cell; within its stratum the point
+    /// sits where correlated multi-jittered sampling (Kensler 2013) puts it, which is more
+    /// even than the net's own offsets (measured in docs/sampling.md). Power-of-two `nx` and
+    /// `ny` and a one-to-one `Location` only; otherwise FIG. 6 is used instead.
+    SobolJoint,
 }
 
 /// For [`Pattern::Sobol`]: `(a, b, cells)` with `nx = 2^a`, `ny = 2^b` and `cells[cx << b | cy]`
@@ -241,13 +250,22 @@ impl BucketSamples {
         // The modern sampler's per-pixel point sets, indexed by sample index s (position),
         // time stratum tau and lens cell lambda.
         let sobol = match spec.pattern {
-            Pattern::Sobol => sobol_cells(tables),
+            Pattern::Sobol | Pattern::SobolJoint => sobol_cells(tables),
             _ => None,
         };
         let pattern = match spec.pattern {
-            Pattern::Sobol if sobol.is_none() => Pattern::Fig6,
+            Pattern::Sobol | Pattern::SobolJoint if sobol.is_none() => Pattern::Fig6,
             p => p,
         };
+        let joint = pattern == Pattern::SobolJoint;
+        // The joint sampler's sample index, raw lens point and lens order per net point j.
+        let (mut joint_s, mut joint_lens, mut joint_order) = match joint {
+            true => (vec![0u32; ns], vec![[0u32; 2]; ns], vec![0u32; ns]),
+            false => (Vec::new(), Vec::new(), Vec::new()),
+        };
+        let mut joint_points = Vec::with_capacity(if joint { ns } else { 0 });
+        let (mut cmj_x, mut cmj_y) =
+            (vec![0u32; tables.nx as usize], vec![0u32; tables.ny as usize]);
         let (mut net_xy, mut net_t, mut net_l) = match sobol {
             Some(_) => (vec![[0.0f32; 2]; ns], vec![0.0f32; ns], vec![[0.0f32; 2]; ns]),
             None => (Vec::new(), Vec::new(), Vec::new()),
@@ -259,7 +277,7 @@ impl BucketSamples {
                 let gx = (left + px as i32) as i64 as u64;
                 let gy = (top + py as i32) as i64 as u64;
                 match spec.time_pairing {
-                    _ if !needs.time => {}
+                    _ if !needs.time || joint => {}
                     Pairing::Original => {
                         for (s, tp) in time_perm.iter_mut().enumerate() {
                             *tp = s as u32;
@@ -268,7 +286,7 @@ impl BucketSamples {
                     Pairing::Decorrelated => shuffle(&mut time_perm, spec.seed, &[0x7173, gx, gy]),
                 }
                 match spec.lens_shape {
-                    _ if !needs.lens => {}
+                    _ if !needs.lens || joint => {}
                     LensShape::OriginalSquare => {
                         for (s, lp) in lens_perm.iter_mut().enumerate() {
                             *lp = s as u32;
@@ -276,7 +294,85 @@ impl BucketSamples {
                     }
                     LensShape::Disk => shuffle(&mut lens_perm, spec.seed, &[0x1e75, gx, gy]),
                 }
-                if let Some((a, b, cells)) = &sobol {
+                if let (true, Some((a, b, cells))) = (joint, &sobol) {
+                    let (a, b) = (*a, *b);
+                    let cell = |p: [u32; 2]| {
+                        (
+                            leading(p[0], a),
+                            leading(p[1], b),
+                            cells[((leading(p[0], a) << b) | leading(p[1], b)) as usize],
+                        )
+                    };
+                    let sc = JointScramble::new(spec.seed, &[0x501a, gx, gy]);
+                    shuffle(&mut cmj_x, spec.seed, &[0xc31a, gx, gy]);
+                    shuffle(&mut cmj_y, spec.seed, &[0xc31b, gx, gy]);
+                    let (ny, fine) = (tables.ny as u64, 32 - m);
+                    sc.block(m, &mut joint_points);
+                    for (j, p) in joint_points.iter().enumerate() {
+                        let j = j as u32;
+                        let (cx, cy, s) = cell(p.xy);
+                        // Correlated multi-jitter within the stratum: column cx's points take
+                        // the x sub-strata perm_y(row), row cy's the y sub-strata perm_x(col).
+                        let h = hash(spec.seed, &[0xc31c, gx, gy, j as u64]);
+                        let fx = ((cx as u64 * ny + cmj_y[cy as usize] as u64) << fine)
+                            | ((h as u32) >> m) as u64;
+                        let fy = ((cy as u64 * (1u64 << a) + cmj_x[cx as usize] as u64) << fine)
+                            | (((h >> 32) as u32) >> m) as u64;
+                        let s = s as usize;
+                        net_xy[s] = [to_unit_16(fx as u32), to_unit_16(fy as u32)];
+                        joint_s[j as usize] = s as u32;
+                        joint_lens[j as usize] = p.lens;
+                        if needs.time {
+                            let tau = match spec.time_pairing {
+                                Pairing::Decorrelated => leading(p.t, m) as usize,
+                                Pairing::Original => s,
+                            };
+                            // The net's time, moved into stratum tau (the identity unless the
+                            // original pairing asks for stratum s).
+                            let bits = ((tau as u64) << fine) | (p.t.wrapping_shl(m) >> m) as u64;
+                            time_perm[s] = tau as u32;
+                            net_t[tau] = to_unit(bits as u32);
+                        }
+                    }
+                    if needs.lens {
+                        // Lens cells: u's column is exact (dimension 3 is a (0,1)-sequence, so
+                        // each column of cells holds 2^b points); within a column the points
+                        // are ranked by v and the k-th takes row k, keeping its offset within
+                        // its own v stratum. One point per lens cell, v's order kept.
+                        for (j, o) in joint_order.iter_mut().enumerate() {
+                            *o = j as u32;
+                        }
+                        let key = |j: u32| {
+                            let [u, v] = joint_lens[j as usize];
+                            ((leading(u, a) as u64) << 32) | v as u64
+                        };
+                        joint_order.sort_by_key(|&j| key(j)); // stable: ties in j order
+                        for (rank, &j) in joint_order.iter().enumerate() {
+                            let (s, [u, v]) =
+                                (joint_s[j as usize] as usize, joint_lens[j as usize]);
+                            let row = rank as u64 & ((1u64 << b) - 1);
+                            let (col, row) = match spec.lens_shape {
+                                LensShape::Disk => (leading(u, a) as u64, row),
+                                LensShape::OriginalSquare => {
+                                    // Appendix A: lens cell Location[s], the net's offsets in it.
+                                    let loc = tables.location[s];
+                                    (
+                                        (loc[0] * tables.nx as f32).round() as u64,
+                                        (loc[1] * tables.ny as f32).round() as u64,
+                                    )
+                                }
+                            };
+                            let lambda = match spec.lens_shape {
+                                LensShape::Disk => cells[((col << b) | row) as usize] as usize,
+                                LensShape::OriginalSquare => s,
+                            };
+                            let u = (col << (32 - a)) | (u.wrapping_shl(a) >> a) as u64;
+                            let v = (row << (32 - b)) | (v.wrapping_shl(b) >> b) as u64;
+                            lens_perm[s] = lambda as u32;
+                            net_l[lambda] = [to_unit(u as u32), to_unit(v as u32)];
+                        }
+                    }
+                } else if let Some((a, b, cells)) = &sobol {
                     let cell = |p: [u32; 2]| {
                         cells[((leading(p[0], *a) << b) | leading(p[1], *b)) as usize]
                     };
@@ -305,7 +401,7 @@ impl BucketSamples {
                     let k = s * p_count + pixel;
                     let loc = tables.location[s];
                     let (jx, jy) = match pattern {
-                        Pattern::Random | Pattern::Sobol => (0.0, 0.0), // not read
+                        Pattern::Random | Pattern::Sobol | Pattern::SobolJoint => (0.0, 0.0), // not read
                         Pattern::Regular | Pattern::Fig6 => {
                             (tables.get(Table::X, off[0] + i), tables.get(Table::Y, off[1] + i + 1))
                         }
@@ -339,7 +435,7 @@ impl BucketSamples {
                             self.x[k] = px as f32 + unit(h);
                             self.y[k] = py as f32 + unit(h << 24);
                         }
-                        Pattern::Sobol => {
+                        Pattern::Sobol | Pattern::SobolJoint => {
                             self.x[k] = px as f32 + net_xy[s][0];
                             self.y[k] = py as f32 + net_xy[s][1];
                         }

@@ -108,8 +108,11 @@ fn render(cfg: HiderConfig, mps: &[Micropolygon]) -> (Vec<[f32; 4]>, reyes_hider
 #[test]
 fn static_lens_and_moving_paths_agree_on_the_same_input() {
     let mps = random_bucket(11, 120);
-    for pairing in [Pairing::Original, Pairing::Decorrelated] {
-        let base = HiderConfig { time_pairing: pairing, ..HiderConfig::default() };
+    let cases = [Pairing::Original, Pairing::Decorrelated]
+        .into_iter()
+        .flat_map(|p| [Pattern::Fig6, Pattern::SobolJoint].map(move |q| (p, q)));
+    for (pairing, pattern) in cases {
+        let base = HiderConfig { time_pairing: pairing, pattern, ..HiderConfig::default() };
         let (p_img, p_stats) = render(base, &mps);
         // Path D with a zero-radius lens: every shift is zero.
         let lens0 = HiderConfig { lens: Some(LensSetup::new(0.0, 5.0, 100.0, -100.0)), ..base };
@@ -118,8 +121,8 @@ fn static_lens_and_moving_paths_agree_on_the_same_input() {
         let moving: Vec<Micropolygon> =
             mps.iter().map(|m| Micropolygon { flags: m.flags | flags::MOVING, ..*m }).collect();
         let (m_img, m_stats) = render(base, &moving);
-        assert_eq!(p_img, d_img, "{pairing:?}: lens path differs");
-        assert_eq!(p_img, m_img, "{pairing:?}: moving path differs");
+        assert_eq!(p_img, d_img, "{pairing:?} {pattern:?}: lens path differs");
+        assert_eq!(p_img, m_img, "{pairing:?} {pattern:?}: moving path differs");
         assert_eq!(p_stats.hits, d_stats.hits);
         assert_eq!(p_stats.hits, m_stats.hits);
         assert!(p_stats.lerps > 0, "the test must exercise lazy depth");
@@ -151,7 +154,7 @@ fn bound_culling_never_drops_a_hit() {
     let mps = moving(&mut rng, 6.0, 80);
     let fast = moving(&mut rng, 60.0, 800);
     let still = random_bucket(5, 80);
-    for pattern in [Pattern::Fig6, Pattern::Fig7, Pattern::Regular] {
+    for pattern in [Pattern::Fig6, Pattern::Fig7, Pattern::Regular, Pattern::SobolJoint] {
         for lens in [None, Some(LensSetup::new(0.2, 5.0, 200.0, -200.0))] {
             for lens_shape in [LensShape::Disk, LensShape::OriginalSquare] {
                 for input in [&mps, &fast, &still] {

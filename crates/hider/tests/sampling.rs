@@ -8,13 +8,14 @@ use reyes_hider::samples::owen::Scramble;
 use reyes_hider::samples::sobol_cells;
 use reyes_hider::{BucketSamples, Frame, Hider, HiderConfig, LensShape, Pairing, Pattern, Tables};
 
-const PATTERNS: [Pattern; 6] = [
+const PATTERNS: [Pattern; 7] = [
     Pattern::Regular,
     Pattern::Random,
     Pattern::Fig5,
     Pattern::Fig6,
     Pattern::Fig7,
     Pattern::Sobol,
+    Pattern::SobolJoint,
 ];
 
 /// A 40 x 24 frame of 16 x 16 buckets (so buckets are cut by the image edge) and its hider.
@@ -46,7 +47,15 @@ fn pixels(frame: &Frame, hider: &Hider) -> Vec<(Rc<BucketSamples>, usize, Vec<[f
 #[test]
 fn stratified_patterns_put_sample_s_alone_in_stratum_s_of_every_pixel() {
     let sizes = [(1, 1), (2, 2), (3, 5), (4, 4), (7, 3), (8, 8), (16, 16), (4, 2)];
-    for pattern in [Pattern::Regular, Pattern::Fig5, Pattern::Fig6, Pattern::Fig7, Pattern::Sobol] {
+    let stratified = [
+        Pattern::Regular,
+        Pattern::Fig5,
+        Pattern::Fig6,
+        Pattern::Fig7,
+        Pattern::Sobol,
+        Pattern::SobolJoint,
+    ];
+    for pattern in stratified {
         for (nx, ny) in sizes {
             let (frame, h) =
                 hider(HiderConfig { nx, ny, pattern, seed: 11, ..HiderConfig::default() });
@@ -183,8 +192,11 @@ fn sobol_falls_back_to_fig6_without_power_of_two_strata() {
             let cfg = HiderConfig { nx, ny, pattern, seed: 9, ..HiderConfig::default() };
             hider(cfg).1.bucket_samples(2)
         };
-        let (a, b) = (make(Pattern::Sobol), make(Pattern::Fig6));
-        assert_eq!((&a.x, &a.y, &a.t, &a.lx, &a.ly), (&b.x, &b.y, &b.t, &b.lx, &b.ly), "{nx}x{ny}");
+        let b = make(Pattern::Fig6);
+        for a in [make(Pattern::Sobol), make(Pattern::SobolJoint)] {
+            let (a, b) = ((&a.x, &a.y, &a.t, &a.lx, &a.ly), (&b.x, &b.y, &b.t, &b.lx, &b.ly));
+            assert_eq!(a, b, "{nx}x{ny}");
+        }
     }
     // For powers of two the original `permute` is a true permutation, so Sobol applies.
     assert!(sobol_cells(&Tables::new(4, 4, 256, true, 0, false, true)).is_some());
@@ -250,7 +262,7 @@ fn time_lens_and_position_are_uncorrelated_for_every_decorrelated_pattern() {
 fn original_pairings_are_correlated_and_the_test_can_tell() {
     // Appendix A ties time to the sub-pixel row (3.3) and the square lens to the sub-pixel
     // position (3.8): the same statistic must see it, for the tables and for Sobol alike.
-    for pattern in [Pattern::Fig6, Pattern::Sobol] {
+    for pattern in [Pattern::Fig6, Pattern::Sobol, Pattern::SobolJoint] {
         let d = dimensions(pattern, Pairing::Original, LensShape::OriginalSquare);
         let tol = 4.0 / (d[0].len() as f64).sqrt();
         let ty = correlation(&d[1], &d[2]);
@@ -258,4 +270,138 @@ fn original_pairings_are_correlated_and_the_test_can_tell() {
         assert!(ty.abs() > 10.0 * tol, "{pattern:?}: time-y correlation {ty}");
         assert!(lx > 0.5, "{pattern:?}: lens-x correlation {lx}");
     }
+}
+
+#[test]
+fn joint_pixels_have_one_sample_per_time_slice_and_lens_cell() {
+    // The invariants the time-slice and lens-slice scans and the filter table rely on, for
+    // every lens shape and pairing: sample s in stratum Location[s] (tested above), one time
+    // in each [tau/NS, (tau+1)/NS) with `by_time` naming it, and one lens point in each lens
+    // cell, `by_lens[lambda]` naming the sample in cell Location[lambda].
+    for (nx, ny) in [(1u32, 1u32), (2, 2), (4, 4), (8, 8), (16, 16), (4, 2), (2, 8), (1, 4)] {
+        for (pairing, lens_shape) in [
+            (Pairing::Decorrelated, LensShape::Disk),
+            (Pairing::Original, LensShape::OriginalSquare),
+        ] {
+            let ns = (nx * ny) as usize;
+            let cfg = HiderConfig {
+                nx,
+                ny,
+                pattern: Pattern::SobolJoint,
+                time_pairing: pairing,
+                lens_shape,
+                seed: 6,
+                ..HiderConfig::default()
+            };
+            let (frame, h) = hider(cfg);
+            let p_count = frame.pixels_per_bucket();
+            let loc = &h.tables().location;
+            let what = format!("{nx}x{ny} {pairing:?} {lens_shape:?}");
+            for (smp, pixel, _) in pixels(&frame, &h) {
+                for tau in 0..ns {
+                    let s = smp.by_time[tau * p_count + pixel] as usize;
+                    let t = smp.t[s * p_count + pixel];
+                    assert!(
+                        t >= tau as f32 / ns as f32 && t < (tau + 1) as f32 / ns as f32,
+                        "{what}"
+                    );
+                    if pairing == Pairing::Original {
+                        assert_eq!(s, tau, "{what}: Appendix A's sample s in time stratum s");
+                    }
+                }
+                let mut seen = vec![false; ns];
+                for (lambda, cell) in loc.iter().enumerate() {
+                    let s = smp.by_lens[lambda * p_count + pixel] as usize;
+                    let k = s * p_count + pixel;
+                    // Back from the lens sample to its unit-square cell.
+                    let (u, v) = match lens_shape {
+                        LensShape::OriginalSquare => {
+                            (smp.lx[k] + 0.5 / ns as f32, smp.ly[k] + 0.5 / ns as f32)
+                        }
+                        LensShape::Disk => square_of_disk(smp.lx[k], smp.ly[k]),
+                    };
+                    let (cx, cy) = ((u * nx as f32).floor(), (v * ny as f32).floor());
+                    if lens_shape == LensShape::OriginalSquare {
+                        assert_eq!(s, lambda, "{what}: Appendix A's lens cell Location[s]");
+                    }
+                    // The disk's inverse map is a few ulps off on cell edges: compare cells
+                    // with the sample's cell centre, not the floor, when it is that close.
+                    let near =
+                        |w: f32, n: u32| ((w * n as f32) - (w * n as f32).round()).abs() < 1e-4;
+                    if !(near(u, nx) || near(v, ny)) {
+                        assert_eq!([cx / nx as f32, cy / ny as f32], *cell, "{what}");
+                    }
+                    let q = (cx as u32 * ny + cy as u32).min(ns as u32 - 1) as usize;
+                    assert!(
+                        !std::mem::replace(&mut seen[q], true) || near(u, nx) || near(v, ny),
+                        "{what}: cell twice"
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// Inverse of the concentric square-to-disk map, back to the unit square.
+fn square_of_disk(x: f32, y: f32) -> (f32, f32) {
+    let (x, y) = (x as f64, y as f64);
+    let r = x.hypot(y);
+    if r == 0.0 {
+        return (0.5, 0.5);
+    }
+    let phi = y.atan2(x); // (-pi, pi]
+    let q = std::f64::consts::FRAC_PI_4;
+    // Region |a| > |b|: phi = (pi/4) b/a with r = a (a > 0: phi in (-pi/4, pi/4]).
+    let (a, b) = if phi.abs() <= q {
+        (r, r * phi / q)
+    } else if phi.abs() >= 3.0 * q {
+        let p = if phi > 0.0 { phi - std::f64::consts::PI } else { phi + std::f64::consts::PI };
+        (-r, -r * p / q)
+    } else if phi > 0.0 {
+        // phi = pi/2 - (pi/4) a/b with r = b > 0.
+        (r * (2.0 - phi / q), r)
+    } else {
+        // phi + pi = pi/2 - (pi/4) a/b with r = b < 0.
+        (r * (2.0 + phi / q), -r)
+    };
+    (((a + 1.0) / 2.0) as f32, ((b + 1.0) / 2.0) as f32)
+}
+
+#[test]
+fn joint_samples_depend_only_on_the_seed_and_the_pixel() {
+    // Deterministic, and the same for any bucket layout: each pixel's samples are hashed
+    // from its global raster position, so 8 x 8 and 16 x 16 buckets give the same samples.
+    let cfg = HiderConfig {
+        nx: 4,
+        ny: 4,
+        pattern: Pattern::SobolJoint,
+        seed: 3,
+        ..HiderConfig::default()
+    };
+    let collect = |bw: u32| {
+        let frame = Frame::new(32, 32, 0, bw, bw);
+        let h = Hider::new(cfg, frame);
+        let mut by_pixel = std::collections::BTreeMap::new();
+        let p_count = frame.pixels_per_bucket();
+        for b in 0..frame.bucket_count() {
+            let (left, top) = frame.bucket_origin(b);
+            let s = h.bucket_samples(b);
+            for pixel in 0..p_count {
+                let (px, py) = (pixel as u32 % bw, pixel as u32 / bw);
+                let key = (left + px as i32, top + py as i32);
+                let v: Vec<[u32; 5]> = (0..16)
+                    .map(|q| {
+                        let k = q * p_count + pixel;
+                        [s.x[k] - px as f32, s.y[k] - py as f32, s.t[k], s.lx[k], s.ly[k]]
+                            .map(f32::to_bits)
+                    })
+                    .collect();
+                by_pixel.insert(key, v);
+            }
+        }
+        by_pixel
+    };
+    let a = collect(8);
+    assert_eq!(a, collect(8));
+    assert_eq!(a, collect(16));
 }

@@ -24,6 +24,7 @@ pub fn hider_config(scene: &Scene, camera: &CameraSetup) -> HiderConfig {
             SpatialPattern::Fig7 => Pattern::Fig7,
             SpatialPattern::Random => Pattern::Random,
             SpatialPattern::Sobol => Pattern::Sobol,
+            SpatialPattern::SobolJoint => Pattern::SobolJoint,
         }
     };
     HiderConfig {
@@ -51,8 +52,31 @@ pub fn hider_config(scene: &Scene, camera: &CameraSetup) -> HiderConfig {
         original_moving_clip: h.original.moving_clip,
         matte: if h.original.matte { MatteRule::Original } else { MatteRule::Holdout },
         csg_order: if h.original.csg_order { CsgOrder::Original } else { CsgOrder::Exact },
+        original_linear_motion: h.original.linear_motion,
+        adaptive: (h.adaptive.max_level > 0).then_some(reyes_hider::Adaptive {
+            max_level: h.adaptive.max_level,
+            threshold: h.adaptive.threshold,
+        }),
         scan_all: false,
     }
+}
+
+/// Why a scene's `hider.pattern` is not used, when it is not: `Sobol` and `SobolJoint` need
+/// power-of-two `pixel_samples` (and a one-to-one `Location`, which the original `permute`
+/// gives for powers of two) and use FIG. 6 otherwise. `None` when the pattern applies.
+pub fn pattern_fallback(scene: &Scene) -> Option<String> {
+    let h = &scene.hider;
+    let name = match h.pattern {
+        SpatialPattern::Sobol => "Sobol",
+        SpatialPattern::SobolJoint => "SobolJoint",
+        _ => return None,
+    };
+    let (nx, ny) = h.pixel_samples;
+    (h.jitter && !(nx.is_power_of_two() && ny.is_power_of_two())).then(|| {
+        format!(
+            "hider.pattern: {name} needs power-of-two pixel_samples; {nx} x {ny} renders with Fig6"
+        )
+    })
 }
 
 /// The filter table of a scene's `hider.filter` over `hider`'s sample locations (shared by

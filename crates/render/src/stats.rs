@@ -85,6 +85,8 @@ pub struct RenderStats {
     pub dice: DiceSummary,
     /// Micropolygons emitted.
     pub micropolygons: u64,
+    /// Adaptive sampling was on (its counts are printed even when nothing was refined).
+    pub adaptive: bool,
     /// Hider counts.
     pub hider: reyes_hider::Stats,
     /// Time to dice and shade (the ray-tracing hider: to build the ray engine).
@@ -128,6 +130,7 @@ impl RenderStats {
             dice: DiceSummary::default(),
             micropolygons: 0,
             hider: Default::default(),
+            adaptive: config.adaptive.is_some(),
             t_dice: Duration::ZERO,
             t_hide: Duration::ZERO,
             t_film: Duration::ZERO,
@@ -222,6 +225,15 @@ impl RenderStats {
             h.peak_points,
             h.peak_points * std::mem::size_of::<reyes_hider::VisPoint>() as u64 / 1024
         );
+        if h.refined_pixels > 0 || self.adaptive {
+            let _ = writeln!(
+                s,
+                " Adaptive sampling: {} pixels refined, {} extra samples ({:.2} per pixel of the image)",
+                h.refined_pixels,
+                h.extra_samples,
+                h.extra_samples as f64 / (self.width as f64 * self.height as f64).max(1.0)
+            );
+        }
         if let Some(r) = &self.rays {
             let _ = writeln!(
                 s,

@@ -214,6 +214,9 @@ fn render_rows(
                     } else {
                         let out = hider.render_bucket(b, &buf.mpolys, list, &mut buf.scratch);
                         pool::splat_bucket(&table, &frame, b, out.rgba, out.z, &mut buf.window);
+                        // Adaptive sampling's samples, at their true positions and weights.
+                        let refined = out.refined.iter().map(|r| ([r.x, r.y], r.weight, r.rgba));
+                        reyes_film::splat_points(&table, refined, &mut buf.window);
                         None
                     };
                     let window = (!empty).then(|| buf.window.clone());

@@ -76,6 +76,7 @@ fn the_full_example_parses_with_the_expected_values() {
             flatness: 0.05,
             relative_flatness: 1.0 / 512.0,
             cull_back_faces: false,
+            adaptive: reyes_scene::Adaptive::default(),
             original: Original::default(),
         },
         lights: vec![

@@ -9,7 +9,10 @@ use reyes_render::{RenderOptions, render};
 
 use super::edges::{EdgeStudy, fit_slope};
 use super::patterns::{self, Sampler};
-use super::{Area, CaseResults, FONT, Res, colour, rmse_of, samples_per_pixel, significant};
+use super::{
+    ADAPTIVE, AdaptiveResults, Area, CaseResults, FONT, Res, colour, rmse_of, samples_per_pixel,
+    significant,
+};
 
 /// Grey level in [0, 1] (linear) as an sRGB colour.
 fn grey(v: f32) -> RGBColor {
@@ -61,15 +64,16 @@ fn grid(
     Ok(())
 }
 
-/// FIGS. 3, 5, 6, 7, random and Owen-Sobol: 3 x 3 pixels of 4 x 4 samples each.
+/// FIGS. 3, 5, 6, 7, random, Owen-Sobol and the joint sampler: 3 x 3 pixels of 4 x 4
+/// samples each.
 pub(super) fn patterns(path: &Path) -> Res {
-    let root = BitMapBackend::new(path, (1200, 860)).into_drawing_area();
+    let root = BitMapBackend::new(path, (1600, 860)).into_drawing_area();
     root.fill(&WHITE)?;
     let root = root.titled(
         "Sample positions, 4 x 4 samples per pixel over 3 x 3 pixels (thick: pixels; thin: strata)",
         (FONT, 22),
     )?;
-    for (panel, sampler) in root.split_evenly((2, 3)).iter().zip(Sampler::ALL) {
+    for (panel, sampler) in root.split_evenly((2, 4)).iter().zip(Sampler::ALL) {
         let pts = patterns::samples(sampler, 4, 4, 3, 3, 7, Pairing::Decorrelated);
         let mut chart = ChartBuilder::on(panel)
             .caption(sampler.label(), (FONT, 20))
@@ -86,7 +90,7 @@ pub(super) fn patterns(path: &Path) -> Res {
 
 /// FIG. 12 and FIGS. 13-16: the time of each sample against its position.
 pub(super) fn time_figure(path: &Path) -> Res {
-    let root = BitMapBackend::new(path, (1200, 1180)).into_drawing_area();
+    let root = BitMapBackend::new(path, (1600, 1180)).into_drawing_area();
     root.fill(&WHITE)?;
     let root = root.titled(
         "Time against position (FIG. 12) and the shutter's time density (FIGS. 13-16)",
@@ -97,9 +101,10 @@ pub(super) fn time_figure(path: &Path) -> Res {
         (Sampler::Fig6, Pairing::Original, "App. A: sample s in time stratum s"),
         (Sampler::Fig6, Pairing::Decorrelated, "FIG. 6, decorrelated pairing"),
         (Sampler::Sobol, Pairing::Decorrelated, "Owen-Sobol, scrambled time"),
+        (Sampler::SobolJoint, Pairing::Decorrelated, "joint: time from the same net"),
     ];
     // Row 1: 2 x 2 pixels of 4 x 4 samples, coloured by time (dark: opening, yellow: closing).
-    for (panel, (sampler, pairing, label)) in rows[0].split_evenly((1, 3)).iter().zip(cases) {
+    for (panel, (sampler, pairing, label)) in rows[0].split_evenly((1, 4)).iter().zip(cases) {
         let pts = patterns::samples(sampler, 4, 4, 2, 2, 3, pairing);
         let mut chart = ChartBuilder::on(panel)
             .caption(format!("{label}: colour = time"), (FONT, 16))
@@ -112,7 +117,7 @@ pub(super) fn time_figure(path: &Path) -> Res {
         )?;
     }
     // Row 2: time against sub-pixel y over 32 x 32 pixels.
-    for (panel, (sampler, pairing, label)) in rows[1].split_evenly((1, 3)).iter().zip(cases) {
+    for (panel, (sampler, pairing, label)) in rows[1].split_evenly((1, 4)).iter().zip(cases) {
         let pts = patterns::samples(sampler, 4, 4, 32, 32, 3, pairing);
         let mut chart = ChartBuilder::on(panel)
             .caption(format!("{label}: t against sub-pixel y"), (FONT, 16))
@@ -231,7 +236,7 @@ pub(super) fn periodograms(out: &Path, windows: u32) -> Res<Vec<(Sampler, Vec<f6
         .map(|(s, spec)| (*s, BANDS.iter().map(|&(lo, hi)| spec.band(lo, hi)).collect()))
         .collect();
     let path = out.join("periodograms.png");
-    let root = BitMapBackend::new(&path, (1200, 880)).into_drawing_area();
+    let root = BitMapBackend::new(&path, (1600, 880)).into_drawing_area();
     root.fill(&WHITE)?;
     let root = root.titled(
         &format!(
@@ -241,7 +246,7 @@ pub(super) fn periodograms(out: &Path, windows: u32) -> Res<Vec<(Sampler, Vec<f6
         (FONT, 20),
     )?;
     let kmax = half as f64 * step;
-    for (panel, (sampler, spec)) in root.split_evenly((2, 3)).iter().zip(&spectra) {
+    for (panel, (sampler, spec)) in root.split_evenly((2, 4)).iter().zip(&spectra) {
         let mut chart = ChartBuilder::on(panel)
             .caption(sampler.label(), (FONT, 18))
             .margin(8)
@@ -324,25 +329,33 @@ fn draw_image(area: &Area, img: &[f32], w: u32, scale: u32, at: (i32, i32)) -> R
     Ok(())
 }
 
-/// The picket fence (patent FIGS. 8 and 9) rendered with the regular grid, FIG. 6 jitter and
-/// Owen-Sobol.
-pub(super) fn picket_fence(root_dir: &Path, path: &Path) -> Res {
+/// The picket fence (patent FIGS. 8 and 9) rendered with the regular grid, FIG. 6 jitter,
+/// pure random, Owen-Sobol, the joint sampler and adaptive sampling; returns, for uniform and
+/// adaptive sampling with the joint sampler, (label, samples per pixel spent, RMSE of the red
+/// channel against a uniform 16 x 16 render).
+pub(super) fn picket_fence(root_dir: &Path, path: &Path) -> Res<Vec<(String, f64, f64)>> {
     let regular = reyes_scene::load(&root_dir.join("scenes/picket-fence.ron"))?;
     let jittered = reyes_scene::load(&root_dir.join("scenes/picket-fence-jittered.ron"))?;
     let mut sobol = jittered.clone();
     sobol.hider.pattern = reyes_scene::SpatialPattern::Sobol;
     let mut random = jittered.clone();
     random.hider.pattern = reyes_scene::SpatialPattern::Random;
+    let mut joint = jittered.clone();
+    joint.hider.pattern = reyes_scene::SpatialPattern::SobolJoint;
+    let mut adaptive = joint.clone();
+    adaptive.hider.adaptive.max_level = 2;
     let panels = [
         ("picket-fence.ron: regular grid (FIG. 3 sampling; patent FIG. 8)", regular),
         ("picket-fence-jittered.ron: FIG. 6 jitter (patent FIG. 9)", jittered),
         ("the same, pure random", random),
         ("the same, Owen-Sobol (0,2)", sobol),
+        ("the same, joint Sobol + CMJ", joint.clone()),
+        ("the same, adaptive (2 x 2 base, 2 levels)", adaptive),
     ];
     let (w, h) = (panels[0].1.image.width, panels[0].1.image.height);
     let scale = 2;
     let (cw, ch) = (w * scale + 20, h * scale + 34);
-    let root = BitMapBackend::new(path, (2 * cw + 20, 2 * ch + 40)).into_drawing_area();
+    let root = BitMapBackend::new(path, (2 * cw + 20, 3 * ch + 40)).into_drawing_area();
     root.fill(&WHITE)?;
     let root = root.titled(
         "Picket fence, 2 x 2 samples per pixel, one-pixel box filter (shown at 2x)",
@@ -356,7 +369,37 @@ pub(super) fn picket_fence(root_dir: &Path, path: &Path) -> Res {
         draw_image(&root, &img, w, scale, (x0, y0 + 28))?;
     }
     root.present()?;
-    Ok(())
+
+    // Uniform against adaptive, as differences from a uniform 16 x 16 render.
+    let red = |scene: &reyes_scene::Scene| -> Res<(Vec<f32>, f64)> {
+        let r = render(scene, &RenderOptions::default())?;
+        let px = (scene.image.width * scene.image.height) as f64;
+        let ns = (scene.hider.pixel_samples.0 * scene.hider.pixel_samples.1) as f64;
+        let spp = ns + r.stats.hider.extra_samples as f64 / px;
+        Ok((r.film.rgba().iter().map(|p| p[0]).collect(), spp))
+    };
+    let with = |n: u32, level: u32| {
+        let mut s = joint.clone();
+        s.hider.pixel_samples = (n, n);
+        s.hider.adaptive.max_level = level;
+        s
+    };
+    // Its own seed, so that its samples share nothing with those it is compared with.
+    let mut reference = with(16, 0);
+    reference.hider.seed += 1000;
+    let reference = red(&reference)?.0;
+    let mut rows = Vec::new();
+    for (n, level) in [(2, 0), (4, 0), (8, 0), (2, 1), (2, 2), (4, 1), (4, 2)] {
+        let (img, spp) = red(&with(n, level))?;
+        let se: f64 =
+            img.iter().zip(&reference).map(|(a, b)| (f64::from(*a) - f64::from(*b)).powi(2)).sum();
+        let label = match level {
+            0 => format!("uniform {n} x {n}"),
+            l => format!("adaptive, {n} x {n} base, {l} level{}", if l > 1 { "s" } else { "" }),
+        };
+        rows.push((label, spp, (se / img.len() as f64).sqrt()));
+    }
+    Ok(rows)
 }
 
 /// The zone plate point-sampled through every pattern at 1 and 2 x 2 samples per pixel.
@@ -392,7 +435,12 @@ pub(super) fn zone_plates(path: &Path, size: u32) -> Res {
 
 /// RMSE against samples per pixel, log-log, one panel per edge case. The axes are linear in
 /// log10 of the values (labelled with the values), so the grid and labels stay plain.
-pub(super) fn error_figure(path: &Path, study: &EdgeStudy, results: &[CaseResults]) -> Res {
+pub(super) fn error_figure(
+    path: &Path,
+    study: &EdgeStudy,
+    results: &[CaseResults],
+    adaptive: &[AdaptiveResults],
+) -> Res {
     let spp = samples_per_pixel();
     let lspp: Vec<f64> = spp.iter().map(|s| s.log10()).collect();
     let root = BitMapBackend::new(path, (1400, 1160)).into_drawing_area();
@@ -405,8 +453,11 @@ pub(super) fn error_figure(path: &Path, study: &EdgeStudy, results: &[CaseResult
         ),
         (FONT, 18),
     )?;
-    for (panel, (case, rows)) in root.split_evenly((2, 2)).iter().zip(results) {
-        let all = rows.iter().flat_map(|r| r.1.iter()).map(|m| m.rmse);
+    for ((panel, (case, rows)), (_, adapt)) in
+        root.split_evenly((2, 2)).iter().zip(results).zip(adaptive)
+    {
+        let all =
+            rows.iter().flat_map(|r| r.1.iter()).chain(adapt.iter().map(|a| &a.0)).map(|m| m.rmse);
         let lo = all.clone().fold(f64::INFINITY, f64::min).log10() - 0.15;
         let hi = all.fold(0.0, f64::max).log10() + 0.15;
         let mut chart = ChartBuilder::on(panel)
@@ -414,7 +465,7 @@ pub(super) fn error_figure(path: &Path, study: &EdgeStudy, results: &[CaseResult
             .margin(12)
             .x_label_area_size(40)
             .y_label_area_size(60)
-            .build_cartesian_2d(-0.1..2.5, lo..hi)?;
+            .build_cartesian_2d(-0.1..2.7, lo..hi)?;
         chart
             .configure_mesh()
             .x_desc("samples per pixel")
@@ -451,6 +502,28 @@ pub(super) fn error_figure(path: &Path, study: &EdgeStudy, results: &[CaseResult
                     PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2))
                 });
             chart.draw_series(pts.iter().map(|&p| Circle::new(p, 4, c.filled())))?;
+        }
+        // Adaptive sampling: one point per setting at the samples per pixel it spent.
+        let c = RGBColor(86, 180, 233);
+        let pts: Vec<(f64, f64)> =
+            adapt.iter().map(|(m, spp)| (spp.log10(), m.rmse.log10())).collect();
+        chart
+            .draw_series(pts.iter().map(|&p| TriangleMarker::new(p, 7, c.filled())))?
+            .label(format!(
+                "adaptive, joint ({})",
+                ADAPTIVE
+                    .iter()
+                    .map(|(n, l)| format!("{n}x{n} L{l}"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ))
+            .legend(move |(x, y)| TriangleMarker::new((x + 10, y), 6, c.filled()));
+        for ((n, l), p) in ADAPTIVE.iter().zip(&pts) {
+            chart.draw_series(std::iter::once(Text::new(
+                format!("{n}x{n} L{l}"),
+                (p.0 + 0.03, p.1),
+                (FONT, 12).into_font(),
+            )))?;
         }
         chart
             .configure_series_labels()

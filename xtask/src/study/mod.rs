@@ -39,6 +39,7 @@ fn colour(s: Sampler) -> RGBColor {
         Sampler::Fig6 => RGBColor(0, 114, 178),
         Sampler::Fig7 => RGBColor(0, 158, 115),
         Sampler::Sobol => RGBColor(213, 94, 0),
+        Sampler::SobolJoint => RGBColor(204, 121, 167),
     }
 }
 
@@ -82,6 +83,19 @@ struct Sizes {
 /// One edge case's RMSE per sampler, in the order of [`SIDES`].
 type CaseResults = (EdgeCase, Vec<(Sampler, Vec<Measured>)>);
 
+/// Adaptive sampling's settings in the study: (base n for n x n samples, `max_level`), all
+/// with the joint sampler and the default threshold 0.1.
+const ADAPTIVE: [(u32, u32); 3] = [(4, 2), (8, 1), (8, 2)];
+
+/// One edge case's adaptive results, in the order of [`ADAPTIVE`]: RMSE and the mean samples
+/// per pixel spent over the whole image.
+type AdaptiveResults = (EdgeCase, Vec<(Measured, f64)>);
+
+/// The hider fields of an [`ADAPTIVE`] setting.
+fn adaptive_fields(max_level: u32) -> String {
+    format!(", adaptive: (max_level: {max_level}, threshold: 0.1)")
+}
+
 /// Sample counts of the error curves: n x n per pixel.
 const SIDES: [u32; 5] = [1, 2, 4, 8, 16];
 
@@ -119,7 +133,7 @@ pub fn run(root: &Path, args: &[String]) -> Res {
     step("periodograms (periodograms.png, periodogram-radial.png)", t);
 
     let t = Instant::now();
-    picket_fence(root, &out.join("picket-fence.png"))?;
+    let picket = picket_fence(root, &out.join("picket-fence.png"))?;
     step("picket fence renders (picket-fence.png)", t);
 
     let t = Instant::now();
@@ -142,11 +156,20 @@ pub fn run(root: &Path, args: &[String]) -> Res {
         println!("study:   {} ({:.1} s)", case.label(), tc.elapsed().as_secs_f64());
         results.push((case, rows));
     }
-    error_figure(&out.join("edge-errors.png"), &study, &results)?;
+    let mut adaptive = Vec::new();
+    for case in EdgeCase::ALL {
+        let mut row = Vec::new();
+        for (n, level) in ADAPTIVE {
+            let extra = adaptive_fields(level);
+            row.push(study.measure_adaptive(case, Sampler::SobolJoint, n, &extra)?);
+        }
+        adaptive.push((case, row));
+    }
+    error_figure(&out.join("edge-errors.png"), &study, &results, &adaptive)?;
     step("edge error curves (edge-errors.png)", t);
 
     let total = start.elapsed().as_secs_f64();
-    let md = results_markdown(&study, &results, &bands, &log, total, quick);
+    let md = results_markdown(&study, &results, &adaptive, &picket, &bands, &log, total, quick);
     std::fs::write(out.join("results.md"), &md)?;
     println!("{md}");
     println!("study: wrote {} in {total:.1} s", out.display());
@@ -161,9 +184,22 @@ fn rmse_of(m: &[Measured]) -> Vec<f64> {
     m.iter().map(|m| m.rmse).collect()
 }
 
+/// RMSE of `curve` (RMSE at [`SIDES`] squared samples per pixel) at `spp`, interpolated
+/// linearly in log RMSE against log samples between the neighbouring counts.
+fn rmse_at(curve: &[Measured], spp: f64) -> f64 {
+    let xs = samples_per_pixel();
+    let k = xs.iter().position(|&x| x >= spp).unwrap_or(xs.len() - 1).clamp(1, xs.len() - 1);
+    let (x0, x1) = (xs[k - 1].ln(), xs[k].ln());
+    let (y0, y1) = (curve[k - 1].rmse.ln(), curve[k].rmse.ln());
+    (y0 + (y1 - y0) * (spp.ln() - x0) / (x1 - x0)).exp()
+}
+
+#[allow(clippy::too_many_arguments)]
 fn results_markdown(
     study: &EdgeStudy,
     results: &[CaseResults],
+    adaptive: &[AdaptiveResults],
+    picket: &[(String, f64, f64)],
     bands: &[(Sampler, Vec<f64>)],
     log: &str,
     total: f64,
@@ -221,23 +257,66 @@ fn results_markdown(
             md.push('\n');
         }
     }
-    md.push_str(
-        "\n## Owen-Sobol against Appendix A's jitter (FIG. 6): RMSE ratio\n\n\
-         Standard error of a ratio from both standard errors (the two samplers see the same \
-         edges, so this overstates it a little).\n\n",
-    );
-    md.push_str("| case | 16 spp | 64 spp | 256 spp |\n|---|---|---|---|\n");
-    for (case, rows) in results {
-        let get = |s: Sampler| &rows.iter().find(|r| r.0 == s).expect("sampler").1;
-        let (sob, fig6) = (get(Sampler::Sobol), get(Sampler::Fig6));
-        let _ = write!(md, "| {} |", case.label());
-        for k in 2..5 {
-            let r = sob[k].rmse / fig6[k].rmse;
-            let se = r
-                * ((sob[k].se / sob[k].rmse).powi(2) + (fig6[k].se / fig6[k].rmse).powi(2)).sqrt();
-            let _ = write!(md, " {r:.3} +- {se:.3} |");
+    for (sampler, title) in
+        [(Sampler::Sobol, "Owen-Sobol"), (Sampler::SobolJoint, "The joint sampler (SobolJoint)")]
+    {
+        let _ = write!(
+            md,
+            "\n## {title} against Appendix A's jitter (FIG. 6): RMSE ratio\n\n\
+             Standard error of a ratio from both standard errors (the two samplers see the same \
+             edges, so this overstates it a little).\n\n"
+        );
+        md.push_str("| case | 16 spp | 64 spp | 256 spp |\n|---|---|---|---|\n");
+        for (case, rows) in results {
+            let get = |s: Sampler| &rows.iter().find(|r| r.0 == s).expect("sampler").1;
+            let (sob, fig6) = (get(sampler), get(Sampler::Fig6));
+            let _ = write!(md, "| {} |", case.label());
+            for k in 2..5 {
+                let r = sob[k].rmse / fig6[k].rmse;
+                let se = r
+                    * ((sob[k].se / sob[k].rmse).powi(2) + (fig6[k].se / fig6[k].rmse).powi(2))
+                        .sqrt();
+                let _ = write!(md, " {r:.3} +- {se:.3} |");
+            }
+            md.push('\n');
         }
-        md.push('\n');
+    }
+    md.push_str(
+        "\n## Adaptive sampling against uniform sampling\n\n\
+         The joint sampler with `n x n` base samples and `adaptive: (max_level: L, threshold: \
+         0.1)`. Samples per pixel are those spent over the whole image (base samples of every \
+         pixel plus the refined pixels' extra samples), divided by its pixels; the error is over \
+         the edge pixels as above. `uniform at equal samples`: the uniform joint sampler's RMSE \
+         at the same samples per pixel, interpolated on its curve (log-log); `of 16 x 16`: the \
+         share of uniform 16 x 16's samples spent, and the RMSE against uniform 16 x 16's.\n\n\
+         | case | setting | samples per pixel | RMSE | uniform at equal samples | ratio | of 16 x 16: samples | of 16 x 16: RMSE |\n\
+         |---|---|---|---|---|---|---|---|\n",
+    );
+    for ((case, row), (_, rows)) in adaptive.iter().zip(results) {
+        let joint = &rows.iter().find(|r| r.0 == Sampler::SobolJoint).expect("joint").1;
+        for ((n, level), (m, spp)) in ADAPTIVE.iter().zip(row) {
+            let uniform = rmse_at(joint, *spp);
+            let _ = writeln!(
+                md,
+                "| {} | {n} x {n}, L = {level} | {spp:.1} | {:.5} +- {:.5} | {uniform:.5} | {:.2} | {:.0} % | {:.2} |",
+                case.label(),
+                m.rmse,
+                m.se,
+                m.rmse / uniform,
+                100.0 * spp / 256.0,
+                m.rmse / joint[4].rmse,
+            );
+        }
+    }
+    md.push_str(
+        "\n## Picket fence: uniform and adaptive sampling\n\n\
+         `scenes/picket-fence-jittered.ron` with the joint sampler, RMSE of the red channel over \
+         the image against a uniform 16 x 16 render of the same pattern with another seed (so \
+         each number includes that render's own error).\n\n\
+         | sampling | samples per pixel | RMSE against 16 x 16 |\n|---|---|---|\n",
+    );
+    for (label, spp, rmse) in picket {
+        let _ = writeln!(md, "| {label} | {spp:.1} | {rmse:.5} |");
     }
     md.push_str(
         "\n## Periodogram power by frequency band\n\nMean of the averaged periodogram \

@@ -22,17 +22,21 @@ pub enum Sampler {
     Fig7,
     /// Owen-scrambled Sobol (0,2) per pixel.
     Sobol,
+    /// One Owen-scrambled Sobol sequence over position, time and lens, with correlated
+    /// multi-jittered offsets within each stratum.
+    SobolJoint,
 }
 
 impl Sampler {
     /// Every sampler, in the order of the figures.
-    pub const ALL: [Sampler; 6] = [
+    pub const ALL: [Sampler; 7] = [
         Sampler::Regular,
         Sampler::Random,
         Sampler::Fig5,
         Sampler::Fig6,
         Sampler::Fig7,
         Sampler::Sobol,
+        Sampler::SobolJoint,
     ];
 
     /// Name for legends.
@@ -44,6 +48,7 @@ impl Sampler {
             Sampler::Fig6 => "FIG. 6 (App. A)",
             Sampler::Fig7 => "FIG. 7",
             Sampler::Sobol => "Owen-Sobol (0,2)",
+            Sampler::SobolJoint => "joint Sobol + CMJ",
         }
     }
 
@@ -56,6 +61,7 @@ impl Sampler {
             Sampler::Fig6 => Pattern::Fig6,
             Sampler::Fig7 => Pattern::Fig7,
             Sampler::Sobol => Pattern::Sobol,
+            Sampler::SobolJoint => Pattern::SobolJoint,
         }
     }
 
@@ -68,6 +74,7 @@ impl Sampler {
             Sampler::Fig6 => "jitter: true, pattern: Fig6",
             Sampler::Fig7 => "jitter: true, pattern: Fig7",
             Sampler::Sobol => "jitter: true, pattern: Sobol",
+            Sampler::SobolJoint => "jitter: true, pattern: SobolJoint",
         }
     }
 }

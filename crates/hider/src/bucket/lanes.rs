@@ -168,12 +168,30 @@ impl Place for PlaceLens {
 
 /// Path M: the vertices moved to the sample's time, then (`LENS`) shifted by the lens offset
 /// over their depth at that time, then translated to the sample.
-pub(super) struct PlaceMoving<const LENS: bool> {
+///
+/// With `WARP` (perspective-correct motion, Appendix A's `ALPHABETA`), a vertex whose depth
+/// changes over the segment is moved in x and y by `beta * speed` instead of `alpha * speed`,
+/// `beta = alpha z1 / z(alpha) = alpha / (alpha + (1 - alpha) z0/z1)`: the raster path of a
+/// point moving linearly in eye space from depth z0 to z1, whose projection is
+/// `(X0 + alpha dX) / (Z0 + alpha dZ)`. Depth itself stays linear in `alpha`. A vertex whose
+/// depth does not change takes `beta = alpha` exactly.
+pub(super) struct PlaceMoving<const LENS: bool, const WARP: bool> {
     pub(super) v: [[f32; 4]; 3],
     pub(super) speed: [[f32; 4]; 3],
+    /// Depth of each vertex at the segment's end (`WARP` only).
+    pub(super) z1: [f32; 4],
 }
 
-impl<const LENS: bool> Place for PlaceMoving<LENS> {
+impl<const LENS: bool, const WARP: bool> PlaceMoving<LENS, WARP> {
+    /// The fraction of its raster displacement vertex `j` has made at `alpha`, and its depth.
+    #[inline(always)]
+    fn beta(&self, j: usize, a: f32) -> (f32, f32) {
+        let pz = self.v[2][j] + a * self.speed[2][j];
+        if WARP && self.speed[2][j] != 0.0 { (a * self.z1[j] / pz, pz) } else { (a, pz) }
+    }
+}
+
+impl<const LENS: bool, const WARP: bool> Place for PlaceMoving<LENS, WARP> {
     #[inline(always)]
     fn lanes(&self, b: &Batch, base: usize) -> ([[f32; LANES]; 4], [[f32; LANES]; 4]) {
         let (bx, by) = (lanes(&b.x, base), lanes(&b.y, base));
@@ -183,11 +201,10 @@ impl<const LENS: bool> Place for PlaceMoving<LENS> {
         let mut y = [[0.0; LANES]; 4];
         for j in 0..4 {
             for l in 0..LANES {
-                let a = alpha[l];
+                let (a, pz) = self.beta(j, alpha[l]);
                 let mut px = self.v[0][j] + a * self.speed[0][j];
                 let mut py = self.v[1][j] + a * self.speed[1][j];
                 if LENS {
-                    let pz = self.v[2][j] + a * self.speed[2][j];
                     px += ax[l] / pz;
                     py += ay[l] / pz;
                 }
@@ -199,12 +216,11 @@ impl<const LENS: bool> Place for PlaceMoving<LENS> {
     }
     #[inline(always)]
     fn one(&self, b: &Batch, i: usize) -> [[f32; 3]; 4] {
-        let a = b.alpha[i];
         let mut v = [[0.0; 3]; 4];
         for (j, v) in v.iter_mut().enumerate() {
+            let (a, pz) = self.beta(j, b.alpha[i]);
             let mut px = self.v[0][j] + a * self.speed[0][j];
             let mut py = self.v[1][j] + a * self.speed[1][j];
-            let pz = self.v[2][j] + a * self.speed[2][j];
             if LENS {
                 px += b.ax[i] / pz;
                 py += b.ay[i] / pz;

@@ -12,3 +12,4 @@ mod geometry;
 mod lens;
 mod pipeline;
 mod raytrace;
+mod sampling;

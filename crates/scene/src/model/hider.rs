@@ -44,8 +44,31 @@ pub struct Hider {
     /// diced at different rates: without them a few silhouette and crack pixels lose
     /// coverage (on `scenes/bench/balls.ron` 1045 pixels change, by at most 0.08).
     pub cull_back_faces: bool,
+    /// Adaptive sampling (the patent's reduced-scale repetition of the pattern): off unless
+    /// `max_level` > 0.
+    pub adaptive: Adaptive,
     /// Switches that reproduce the original 1985 behaviour where it differs from ours.
     pub original: Original,
+}
+
+/// Adaptive sampling: after a pixel's samples, a pixel whose samples disagree (some channel
+/// of colour or alpha spreads by more than `threshold`) gets the same pattern again at half
+/// scale in each quadrant, and so on for quadrants that still disagree, down to `max_level`
+/// (docs/sampling.md). Stochastic hider only.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Adaptive {
+    /// Deepest refinement: 0 (the default) is off; a leaf of level L is 2^-L pixels across.
+    pub max_level: u32,
+    /// Largest spread (max - min) of any channel among a region's samples that does not
+    /// refine it.
+    pub threshold: f32,
+}
+
+impl Default for Adaptive {
+    fn default() -> Self {
+        Adaptive { max_level: 0, threshold: 0.1 }
+    }
 }
 
 impl Default for Hider {
@@ -64,6 +87,7 @@ impl Default for Hider {
             flatness: 0.05,
             relative_flatness: 1.0 / 512.0,
             cull_back_faces: false,
+            adaptive: Adaptive::default(),
             original: Original::default(),
         }
     }
@@ -94,6 +118,10 @@ pub enum SpatialPattern {
     Random,
     /// Owen-scrambled Sobol (0,2) per pixel; needs power-of-two `pixel_samples`, else `Fig6`.
     Sobol,
+    /// One Owen-scrambled Sobol sequence over position, time and lens jointly per pixel, with
+    /// correlated multi-jittered offsets within each stratum (docs/sampling.md); needs
+    /// power-of-two `pixel_samples`, else `Fig6` (with a warning).
+    SobolJoint,
 }
 
 /// Temporal patterns of the patent (FIGS. 13-15), the counterparts in time of FIGS. 5-7.
@@ -281,4 +309,8 @@ pub struct Original {
     /// Moving micropolygons that straddle hither or yon at a sample's time are rejected for
     /// that sample instead of clipped (3.6).
     pub moving_clip: bool,
+    /// Vertices move linearly in raster space over a motion segment (Appendix A), instead of
+    /// along the perspective-correct path of a vertex moving linearly in eye space (the
+    /// `ALPHABETA` time warp Appendix A declares but never uses).
+    pub linear_motion: bool,
 }

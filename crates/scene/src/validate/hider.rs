@@ -27,6 +27,14 @@ pub(super) fn hider(h: &Hider, scene: &Scene) -> Check {
     int_in("hider.bucket_size[0]", h.bucket_size.0, 1, 1024)?;
     int_in("hider.bucket_size[1]", h.bucket_size.1, 1, 1024)?;
     positive("hider.shading_rate", h.shading_rate)?;
+    int_in("hider.adaptive.max_level", h.adaptive.max_level, 0, 4)?;
+    non_negative("hider.adaptive.threshold", h.adaptive.threshold)?;
+    if h.adaptive.max_level > 0 && h.method == HiderMethod::RayTrace {
+        return fail(
+            "hider.adaptive.max_level",
+            "adaptive sampling is the stochastic hider's; use method: Stochastic or max_level: 0",
+        );
+    }
     if h.max_grid_size < 1 {
         return fail("hider.max_grid_size", format!("must be >= 1, got {}", h.max_grid_size));
     }

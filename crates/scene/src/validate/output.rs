@@ -45,6 +45,13 @@ pub(super) fn outputs(o: &Outputs, scene: &Scene) -> Check {
             }
         }
     }
+    if !o.aovs.is_empty() && scene.hider.adaptive.max_level > 0 {
+        return fail(
+            "outputs.aovs",
+            "adaptive sampling refines the beauty only, so its AOV layers would not match it; \
+             remove hider.adaptive or the AOVs",
+        );
+    }
     if !o.aovs.is_empty() && scene.hider.method == HiderMethod::RayTrace {
         return fail(
             "outputs.aovs",

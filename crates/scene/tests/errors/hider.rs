@@ -57,6 +57,11 @@ pub(crate) const CASES: &[Case] = &[
     Case { name: "narrow RenderMan blackman-harris filter", from: "kind: Gaussian, width: 2.0", to: "kind: RiBlackmanHarris, width: 0.1", field: "hider.filter", at: Some((4, 42)) },
     Case { name: "filter narrow in y only", from: "width: 2.0)", to: "width: 2.0, height: Some(0.1))", field: "hider.filter", at: Some((4, 42)) },
     Case { name: "disk filter between the strata", from: "(4, 4), filter: (kind: Gaussian, width: 2.0)", to: "(2, 2), filter: (kind: RiDisk, width: 0.6)", field: "hider.filter", at: Some((4, 42)) },
+    // Added with adaptive sampling (#14).
+    Case { name: "adaptive level too deep", from: "(4, 4),", to: "(4, 4), adaptive: (max_level: 5),", field: "hider.adaptive.max_level", at: Some((4, 56)) },
+    Case { name: "adaptive threshold negative", from: "(4, 4),", to: "(4, 4), adaptive: (threshold: -1.0),", field: "hider.adaptive.threshold", at: Some((4, 56)) },
+    Case { name: "adaptive with the ray-tracing hider", from: "(4, 4),", to: "(4, 4), method: RayTrace, adaptive: (max_level: 1),", field: "hider.adaptive.max_level", at: Some((4, 74)) },
+    Case { name: "unknown adaptive field", from: "(4, 4),", to: "(4, 4), adaptive: (levels: 2),", field: "hider.adaptive.levels", at: Some((4, 45)) },
     Case { name: "filter missed by the original stratum pairing", from: "(4, 4), filter: (kind: Gaussian, width: 2.0)", to: "(3, 4), filter: (kind: RiDisk, width: 0.2), original: (permute: true)", field: "hider.filter", at: Some((4, 42)) },
 ];
 
