@@ -100,4 +100,10 @@ fn every_rule_reports_one_line_at_its_field() {
         .replace("lights:", "hider: (method: RayTrace),\n  lights:");
     let err = parse(&rt, Path::new("o.ron")).err().map(|e| e.to_string()).unwrap_or_default();
     assert!(err.contains("outputs.aovs: AOVs are written by the stochastic hider only"), "{err}");
+    // Adaptive sampling refines the beauty only.
+    let adaptive = BASE
+        .replace("OUTPUTS", "aovs: [(source: N)]")
+        .replace("lights:", "hider: (adaptive: (max_level: 2, threshold: 0.1)),\n  lights:");
+    let err = parse(&adaptive, Path::new("o.ron")).err().map(|e| e.to_string()).unwrap_or_default();
+    assert!(err.contains("outputs.aovs: adaptive sampling refines the beauty only"), "{err}");
 }
