@@ -78,13 +78,7 @@ fn exr_bytes(threads: usize, bucket: u32) -> Vec<u8> {
     scene.image.width = 120;
     scene.image.height = 90;
     scene.hider.bucket_size = (bucket, bucket);
-    let film = render(&scene, &RenderOptions { threads: Some(threads), ..Default::default() })
-        .unwrap()
-        .film;
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("t.exr");
-    reyes_film::write(&path, &film).unwrap();
-    std::fs::read(&path).unwrap()
+    crate::sampling::exr_bytes(&scene, threads)
 }
 
 #[test]

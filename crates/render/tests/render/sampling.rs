@@ -18,7 +18,8 @@ fn scene(edit: impl Fn(&mut Scene)) -> Scene {
     scene
 }
 
-fn exr_bytes(scene: &Scene, threads: usize) -> Vec<u8> {
+/// The EXR file of `scene` rendered with `threads` threads.
+pub(crate) fn exr_bytes(scene: &Scene, threads: usize) -> Vec<u8> {
     let film = render(scene, &RenderOptions { threads: Some(threads), ..Default::default() })
         .unwrap()
         .film;
