@@ -546,145 +546,6 @@ impl Splitter {
         let extra = (u64::from(nu) * u64::from(nv)).saturating_sub(u64::from(su) * u64::from(sv));
         Decision::Dice { nu, nv, limited: true, extra: extra as u32 }
     }
-
-    /// Micropolygons per side `(nu, nv)` that the flatness rule asks for over the test grids
-    /// of `facts` (`(1, 1)` with the rule off), for points mapped to raster by `map`.
-    ///
-    /// A row of the diced grid is a polyline through points of the surface; between two of
-    /// them, `H` apart in the patch's parameter, the surface curve bulges from its chord by
-    /// at most `|f''| H^2 / 8` pixels, with `f''` its second derivative in raster. The test
-    /// points, `h = 1 / (TEST_N - 1)` apart, measure it: for three consecutive points
-    /// `a, b, c`, the distance `d` of `b` from the chord `ac` is `|f''| h^2 / 2` (the normal
-    /// part, as a bend; a curve whose image folds back on itself at a silhouette, so that
-    /// `b - a` and `c - b` point apart, is measured by half the whole second difference,
-    /// `|a - 2b + c| / 2 = |f''| h^2 / 2`, and the fold is then never missed, whichever side
-    /// of a test point it falls). Only the normal part of a straight image (a plane's rows under
-    /// perspective, bunched up but straight) counts for nothing, rightly: its flat
-    /// micropolygons are exact. So `n` micropolygons along the row keep the error within
-    /// `tol` when `d (TEST_N - 1)^2 / (4 n^2) <= tol`, where `tol` is the smaller of the
-    /// absolute bound and the relative one times the primitive's extent
-    /// ([`Patch::extent`]). With a lens, a point seen from lens
-    /// position `l` (`|l| <= 1`) moves by `l * coc(z)`: the bend is measured at the lens's
-    /// centre and around its rim, and the largest counts. The estimate is multiplied by [`FLAT_SAFETY`]
-    /// (an 8-point sampling of a full circle underestimates its curvature by 7%).
-    fn flat_counts(
-        &self,
-        facts: &[GridFacts<'_>],
-        patch: &Patch,
-        map: impl Fn(&Vec3) -> Option<Vec3>,
-    ) -> (u64, u64) {
-        if self.flatness <= 0.0 && self.relative_flatness <= 0.0 {
-            return (1, 1);
-        }
-        let (mut bend_u, mut bend_v) = (0.0_f32, 0.0_f32);
-        let mut extent = f32::INFINITY;
-        for f in facts {
-            let b = bends(f.grid, &map, self.lens.as_ref());
-            bend_u = bend_u.max(b.u);
-            bend_v = bend_v.max(b.v);
-            extent = extent.min(b.extent);
-        }
-        let mut tol = f32::INFINITY;
-        if self.flatness > 0.0 {
-            tol = self.flatness;
-        }
-        // The primitive's extent: the patch is part of a surface whose silhouette the
-        // relative bound is about (its own extent would tighten the bound split by split).
-        if patch.extent.is_finite() {
-            extent = patch.extent;
-        }
-        if self.relative_flatness > 0.0 && extent.is_finite() {
-            tol = tol.min(self.relative_flatness * extent);
-        }
-        // Below a millionth of a pixel nothing is measurable (and a point has no extent).
-        let tol = f64::from(tol.max(1e-6));
-        let need = |bend: f32| {
-            let n = (TEST_N - 1) as f64 * (FLAT_SAFETY * f64::from(bend) / (4.0 * tol)).sqrt();
-            if n.is_finite() { n.ceil().clamp(1.0, MAX_SIDE) as u64 } else { MAX_SIDE as u64 }
-        };
-        (need(bend_u), need(bend_v))
-    }
-}
-
-/// Factor on the measured bends of [`Splitter::flat_counts`].
-const FLAT_SAFETY: f64 = 1.25;
-
-/// Eight points of the lens's rim (unit radius) at which [`bends`] measures a defocused bend.
-const LENS_RIM: [[f32; 2]; 8] = [
-    [1.0, 0.0],
-    [std::f32::consts::FRAC_1_SQRT_2, std::f32::consts::FRAC_1_SQRT_2],
-    [0.0, 1.0],
-    [-std::f32::consts::FRAC_1_SQRT_2, std::f32::consts::FRAC_1_SQRT_2],
-    [-1.0, 0.0],
-    [-std::f32::consts::FRAC_1_SQRT_2, -std::f32::consts::FRAC_1_SQRT_2],
-    [0.0, -1.0],
-    [std::f32::consts::FRAC_1_SQRT_2, -std::f32::consts::FRAC_1_SQRT_2],
-];
-
-/// What [`bends`] measures of a test grid.
-struct Bends {
-    /// Largest bend `d` along a row (u) and along a column (v), in pixels.
-    u: f32,
-    v: f32,
-    /// Raster extent of the mapped points (the larger side of their bound; infinite when
-    /// none maps).
-    extent: f32,
-}
-
-/// The bends of a test grid in raster (see [`Splitter::flat_counts`]): points mapped by
-/// `map`, triples with an unmapped point skipped; with a `lens`, the largest bend over the
-/// lens's centre and [`LENS_RIM`].
-fn bends(grid: &TestGrid, map: impl Fn(&Vec3) -> Option<Vec3>, lens: Option<&LensSetup>) -> Bends {
-    let mapped = grid.map(|row| row.map(|p| map(&p).map(|r| (Vec2::new(r.x, r.y), p.z))));
-    // The bend of three raster points (see `Splitter::flat_counts`).
-    let bend3 = |a: Vec2, b: Vec2, c: Vec2| {
-        let (ab, bc, ac) = (b - a, c - b, c - a);
-        if ab.dot(bc) <= 0.0 || ac.length_squared() <= 0.0 {
-            0.5 * (a - 2.0 * b + c).length()
-        } else {
-            ab.perp_dot(ac).abs() / ac.length()
-        }
-    };
-    let bend = |a: Option<(Vec2, f32)>, b: Option<(Vec2, f32)>, c: Option<(Vec2, f32)>| {
-        let (Some((a, za)), Some((b, zb)), Some((c, zc))) = (a, b, c) else {
-            return 0.0;
-        };
-        let mut d = bend3(a, b, c);
-        if let Some(l) = lens {
-            // Seen from lens position `q` each point moves by `q * coc(z)`: the bend at the
-            // lens's centre and at eight points of its rim (a plane stays straight at every
-            // one, so a defocused plane is not diced finer for nothing).
-            let shift = |p: Vec2, z: f32, q: Vec2| {
-                let (cx, cy) = l.coc(z);
-                p + Vec2::new(q.x * cx, q.y * cy)
-            };
-            for q in LENS_RIM {
-                let q = Vec2::from(q);
-                d = d.max(bend3(shift(a, za, q), shift(b, zb, q), shift(c, zc, q)));
-            }
-        }
-        if d.is_finite() { d } else { f32::INFINITY }
-    };
-    let mut out = Bends { u: 0.0, v: 0.0, extent: f32::INFINITY };
-    let (mut lo, mut hi) = (Vec2::INFINITY, Vec2::NEG_INFINITY);
-    for j in 0..TEST_N {
-        for i in 0..TEST_N {
-            if let Some((r, _)) = mapped[j][i] {
-                lo = lo.min(r);
-                hi = hi.max(r);
-            }
-            if i + 2 < TEST_N {
-                out.u = out.u.max(bend(mapped[j][i], mapped[j][i + 1], mapped[j][i + 2]));
-            }
-            if j + 2 < TEST_N {
-                out.v = out.v.max(bend(mapped[j][i], mapped[j + 1][i], mapped[j + 2][i]));
-            }
-        }
-    }
-    if lo.x <= hi.x {
-        out.extent = (hi - lo).max_element();
-    }
-    out
 }
 
 /// True if a patch that would be diced into `count` micropolygons, split from a parent that
@@ -755,6 +616,8 @@ fn clamp_grid(nu: u64, nv: u64, max: u64) -> (u32, u32) {
     let nv2 = ((nv as f64 * f).floor() as u64).clamp(1, max / nu2);
     (nu2 as u32, nv2 as u32)
 }
+
+mod flat;
 
 #[cfg(test)]
 mod tests;
