@@ -40,7 +40,9 @@ pub(crate) struct Args {
     /// No progress bar.
     #[arg(short, long)]
     pub quiet: bool,
-    /// RIB frames to render, e.g. 1-100 or 1,3,5-9 (default: every frame).
+    /// Frames to render, e.g. 1-100 or 1,3,5-9: RIB FrameBegin blocks (default: every
+    /// frame), or the frame numbers a RON scene's ${...} expressions take
+    /// (docs/scene-format.md, "Animation"; needed when it has any).
     #[arg(long, value_name = "LIST", value_parser = parse_frames)]
     pub frames: Option<FrameList>,
     /// Unknown RIB shaders are errors instead of warnings.
@@ -55,6 +57,64 @@ pub(crate) struct Args {
     /// (default 1e30, finite so that differences of two renders stay finite; docs/outputs.md).
     #[arg(long)]
     pub z_infinite: bool,
+    /// Render only part of the frame: RenderMan's CropWindow, in screen fractions (0 left and
+    /// top, 1 right and bottom). Each pixel gets exactly its value in the whole frame; the
+    /// EXR's data window is the crop's pixels, its display window the whole frame.
+    #[arg(long, value_name = "X0,X1,Y0,Y1", value_parser = parse_crop)]
+    pub crop: Option<Crop>,
+    /// Render tile I of N (1 <= I <= N) of the frame's buckets (of the crop window's, with
+    /// --crop): a tile file (.exr) for `reyes-render merge` (docs/farm.md).
+    #[arg(long, value_name = "I/N", value_parser = parse_tile)]
+    pub tile: Option<(usize, usize)>,
+    /// Write each finished bucket to DIR as it completes; run again with the same arguments
+    /// to skip those already done (docs/farm.md).
+    #[arg(long, value_name = "DIR")]
+    pub checkpoint: Option<PathBuf>,
+    /// Seconds between progress lines when standard error is not a terminal (0: every
+    /// bucket).
+    #[arg(long, value_name = "SECS", default_value_t = 5.0, value_parser = parse_seconds)]
+    pub progress_every: f64,
+}
+
+/// `reyes-render merge TILE... -o OUT`.
+#[derive(Parser, Debug)]
+#[command(name = "reyes-render merge", bin_name = "reyes-render merge", version)]
+pub(crate) struct MergeArgs {
+    /// The tile files of one frame (every tile of it, each once), in any order.
+    #[arg(required = true, value_name = "TILE")]
+    pub tiles: Vec<PathBuf>,
+    /// The frame's output: .exr or .png, as the whole render would write it.
+    #[arg(short, long, value_name = "FILE")]
+    pub output: PathBuf,
+}
+
+/// A crop window `[x0, x1, y0, y1]`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Crop(pub [f32; 4]);
+
+pub(crate) fn parse_crop(s: &str) -> Result<Crop, String> {
+    let bad = || format!("expected X0,X1,Y0,Y1, four numbers from 0 to 1, got '{s}'");
+    let v: Vec<f32> = s
+        .split(',')
+        .map(|p| p.trim().parse::<f32>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| bad())?;
+    <[f32; 4]>::try_from(v).map(Crop).map_err(|_| bad())
+}
+
+pub(crate) fn parse_tile(s: &str) -> Result<(usize, usize), String> {
+    let bad = || format!("expected I/N with 1 <= I <= N, got '{s}'");
+    let (i, n) = s.split_once('/').ok_or_else(bad)?;
+    let (i, n): (usize, usize) =
+        (i.trim().parse().map_err(|_| bad())?, n.trim().parse().map_err(|_| bad())?);
+    if i == 0 || i > n { Err(bad()) } else { Ok((i, n)) }
+}
+
+pub(crate) fn parse_seconds(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if v.is_finite() && (0.0..=86400.0).contains(&v) => Ok(v),
+        _ => Err(format!("expected seconds from 0 to 86400, got '{s}'")),
+    }
 }
 
 /// Volume and centre of mass of a closed object or CSG solid (patent FIG. 23), by stratified

@@ -16,29 +16,36 @@
 #![deny(clippy::print_stdout, clippy::print_stderr)]
 
 mod args;
+mod checkpoint;
+mod farm;
 mod hooks;
 mod output;
+mod pieces;
+mod progress;
 mod signals;
 mod term;
 
+use std::collections::BTreeMap;
 use std::ffi::OsStr;
 use std::fmt::Display;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::Once;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use clap::Parser;
-use indicatif::{ProgressBar, ProgressStyle};
 use reyes_film::{FilmError, WriteOptions};
 use reyes_measure::{MeasureOptions, measure};
-use reyes_render::{RenderError, RenderOptions, render};
+use reyes_render::{BucketResult, RenderError, RenderOptions, render};
 use reyes_rib::RiOptions;
 use reyes_scene::Scene;
 
-use args::{Args, MeasureArgs};
+use args::{Args, MeasureArgs, MergeArgs};
+use checkpoint::Checkpoint;
 use hooks::Pause;
+use pieces::Header;
+use progress::Progress;
 use term::say;
 
 /// How a run ends other than in plain success: the exit code and the line to print, if any
@@ -67,10 +74,12 @@ impl Exit {
 }
 
 fn main() -> ExitCode {
-    let result = if std::env::args_os().nth(1).as_deref() == Some(OsStr::new("measure")) {
-        measure_main(std::env::args_os().skip(1))
-    } else {
-        render_main()
+    let first = std::env::args_os().nth(1);
+    let result = match first.as_deref().and_then(OsStr::to_str) {
+        Some("measure") => measure_main(std::env::args_os().skip(1)),
+        Some("merge") => merge_main(std::env::args_os().skip(1)),
+        Some("farm") => farm::main(std::env::args_os().skip(1)),
+        _ => render_main(),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -126,25 +135,46 @@ fn measure_main(args: impl Iterator<Item = std::ffi::OsString>) -> Result<(), Ex
     term::print(&m.to_string())
 }
 
+/// `reyes-render merge TILE... -o OUT`: `args` starts at `merge`.
+fn merge_main(args: impl Iterator<Item = std::ffi::OsString>) -> Result<(), Exit> {
+    signals::install(true).map_err(|e| Exit::error(1, format_args!("signals: {e}")))?;
+    let args = MergeArgs::try_parse_from(args)
+        .map_err(|e| parse_failed(e, "reyes-render merge --help"))?;
+    check_output(&args.output)?;
+    pieces::merge(&args.tiles, &args.output).map_err(|e| match signals::received() {
+        Some(stop) => Exit::stopped(stop, &args.output),
+        None => e,
+    })
+}
+
+/// The output's format and directory, checked before any work is done.
+fn check_output(output: &Path) -> Result<(), Exit> {
+    let ext = output.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+    if !matches!(ext.as_deref(), Some("exr" | "png")) {
+        return Err(Exit::error(
+            2,
+            format_args!("{}: output: unknown image format, use .exr or .png", output.display()),
+        ));
+    }
+    if !directory_of(output).is_dir() {
+        return Err(Exit::error(
+            1,
+            format_args!("{}: output directory does not exist", output.display()),
+        ));
+    }
+    Ok(())
+}
+
 fn render_main() -> Result<(), Exit> {
     signals::install(true).map_err(|e| Exit::error(1, format_args!("signals: {e}")))?;
     let args = Args::try_parse().map_err(|e| parse_failed(e, "--help"))?;
 
     // Check the output before spending time on the render.
-    let ext = args.output.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
-    if !matches!(ext.as_deref(), Some("exr" | "png")) {
+    check_output(&args.output)?;
+    if args.tile.is_some() && !is_exr(&args.output) {
         return Err(Exit::error(
             2,
-            format_args!(
-                "{}: output: unknown image format, use .exr or .png",
-                args.output.display()
-            ),
-        ));
-    }
-    if !directory_of(&args.output).is_dir() {
-        return Err(Exit::error(
-            1,
-            format_args!("{}: output directory does not exist", args.output.display()),
+            format_args!("{}: --tile: a tile is written as .exr", args.output.display()),
         ));
     }
 
@@ -156,7 +186,7 @@ fn render_main() -> Result<(), Exit> {
         return Err(Exit::error(2, format_args!("{}: no frame to render", args.scene.display())));
     }
     let numbered = loaded.frames.len() > 1 || loaded.frames.iter().any(|f| f.number.is_some());
-    let jobs: Vec<(Scene, PathBuf, Vec<PathBuf>)> = loaded
+    let jobs: Vec<(Scene, Option<i32>, PathBuf, Vec<PathBuf>)> = loaded
         .frames
         .into_iter()
         .map(|frame| {
@@ -171,19 +201,13 @@ fn render_main() -> Result<(), Exit> {
                 scene.hider.pixel_samples = s;
                 // The filter table depends on the sample grid: a filter valid on the scene's
                 // grid can weigh no stratum of another.
-                scene = reyes_scene::validate(scene).map_err(|issue| {
-                    Exit::error(
-                        2,
-                        format_args!(
-                            "{}: --samples {}x{}: {}: {}",
-                            args.scene.display(),
-                            s.0,
-                            s.1,
-                            issue.path,
-                            issue.message
-                        ),
-                    )
-                })?;
+                let flag = format!("--samples {}x{}", s.0, s.1);
+                scene = revalidate(scene, &args.scene, &flag)?;
+            }
+            if let Some(crop) = args.crop {
+                scene.image.crop = Some(crop.0);
+                let [a, b, c, d] = crop.0;
+                scene = revalidate(scene, &args.scene, &format!("--crop {a},{b},{c},{d}"))?;
             }
             if let Some(w) = reyes_render::settings::pattern_fallback(&scene) {
                 say(format_args!("{}: warning: {w}", args.scene.display()));
@@ -204,13 +228,13 @@ fn render_main() -> Result<(), Exit> {
                     path
                 })
                 .collect();
-            Ok((scene, main, extras))
+            Ok((scene, frame.number, main, extras))
         })
         .collect::<Result<_, Exit>>()?;
 
     // What a writer killed where the file system has no O_TMPFILE left behind.
     let mut dirs: Vec<PathBuf> = Vec::new();
-    for path in jobs.iter().flat_map(|(_, main, extras)| std::iter::once(main).chain(extras)) {
+    for path in jobs.iter().flat_map(|(_, _, main, extras)| std::iter::once(main).chain(extras)) {
         let dir = directory_of(path);
         if !dirs.contains(&dir) {
             reyes_film::remove_stale_temporaries(&dir);
@@ -219,8 +243,8 @@ fn render_main() -> Result<(), Exit> {
     }
 
     let hooks = Hooks::from_env();
-    for (scene, main, extras) in &jobs {
-        render_frame(&args, scene, main, extras, &hooks)?;
+    for (scene, number, main, extras) in &jobs {
+        render_frame(&args, (scene, *number), main, extras, &hooks)?;
         if let Some(stop) = signals::received() {
             return Err(Exit::stopped_between(stop));
         }
@@ -271,45 +295,65 @@ impl Hooks {
     }
 }
 
-/// The progress bar, cleared from the terminal however the frame ends.
-struct Progress(Option<ProgressBar>);
-
-impl Progress {
-    fn tick(&self) {
-        if let Some(b) = &self.0 {
-            b.inc(1);
-        }
-    }
+/// Validate `scene` again after the command line changed it (`flag`).
+fn revalidate(scene: Scene, path: &Path, flag: &str) -> Result<Scene, Exit> {
+    reyes_scene::validate(scene).map_err(|issue| {
+        Exit::error(
+            2,
+            format_args!("{}: {flag}: {}: {}", path.display(), issue.path, issue.message),
+        )
+    })
 }
 
-impl Drop for Progress {
-    fn drop(&mut self) {
-        if let Some(b) = &self.0 {
-            b.finish_and_clear();
-        }
-    }
+fn is_exr(path: &Path) -> bool {
+    path.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr"))
 }
 
-/// Renders one frame to `main` (and the same image to each of `extras`).
+/// Renders one frame (numbered `number`) to `main` (and the same image to each of
+/// `extras`); with `--tile`, the tile file to `main` alone.
 fn render_frame(
     args: &Args,
-    scene: &Scene,
+    (scene, number): (&Scene, Option<i32>),
     main: &Path,
     extras: &[PathBuf],
     hooks: &Hooks,
 ) -> Result<(), Exit> {
-    let progress = Progress((!args.quiet && std::io::stderr().is_terminal()).then(|| {
-        let frame = reyes_render::frame_for(scene);
-        let bar = ProgressBar::new(frame.bucket_count() as u64);
-        if let Ok(style) = ProgressStyle::with_template("{bar:40} {pos}/{len} buckets {elapsed}") {
-            bar.set_style(style);
+    let scene_path = args.scene.display().to_string();
+    let buckets = pieces::buckets_of(scene, args.tile)
+        .map_err(|e| Exit::error(2, format_args!("{}: {e}", args.scene.display())))?;
+    let header = Header::new(scene, &scene_path, number, args.tile.unwrap_or((0, 0)));
+    let (checkpoint, done) = match &args.checkpoint {
+        Some(root) => {
+            let (c, done) = Checkpoint::open(root, Header { tile: (0, 0), ..header.clone() })?;
+            (Some(c), done)
         }
-        bar
-    }));
+        None => (None, BTreeMap::new()),
+    };
+    let resumed = buckets.iter().filter(|b| done.contains_key(b)).count() as u64;
+    let mut label = String::new();
+    if let Some(n) = number {
+        label.push_str(&format!("frame {n} "));
+    }
+    if let Some((i, n)) = args.tile {
+        label.push_str(&format!("tile {i}/{n} "));
+    }
+    let progress = Progress::new(
+        args.quiet,
+        std::io::stderr().is_terminal(),
+        label,
+        buckets.len() as u64,
+        resumed,
+        Duration::from_secs_f64(args.progress_every),
+    );
     let tick = || {
         progress.tick();
         if hooks.pause == Pause::Render {
             hooks.once.call_once(hooks::pause_rendering);
+        }
+    };
+    let save = |b: usize, r: &BucketResult| {
+        if let Some(c) = &checkpoint {
+            c.save(b, r);
         }
     };
     let memory_limit = match args.memory_limit {
@@ -326,26 +370,27 @@ fn render_frame(
         threads: args.threads.map(usize::from),
         on_bucket: Some(&tick),
         memory_limit,
+        buckets: Some(&buckets),
+        done: checkpoint.as_ref().map(|_| &done),
+        on_result: checkpoint.as_ref().map(|_| &save as &(dyn Fn(usize, &BucketResult) + Sync)),
+        keep_buckets: args.tile.is_some(),
     };
     let started = Instant::now();
     let rendered = render(scene, &opts);
     let render_time = started.elapsed();
+    if rendered.is_ok() {
+        progress.finish();
+    }
     drop(progress);
+    if let Some(failure) = checkpoint.as_ref().and_then(Checkpoint::failure) {
+        return Err(Exit::error(1, failure));
+    }
     let mut rendered = rendered.map_err(|e| match (e, signals::received()) {
         (RenderError::Cancelled, Some(stop)) => Exit::stopped(stop, main),
         (e, _) => Exit::error(e.exit_code(), format_args!("{}: {e}", args.scene.display())),
     })?;
+    let render_time = scene.outputs.render_time.then_some(render_time.as_secs_f32());
 
-    let mut metadata = reyes_film::Metadata::for_scene(scene, &args.scene.display().to_string());
-    if scene.outputs.render_time {
-        metadata.render_time = Some(render_time.as_secs_f32());
-    }
-    let picture = reyes_film::Picture {
-        film: &rendered.film,
-        aovs: rendered.aovs.as_ref().map(|a| (&a.film, a.layers.as_slice())),
-        outputs: &scene.outputs,
-        metadata: &metadata,
-    };
     let t = Instant::now();
     for path in std::iter::once(main).chain(extras.iter().map(PathBuf::as_path)) {
         let pause = |temporary: Option<&Path>| {
@@ -358,12 +403,23 @@ fn render_frame(
             after_first_chunk: Some(&pause),
             named_temporary: hooks.named_temporary,
         };
-        reyes_film::write_picture(path, &picture, &opts).map_err(|e| {
-            match (e, signals::received()) {
-                (FilmError::Interrupted { path }, Some(stop)) => Exit::stopped(stop, &path),
-                (e, _) => Exit::error(1, e),
-            }
+        let written = if args.tile.is_some() {
+            let header = Header { render_time, ..header.clone() };
+            pieces::write_piece(path, &header, &rendered.buckets, &opts)
+        } else {
+            let aovs = rendered.aovs.as_ref().map(|a| (&a.film, a.layers.as_slice()));
+            write_picture(scene, &scene_path, (&rendered.film, aovs), render_time, path, &opts)
+        };
+        written.map_err(|e| match (e, signals::received()) {
+            (FilmError::Interrupted { path }, Some(stop)) => Exit::stopped(stop, &path),
+            (e, _) => Exit::error(1, e),
         })?;
+        if args.tile.is_some() {
+            break; // a tile goes to its one file
+        }
+    }
+    if let Some(c) = checkpoint {
+        c.finish();
     }
     rendered.stats.t_write = t.elapsed();
     rendered.stats.peak_memory = reyes_render::peak_memory();
@@ -371,4 +427,58 @@ fn render_frame(
         term::print(&rendered.stats.to_string())?;
     }
     Ok(())
+}
+
+/// Write a frame's film (and AOVs) to `path` as the scene asks: with its crop window's
+/// pixels only, and the metadata of the scene file `scene_path`. Both a whole render and
+/// `reyes-render merge` write through here, so their files agree byte for byte.
+fn write_picture(
+    scene: &Scene,
+    scene_path: &str,
+    (film, aovs): (&reyes_film::Film, Option<(&reyes_film::AovFilm, &[reyes_film::AovLayer])>),
+    render_time: Option<f32>,
+    path: &Path,
+    opts: &WriteOptions,
+) -> Result<(), FilmError> {
+    let mut metadata = reyes_film::Metadata::for_scene(scene, scene_path);
+    metadata.render_time = render_time;
+    let image = &scene.image;
+    let rect = image.crop_pixels();
+    let (film, aovs, placement) = if image.crop.is_some() {
+        let placement =
+            reyes_film::Placement { full: (image.width, image.height), origin: (rect[0], rect[2]) };
+        (film.crop(rect), aovs.map(|(a, l)| (a.crop(rect), l)), Some(placement))
+    } else {
+        (film.clone(), aovs.map(|(a, l)| (a.clone(), l)), None)
+    };
+    let picture = reyes_film::Picture {
+        film: &film,
+        aovs: aovs.as_ref().map(|(a, l)| (a, *l)),
+        outputs: &scene.outputs,
+        metadata: &metadata,
+        placement,
+    };
+    reyes_film::write_picture(path, &picture, opts)
+}
+
+/// Write the frame that the bucket `results` of `scene` make (`reyes-render merge`).
+pub(crate) fn write_frame(
+    scene: &Scene,
+    scene_path: &str,
+    results: &BTreeMap<usize, BucketResult>,
+    render_time: Option<f32>,
+    path: &Path,
+    opts: &WriteOptions,
+) -> Result<(), Exit> {
+    let aov = reyes_render::aovs::AovSetup::for_scene(scene);
+    let channels = aov.as_ref().map(|a| a.plan.channels());
+    let (film, aov_film) = reyes_render::buckets::assemble(
+        scene.image.width,
+        scene.image.height,
+        channels,
+        results.values(),
+    );
+    let aovs = aov.as_ref().zip(aov_film.as_ref()).map(|(a, f)| (f, a.layers.as_slice()));
+    write_picture(scene, scene_path, (&film, aovs), render_time, path, opts)
+        .map_err(|e| Exit::error(1, e))
 }

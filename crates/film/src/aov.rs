@@ -215,6 +215,18 @@ impl AovFilm {
         }
     }
 
+    /// The pixels `[x0, x1) x [y0, y1)` (`rect = [x0, x1, y0, y1]`, within the image) as an
+    /// image of their own.
+    pub fn crop(&self, [x0, x1, y0, y1]: [u32; 4]) -> AovFilm {
+        let ch = self.channels;
+        let mut data = Vec::with_capacity((x1 - x0) as usize * (y1 - y0) as usize * ch);
+        for y in y0..y1 {
+            let row = y as usize * self.width as usize;
+            data.extend_from_slice(&self.data[(row + x0 as usize) * ch..(row + x1 as usize) * ch]);
+        }
+        AovFilm { width: x1 - x0, height: y1 - y0, channels: ch, data }
+    }
+
     /// Channels per pixel.
     pub fn channels(&self) -> usize {
         self.channels

@@ -76,6 +76,20 @@ impl Film {
         }
     }
 
+    /// The pixels `[x0, x1) x [y0, y1)` (`rect = [x0, x1, y0, y1]`, within the image) as an
+    /// image of their own.
+    pub fn crop(&self, [x0, x1, y0, y1]: [u32; 4]) -> Film {
+        let (w, h) = (x1 - x0, y1 - y0);
+        let mut rgba = Vec::with_capacity(w as usize * h as usize);
+        let mut z = Vec::with_capacity(w as usize * h as usize);
+        for y in y0..y1 {
+            let row = y as usize * self.width as usize;
+            rgba.extend_from_slice(&self.rgba[row + x0 as usize..row + x1 as usize]);
+            z.extend_from_slice(&self.z[row + x0 as usize..row + x1 as usize]);
+        }
+        Film { width: w, height: h, rgba, z }
+    }
+
     /// Width in pixels.
     pub fn width(&self) -> u32 {
         self.width

@@ -126,6 +126,19 @@ pub struct Picture<'a> {
     pub outputs: &'a Outputs,
     /// The header's metadata.
     pub metadata: &'a Metadata,
+    /// Where the films' pixels lie in the whole frame, when they are a crop window's
+    /// (None: they are the whole frame).
+    pub placement: Option<Placement>,
+}
+
+/// Where a crop window's pixels lie: the EXR's display window is the whole frame and its
+/// data window the crop's pixels.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Placement {
+    /// The whole frame's size in pixels.
+    pub full: (u32, u32),
+    /// The raster position of the films' top-left pixel in it.
+    pub origin: (u32, u32),
 }
 
 /// Write `picture` to `path`, atomically: EXR (every layer, the metadata) or PNG (the
@@ -196,6 +209,16 @@ fn encode_picture(
 ) -> std::result::Result<(), FilmError> {
     let film = p.film;
     let size = (film.width() as usize, film.height() as usize);
+    let (full, origin) = match p.placement {
+        Some(Placement { full: (fw, fh), origin: (x, y) }) => {
+            ((fw as usize, fh as usize), Vec2(x as i32, y as i32))
+        }
+        None => (size, Vec2(0, 0)),
+    };
+    let placed = |mut a: LayerAttributes| {
+        a.layer_position = origin;
+        a
+    };
     let o = p.outputs;
     let zbg = o.zbackground.value();
     let rgba = film.rgba();
@@ -234,7 +257,7 @@ fn encode_picture(
     }
     let mut layers = vec![Layer::new(
         size,
-        top,
+        placed(top),
         encoding(o.compression),
         AnyChannels::sort(SmallVec::from_vec(channels)),
     )];
@@ -258,13 +281,13 @@ fn encode_picture(
                 .collect();
             layers.push(Layer::new(
                 size,
-                attributes(Some(&layer.name), p.metadata),
+                placed(attributes(Some(&layer.name), p.metadata)),
                 encoding(layer.compression),
                 AnyChannels::sort(SmallVec::from_vec(channels)),
             ));
         }
     }
-    let bounds = IntegerBounds::new((0, 0), size);
+    let bounds = IntegerBounds::new((0, 0), full);
     let image = Image::from_layers(ImageAttributes::new(bounds), layers);
     let mut bytes = std::io::Cursor::new(Vec::new());
     image.write().to_buffered(&mut bytes).map_err(|e| exr_error(path, e))?;

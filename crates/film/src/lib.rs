@@ -21,6 +21,7 @@ pub mod layers;
 pub mod output;
 pub mod points;
 pub mod table;
+pub mod tiles;
 pub mod window;
 
 /// The kernels live in the scene crate, whose validation evaluates the same filter sums as
@@ -33,10 +34,11 @@ pub use atomic::{WriteOptions, remove_stale_temporaries};
 pub use error::FilmError;
 pub use kernel::{bessel_j1, weight};
 pub use layers::{
-    AovLayer, Metadata, Picture, ReadChannel, as_stored, bayer8, read_layers, view_pixel,
-    write_picture,
+    AovLayer, Metadata, Picture, Placement, ReadChannel, as_stored, bayer8, read_layers,
+    view_pixel, write_picture,
 };
 pub use output::{read_exr, srgb_decode, srgb_encode, write, write_with};
 pub use points::splat_points;
 pub use table::{FilterTable, border_for_width};
+pub use tiles::{BucketFile, StoredBucket, read_buckets, write_buckets};
 pub use window::{Window, splat};

@@ -8,7 +8,9 @@
 //!   where the scene needs it, ray-traced vertex shading;
 //! - [`rayhide`]: Appendix B's ray-tracing hider over the same samples and filter;
 //! - [`stats`]: what `--stats` prints;
-//! - [`cancel`]: the process-wide request to stop, polled before each bucket.
+//! - [`cancel`]: the process-wide request to stop, polled before each bucket;
+//! - [`buckets`]: which buckets a render draws (crop windows, tiles), what each hands the
+//!   film, and their assembly into the frame (tile merges, checkpoints).
 //!
 //! Invariant (determinism): every bucket's result depends only on the scene, the seed and the
 //! bucket index, and bucket windows are added to the image in bucket raster order, so the
@@ -16,6 +18,7 @@
 #![deny(missing_docs)]
 
 pub mod aovs;
+pub mod buckets;
 pub mod budget;
 pub mod cancel;
 mod error;
@@ -25,6 +28,7 @@ pub mod settings;
 pub mod stats;
 pub mod stochastic;
 
+pub use buckets::BucketResult;
 pub use error::RenderError;
 pub use reyes_film::Film;
 pub use settings::{filter_table, frame_for, hider_config, shutter_shape};
@@ -44,6 +48,17 @@ pub struct RenderOptions<'a> {
     /// ([`budget::Estimate`]) exceeds it is refused with [`RenderError::WontFit`]; what is
     /// left bounds the micropolygons held at once.
     pub memory_limit: Option<u64>,
+    /// The buckets to render, in raster order (None: those of the scene's crop window,
+    /// [`buckets::scene_buckets`]). The film holds only what these add.
+    pub buckets: Option<&'a [usize]>,
+    /// Buckets already rendered (read back from a checkpoint): their results are used as
+    /// they are, in their place in the raster order, and they are not rendered again.
+    pub done: Option<&'a std::collections::BTreeMap<usize, BucketResult>>,
+    /// Called with every bucket rendered (not those of `done`) as it finishes, from worker
+    /// threads, e.g. to write it to a checkpoint.
+    pub on_result: Option<&'a (dyn Fn(usize, &BucketResult) + Sync)>,
+    /// Keep every bucket's result in [`Rendered::buckets`] (for a tile file).
+    pub keep_buckets: bool,
 }
 
 /// A rendered frame.
@@ -54,6 +69,8 @@ pub struct Rendered {
     pub stats: RenderStats,
     /// The AOVs, when the scene writes any.
     pub aovs: Option<aovs::RenderedAovs>,
+    /// With [`RenderOptions::keep_buckets`]: each bucket's result, in raster order.
+    pub buckets: Vec<(usize, BucketResult)>,
 }
 
 /// Render a validated scene: with the ray-tracing hider when the scene asks for it, else

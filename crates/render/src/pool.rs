@@ -1,13 +1,13 @@
-//! The renderer's one thread pool, and the fixed-order merge of bucket windows into the film.
+//! The renderer's one thread pool, and the splat of a bucket's samples into its window.
 //!
 //! This is the only place rayon is set up: both hiders run their bucket loops inside
-//! [`Pool::install`] and hand their bucket results, in bucket order, to [`merge`].
+//! [`Pool::install`] and add their bucket results to the film in bucket raster order
+//! ([`crate::buckets`]).
 //!
-//! Invariant (determinism): [`merge`] adds windows in the order of the slice it is given,
-//! which callers keep in bucket raster order (rayon's `collect` of an indexed parallel
-//! iterator preserves it), so floating-point sums never depend on scheduling.
+//! Invariant (determinism): the bucket loops `collect` indexed parallel iterators, which
+//! keeps bucket raster order, so floating-point sums never depend on scheduling.
 
-use reyes_film::{Film, FilterTable, Window, splat};
+use reyes_film::{FilterTable, Window, splat};
 use reyes_hider::Frame;
 
 use crate::RenderError;
@@ -48,23 +48,4 @@ pub fn splat_bucket(
 ) {
     let (left, top) = frame.bucket_origin(b);
     splat(table, left, top, frame.bucket_w, frame.bucket_h, rgba, z, window);
-}
-
-/// Add the bucket windows of `windows` (in bucket raster order; `None` for a bucket that
-/// drew nothing) to `film`, in that order, calling `each` for every bucket that drew
-/// something. Returns the number of windows added.
-pub fn merge<'a, T: 'a>(
-    film: &mut Film,
-    windows: impl IntoIterator<Item = &'a (Option<Window>, T)>,
-    mut each: impl FnMut(&T),
-) -> usize {
-    let mut added = 0;
-    for (window, extra) in windows {
-        if let Some(w) = window {
-            film.add(w);
-            added += 1;
-        }
-        each(extra);
-    }
-    added
 }

@@ -35,6 +35,7 @@ use reyes_scene::Scene;
 use reyes_shade::{RayCounts, Shading, Traced};
 use reyes_trace::{Ray, Tracer};
 
+use crate::buckets::{self, BucketResult};
 use crate::cancel;
 use crate::pool::{self, Pool};
 use crate::settings::Stages;
@@ -88,14 +89,21 @@ where
     let (hither, yon) = (camera.hither(), camera.yon());
     let t_max = yon - hither;
 
+    let selected = match opts.buckets {
+        Some(list) => list.to_vec(),
+        None => buckets::scene_buckets(scene, &frame),
+    };
     let t1 = Instant::now();
     let results = pool.install(|| {
-        (0..frame.bucket_count())
-            .into_par_iter()
-            .map_init(Buffers::default, |buf, b| {
+        selected
+            .par_iter()
+            .map_init(Buffers::default, |buf, &b| {
                 if cancel::requested() {
                     // Skipped: the frame is discarded below.
-                    return (None, Default::default());
+                    return (BucketResult::default(), Default::default());
+                }
+                if let Some(r) = opts.done.and_then(|d| d.get(&b)) {
+                    return (r.clone(), Default::default());
                 }
                 let (left, top) = frame.bucket_origin(b);
                 let (bw, bh) = (frame.bucket_w as usize, frame.bucket_h as usize);
@@ -142,6 +150,10 @@ where
                     pool::splat_bucket(&table, &frame, b, &buf.rgba, &buf.z, &mut buf.window);
                     Some(buf.window.clone())
                 };
+                let result = BucketResult { window: result, aov: None };
+                if let Some(cb) = opts.on_result {
+                    cb(b, &result);
+                }
                 if let Some(cb) = opts.on_bucket {
                     cb();
                 }
@@ -159,11 +171,18 @@ where
     let mut film = Film::new(scene.image.width, scene.image.height);
     let mut rays =
         RaySummary { ray_hider: true, primitives: engine.0, nodes: engine.1, ..Default::default() };
-    let buckets_rendered = pool::merge(&mut film, &results, |(primary, hits, counts)| {
+    let mut buckets_rendered = 0;
+    let mut kept = Vec::new();
+    for (&b, (result, (primary, hits, counts))) in selected.iter().zip(results) {
         rays.primary += primary;
         rays.hits += hits;
-        rays.secondary.add(counts);
-    });
+        rays.secondary.add(&counts);
+        buckets_rendered += usize::from(result.window.is_some());
+        buckets::add(&mut film, None, &result);
+        if opts.keep_buckets {
+            kept.push((b, result));
+        }
+    }
     let t_film = t2.elapsed();
     let stats = RenderStats {
         buckets_rendered,
@@ -178,5 +197,5 @@ where
         rays: Some(rays),
         ..RenderStats::new(scene, hider.config(), frame)
     };
-    Ok(Rendered { film, stats, aovs: None })
+    Ok(Rendered { film, stats, aovs: None, buckets: kept })
 }

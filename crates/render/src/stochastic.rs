@@ -11,7 +11,8 @@
 //! ends with [`RenderError::Cancelled`].
 //!
 //! Invariant (determinism): a bucket's window depends only on the scene, the seed and the
-//! bucket; windows are merged in raster order ([`pool::merge`]).
+//! bucket; windows are added in raster order ([`buckets::assemble`]'s order), whichever
+//! buckets this render draws and whichever it was handed already done.
 
 use std::time::{Duration, Instant};
 
@@ -24,6 +25,7 @@ use reyes_shade::{RayVertexShader, Shading};
 use reyes_trace::Tracer;
 
 use crate::aovs::{AovSetup, RenderedAovs};
+use crate::buckets::{self, BucketResult};
 use crate::cancel;
 use crate::pool::{self, Pool};
 use crate::settings::{Stages, frame_for, shutter_shape};
@@ -146,8 +148,16 @@ fn render_rows(
         .map(|a| AovFilm::new(scene.image.width, scene.image.height, a.plan.channels()));
     let mut hider_stats = reyes_hider::Stats::default();
     let mut buckets_rendered = 0;
+    let mut kept = Vec::new();
     let across = frame.buckets_x as usize;
-    for row in 0..dicer.rows() {
+    let selected = match opts.buckets {
+        Some(list) => list.to_vec(),
+        None => buckets::scene_buckets(scene, &frame),
+    };
+    // Rows after the last selected bucket's are neither diced nor rendered.
+    let rows = selected.last().map_or(0, |&b| (b / across + 1) as u32).min(dicer.rows());
+    let mut next = 0;
+    for row in 0..rows {
         if cancel::requested() {
             return Err(RenderError::Cancelled);
         }
@@ -156,72 +166,25 @@ fn render_rows(
         t_dice += t.elapsed();
 
         let t = Instant::now();
-        let first = row as usize * across;
+        let end = (row as usize + 1) * across;
+        let count = selected[next..].partition_point(|&b| b < end);
+        let row_buckets = &selected[next..next + count];
+        next += count;
         let diced = &dicer;
-        let results = (first..first + across)
-            .into_par_iter()
-            .map_init(Buffers::default, |buf, b| {
+        let results = row_buckets
+            .par_iter()
+            .map_init(Buffers::default, |buf, &b| {
                 if cancel::requested() {
                     // Skipped: the row is discarded below.
-                    return (None, Default::default());
+                    return Default::default();
                 }
-                // Appendix A's `emptybucket`: nothing to display (but its AOVs' background).
-                let empty = diced.bucket_len(b) == 0;
-                let result = if empty && aov.is_none() {
-                    (None, Default::default())
-                } else {
-                    diced.copy_bucket(b, &mut buf.mpolys);
-                    let n = buf.mpolys.len() as u32;
-                    if (buf.list.len() as u32) < n {
-                        buf.list.extend(buf.list.len() as u32..n);
-                    }
-                    buf.scratch.stats = Default::default();
-                    let list = &buf.list[..n as usize];
-                    let aov_window = if let Some(a) = &aov {
-                        diced.copy_bucket_aovs(b, &mut buf.aov_data);
-                        let out = hider.render_bucket_aovs(
-                            b,
-                            (&buf.mpolys, &buf.aov_data),
-                            list,
-                            &a.plan,
-                            &mut buf.scratch,
-                        );
-                        let beauty = out.beauty;
-                        pool::splat_bucket(
-                            &table,
-                            &frame,
-                            b,
-                            beauty.rgba,
-                            beauty.z,
-                            &mut buf.window,
-                        );
-                        let samples = AovSamples {
-                            channels: a.plan.channels(),
-                            values: out.aov,
-                            front_z: out.front_z,
-                            x: &out.samples.x,
-                            y: &out.samples.y,
-                        };
-                        reyes_film::splat_aovs(
-                            &table,
-                            frame.bucket_origin(b),
-                            (frame.bucket_w, frame.bucket_h),
-                            &a.channels,
-                            &samples,
-                            &mut buf.aov_window,
-                        );
-                        Some(buf.aov_window.clone())
-                    } else {
-                        let out = hider.render_bucket(b, &buf.mpolys, list, &mut buf.scratch);
-                        pool::splat_bucket(&table, &frame, b, out.rgba, out.z, &mut buf.window);
-                        // Adaptive sampling's samples, at their true positions and weights.
-                        let refined = out.refined.iter().map(|r| ([r.x, r.y], r.weight, r.rgba));
-                        reyes_film::splat_points(&table, refined, &mut buf.window);
-                        None
-                    };
-                    let window = (!empty).then(|| buf.window.clone());
-                    (window, (buf.scratch.stats, aov_window))
-                };
+                if let Some(r) = opts.done.and_then(|d| d.get(&b)) {
+                    return (r.clone(), Default::default());
+                }
+                let result = render_bucket(diced, &hider, &table, &frame, aov.as_ref(), b, buf);
+                if let Some(cb) = opts.on_result {
+                    cb(b, &result.0);
+                }
                 if let Some(cb) = opts.on_bucket {
                     cb();
                 }
@@ -233,13 +196,16 @@ fn render_rows(
             return Err(RenderError::Cancelled);
         }
 
+        // Fixed order: bucket raster order, whatever order the buckets finished in.
         let t = Instant::now();
-        buckets_rendered += pool::merge(&mut film, &results, |(s, aov_window)| {
-            hider_stats.merge(s);
-            if let (Some(f), Some(w)) = (aov_film.as_mut(), aov_window) {
-                f.add(w);
+        for (&b, (result, s)) in row_buckets.iter().zip(results) {
+            hider_stats.merge(&s);
+            buckets_rendered += usize::from(result.window.is_some());
+            buckets::add(&mut film, aov_film.as_mut(), &result);
+            if opts.keep_buckets {
+                kept.push((b, result));
             }
-        });
+        }
         t_film += t.elapsed();
         if let (Some(limit), true) = (max_points, hider_stats.dropped_points > 0) {
             return Err(RenderError::VisiblePointBudget { limit });
@@ -262,7 +228,69 @@ fn render_rows(
         ..RenderStats::new(scene, hider.config(), frame)
     };
     let aovs = aov.zip(aov_film).map(|(a, film)| RenderedAovs { film, layers: a.layers });
-    Ok(Rendered { film, stats, aovs })
+    Ok(Rendered { film, stats, aovs, buckets: kept })
+}
+
+/// Render bucket `b` of the diced scene: its beauty window (None if nothing is in it) and,
+/// with AOVs, its AOV window; and the hider's statistics.
+fn render_bucket(
+    diced: &Dicer,
+    hider: &reyes_hider::Hider,
+    table: &reyes_film::FilterTable,
+    frame: &reyes_hider::Frame,
+    aov: Option<&AovSetup>,
+    b: usize,
+    buf: &mut Buffers,
+) -> (BucketResult, reyes_hider::Stats) {
+    // Appendix A's `emptybucket`: nothing to display (but its AOVs' background).
+    let empty = diced.bucket_len(b) == 0;
+    if empty && aov.is_none() {
+        return Default::default();
+    }
+    diced.copy_bucket(b, &mut buf.mpolys);
+    let n = buf.mpolys.len() as u32;
+    if (buf.list.len() as u32) < n {
+        buf.list.extend(buf.list.len() as u32..n);
+    }
+    buf.scratch.stats = Default::default();
+    let list = &buf.list[..n as usize];
+    let aov_window = if let Some(a) = aov {
+        diced.copy_bucket_aovs(b, &mut buf.aov_data);
+        let out = hider.render_bucket_aovs(
+            b,
+            (&buf.mpolys, &buf.aov_data),
+            list,
+            &a.plan,
+            &mut buf.scratch,
+        );
+        let beauty = out.beauty;
+        pool::splat_bucket(table, frame, b, beauty.rgba, beauty.z, &mut buf.window);
+        let samples = AovSamples {
+            channels: a.plan.channels(),
+            values: out.aov,
+            front_z: out.front_z,
+            x: &out.samples.x,
+            y: &out.samples.y,
+        };
+        reyes_film::splat_aovs(
+            table,
+            frame.bucket_origin(b),
+            (frame.bucket_w, frame.bucket_h),
+            &a.channels,
+            &samples,
+            &mut buf.aov_window,
+        );
+        Some(buf.aov_window.clone())
+    } else {
+        let out = hider.render_bucket(b, &buf.mpolys, list, &mut buf.scratch);
+        pool::splat_bucket(table, frame, b, out.rgba, out.z, &mut buf.window);
+        // Adaptive sampling's samples, at their true positions and weights.
+        let refined = out.refined.iter().map(|r| ([r.x, r.y], r.weight, r.rgba));
+        reyes_film::splat_points(table, refined, &mut buf.window);
+        None
+    };
+    let window = (!empty).then(|| buf.window.clone());
+    (BucketResult { window, aov: aov_window }, buf.scratch.stats)
 }
 
 fn dice_summary(d: &DiceStats) -> DiceSummary {

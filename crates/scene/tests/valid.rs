@@ -48,7 +48,7 @@ fn dvec(a: &[f32; 3]) -> glam::DVec3 {
 fn the_full_example_parses_with_the_expected_values() {
     let scene = ok(FULL);
     let expected = Scene {
-        image: Image { width: 640, height: 480 },
+        image: Image::new(640, 480),
         camera: Camera {
             eye: [0.0, 1.0, -10.0],
             look_at: [0.0, 0.0, 0.0],
@@ -183,7 +183,7 @@ fn partial_hider_and_object_defaults() {
 #[test]
 fn comments_byte_order_mark_and_anonymous_root_are_accepted() {
     let text = "\u{feff}// a scene\n(/* no name */ image: (width: 8, height: 6),\n camera: (eye: (0.0, 0.0, -5.0), look_at: (0.0, 0.0, 0.0)))";
-    assert_eq!(ok(text).image, Image { width: 8, height: 6 });
+    assert_eq!(ok(text).image, Image::new(8, 6));
 }
 
 #[test]

@@ -38,7 +38,7 @@ pub fn camera(eye: [f32; 3], look_at: [f32; 3], fov: f32, lens: Option<Lens>) ->
 /// A scene of `objects` seen by `camera`, default hider, one ambient and one distant light.
 pub fn scene(width: u32, height: u32, camera: Camera, objects: Vec<Object>) -> Scene {
     Scene {
-        image: Image { width, height },
+        image: Image::new(width, height),
         camera,
         hider: Hider::default(),
         lights: vec![

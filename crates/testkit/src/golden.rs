@@ -304,6 +304,7 @@ pub fn bless(root: &Path, case: &Case) -> Result<PathBuf, GoldenError> {
                 aovs: Some((&aovs.film, &aovs.layers)),
                 outputs: &scene.outputs,
                 metadata: &metadata,
+                placement: None,
             };
             reyes_film::write_picture(&reference, &picture, &Default::default()).map_err(err)?;
         }

@@ -219,7 +219,7 @@ fn components_scene() -> Scene {
         &std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes/aovs.ron"))
             .unwrap_or_else(|e| panic!("{e}")),
     );
-    scene.image = reyes_scene::Image { width: 96, height: 72 };
+    scene.image = reyes_scene::Image::new(96, 72);
     scene
 }
 
@@ -302,7 +302,7 @@ fn every_hider_path_gives_the_same_beauty_with_aovs() {
         let path = format!("{}/../../scenes/{file}.ron", env!("CARGO_MANIFEST_DIR"));
         let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{e}"));
         let mut plain = parse(&text);
-        plain.image = reyes_scene::Image { width: 64, height: 48 };
+        plain.image = reyes_scene::Image::new(64, 48);
         let mut with = plain.clone();
         with.outputs.aovs = [AovSource::Ci, AovSource::Z, AovSource::N, AovSource::DPdtime]
             .map(reyes_scene::Aov::new)

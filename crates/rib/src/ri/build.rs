@@ -306,7 +306,7 @@ impl FrameBuild {
             ..Hider::default()
         };
         let scene = Scene {
-            image: Image { width: o.width, height: o.height },
+            image: Image { width: o.width, height: o.height, crop: o.crop },
             camera,
             hider,
             lights: std::mem::take(&mut self.lights),

@@ -57,10 +57,11 @@ impl Machine {
             }
             K::CropWindow => {
                 let s = r.floats(0).map(<[f32]>::to_vec).unwrap_or_else(|| (0..4).map(v).collect());
-                o.crop = Some([s[0], s[1], s[2], s[3]]);
-                let w =
-                    r.warning("crop windows are not supported yet: the whole frame is rendered");
-                warned.push(("cropwindow".to_string(), w));
+                // RI Spec 3.2: the window is clamped to [0, 1]; validation refuses one that
+                // selects no pixel (or that is reversed).
+                let c = |x: f32| x.clamp(0.0, 1.0);
+                o.crop = Some([c(s[0]), c(s[1]), c(s[2]), c(s[3])]);
+                o.origin("image.crop", &r.at, r.name());
             }
             K::Projection => {
                 let name = r.string(0).unwrap_or_default();

@@ -9,7 +9,7 @@ use serde::{Deserialize, Serialize};
 
 use super::{V3, default_up};
 
-/// Output resolution in pixels.
+/// Output resolution in pixels, and the part of the frame to render.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Image {
@@ -17,6 +17,33 @@ pub struct Image {
     pub width: u32,
     /// Height in pixels (> 0).
     pub height: u32,
+    /// RenderMan's `CropWindow`: `[xmin, xmax, ymin, ymax]` in screen fractions (0 is the
+    /// left and top edge, 1 the right and bottom), `0 <= min < max <= 1`. Only the pixels of
+    /// [`Image::crop_pixels`] are rendered and written, each with exactly the value it has in
+    /// the whole frame. None: the whole frame.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub crop: Option<[f32; 4]>,
+}
+
+impl Image {
+    /// A `width x height` image without a crop window.
+    pub fn new(width: u32, height: u32) -> Image {
+        Image { width, height, crop: None }
+    }
+
+    /// The pixels the crop window selects, `[x0, x1, y0, y1]` half-open: as the RenderMan
+    /// Interface Specification (3.2, `RiCropWindow`) defines them, columns
+    /// `ceil(width * xmin)` to `ceil(width * xmax) - 1`, rows likewise. The whole image
+    /// without a crop window. May be empty for a window thinner than a pixel (validation
+    /// refuses that).
+    pub fn crop_pixels(&self) -> [u32; 4] {
+        let Some([x0, x1, y0, y1]) = self.crop else {
+            return [0, self.width, 0, self.height];
+        };
+        // In f32, as RenderMan's float arithmetic does (0.2 * 80 is 16, not 16.0000002).
+        let at = |f: f32, n: u32| ((n as f32 * f).ceil().max(0.0) as u32).min(n);
+        [at(x0, self.width), at(x1, self.width), at(y0, self.height), at(y1, self.height)]
+    }
 }
 
 /// The camera. Camera space has +x right, +y up, +z forward (eye depth).

@@ -16,7 +16,25 @@ use crate::view::{self, ViewError};
 
 pub(super) fn image(image: &Image) -> Check {
     int_in("image.width", image.width, 1, 65536)?;
-    int_in("image.height", image.height, 1, 65536)
+    int_in("image.height", image.height, 1, 65536)?;
+    if let Some(c) = &image.crop {
+        finite_all("image.crop", c)?;
+        let unit = |v: f32| (0.0..=1.0).contains(&v);
+        if !c.iter().copied().all(unit) || c[0] >= c[1] || c[2] >= c[3] {
+            return fail(
+                "image.crop",
+                format!("expected [xmin, xmax, ymin, ymax] with 0 <= min < max <= 1, got {c:?}"),
+            );
+        }
+        let [x0, x1, y0, y1] = image.crop_pixels();
+        if x0 >= x1 || y0 >= y1 {
+            return fail(
+                "image.crop",
+                format!("{c:?} selects no pixel of the {} x {} image", image.width, image.height),
+            );
+        }
+    }
+    Ok(())
 }
 
 pub(super) fn camera(cam: &Camera, image: &Image) -> Check {
