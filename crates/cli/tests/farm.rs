@@ -425,3 +425,58 @@ fn a_checkpoint_of_other_arguments_is_never_mixed_in() {
     refused(&o, "--checkpoint: a bucket of another render");
     assert!(!dir.join("out5.exr").exists());
 }
+
+#[test]
+fn a_ron_animation_renders_frame_by_frame_and_through_tiles() {
+    let tmp = tempfile::tempdir().expect("tempdir");
+    let dir = tmp.path();
+    let anim = scene(dir, "motion-blur", (48, 36), "anim.ron", |t| {
+        t.replacen("seed: 5", "seed: ${frame}", 1).replacen(
+            "eye: (0.0,",
+            "eye: (${key(1, -1, 3, 1)},",
+            1,
+        )
+    });
+    let still =
+        scene(dir, "motion-blur", (48, 36), "still.ron", |t| t.replacen("seed: 5", "seed: 2", 1));
+    assert!(std::fs::read_to_string(dir.join(&anim)).expect("anim").contains("eye: (${key("));
+    ok(dir, &[&anim, "--frames", "1-3", "-o", "out.####.exr"]);
+    ok(dir, &[&still, "-o", "still.exr"]);
+    let frame = |n: u32| reyes_film::read_exr(&dir.join(format!("out.{n:04}.exr"))).expect("frame");
+    // Frame 2 is the key's midpoint (eye x + 0) with seed 2: the still scene's pixels.
+    let still = reyes_film::read_exr(&dir.join("still.exr")).expect("still");
+    assert_eq!(frame(2).rgba(), still.rgba());
+    assert_ne!(frame(1).rgba(), frame(3).rgba());
+    // Frame 3 through tiles merges to frame 3's file.
+    for i in 1..=4 {
+        ok(
+            dir,
+            &[
+                &anim,
+                "--frames",
+                "3",
+                "--tile",
+                &format!("{i}/4"),
+                "-o",
+                &format!("f3.t{i}.####.exr"),
+            ],
+        );
+    }
+    let tiles: Vec<String> = (1..=4).map(|i| format!("f3.t{i}.0003.exr")).collect();
+    let mut args = vec!["merge"];
+    args.extend(tiles.iter().map(String::as_str));
+    args.extend(["-o", "f3.exr"]);
+    ok(dir, &args);
+    assert!(bytes(&dir.join("f3.exr")) == bytes(&dir.join("out.0003.exr")));
+    // Tiles of different frames do not merge.
+    ok(dir, &[&anim, "--frames", "2", "--tile", "4/4", "-o", "f2.t4.####.exr"]);
+    refused(
+        &run(dir, &["merge", &tiles[0], &tiles[1], &tiles[2], "f2.t4.0002.exr", "-o", "x.exr"]),
+        "a tile of a different render",
+    );
+    // An animated scene needs its frames chosen.
+    refused(
+        &run(dir, &[&anim, "-o", "x.exr"]),
+        "anim.ron: ${...}: the scene is animated: choose its frames with --frames",
+    );
+}

@@ -74,19 +74,14 @@ pub fn detect(path: &Path, head: &[u8]) -> Format {
 /// Loads the scene file `path` (`-`: standard input) in whichever format it is, into its
 /// frames (a RON scene is one frame without a number) and the warnings to show.
 pub fn load_scene_file(path: &Path, options: &RiOptions) -> Result<Loaded, InputError> {
-    let ron = |scene| Loaded {
-        frames: vec![Frame { number: None, scene, displays: Vec::new() }],
-        warnings: Vec::new(),
-    };
     if path == Path::new("-") {
         let mut bytes = Vec::new();
         std::io::stdin().read_to_end(&mut bytes).map_err(InputError::Stdin)?;
         return match detect(path, &bytes) {
             Format::Ron => {
                 let text = String::from_utf8_lossy(&bytes);
-                let scene = reyes_scene::parse(&text, Path::new("<stdin>"))
-                    .map_err(reyes_scene::LoadError::from)?;
-                Ok(ron(scene))
+                Ok(ron_frames(&text, Path::new("<stdin>"), options)
+                    .map_err(reyes_scene::LoadError::from)?)
             }
             Format::Rib => Ok(crate::load(Source::from_bytes("<stdin>", bytes), options)?),
         };
@@ -96,7 +91,10 @@ pub fn load_scene_file(path: &Path, options: &RiOptions) -> Result<Loaded, Input
         .and_then(|mut f| f.read(&mut head))
         .map_err(|source| reyes_scene::LoadError::Io { path: path.to_path_buf(), source })?;
     match detect(path, &head[..n]) {
-        Format::Ron => Ok(ron(reyes_scene::load(path)?)),
+        Format::Ron => {
+            let text = reyes_scene::read_text(path)?;
+            Ok(ron_frames(&text, path, options).map_err(reyes_scene::LoadError::from)?)
+        }
         Format::Rib => {
             let source = Source::open(path).map_err(|source| RibError::Io {
                 file: path.display().to_string().into(),
@@ -105,6 +103,47 @@ pub fn load_scene_file(path: &Path, options: &RiOptions) -> Result<Loaded, Input
             Ok(crate::load(source, options)?)
         }
     }
+}
+
+/// The frames of the RON scene `text`: one without a number, unless frames are chosen
+/// (`options.frames`), when each chosen number is a frame, with the scene's `${...}`
+/// expressions evaluated for it ([`reyes_scene::animate`]). An animated scene needs frames.
+fn ron_frames(
+    text: &str,
+    file: &Path,
+    options: &RiOptions,
+) -> Result<Loaded, reyes_scene::SceneError> {
+    let numbers: Vec<i32> = match &options.frames {
+        Some(ranges) => {
+            let mut v: Vec<i32> = ranges.iter().flat_map(|&(a, b)| a..=b).collect();
+            v.sort_unstable();
+            v.dedup();
+            v
+        }
+        None if reyes_scene::animate::is_animated(text) => {
+            return Err(reyes_scene::SceneError {
+                file: file.to_path_buf(),
+                line: None,
+                col: None,
+                field: "${...}".into(),
+                message:
+                    "the scene is animated: choose its frames with --frames (e.g. --frames 1-24)"
+                        .into(),
+            });
+        }
+        None => {
+            let scene = reyes_scene::parse(text, file)?;
+            let frames = vec![Frame { number: None, scene, displays: Vec::new() }];
+            return Ok(Loaded { frames, warnings: Vec::new() });
+        }
+    };
+    let mut frames = Vec::with_capacity(numbers.len());
+    for n in numbers {
+        let text = reyes_scene::animate::substitute(text, n, file)?;
+        let scene = reyes_scene::parse(&text, file)?;
+        frames.push(Frame { number: Some(n), scene, displays: Vec::new() });
+    }
+    Ok(Loaded { frames, warnings: Vec::new() })
 }
 
 #[cfg(test)]

@@ -5,6 +5,7 @@
 //! displays as one line naming the file, the position and the field path when known.
 #![deny(missing_docs)]
 
+pub mod animate;
 pub mod closure;
 mod error;
 pub mod filter;
@@ -72,6 +73,17 @@ fn expand_rolls(mut scene: Scene) -> Scene {
         }
     }
     scene
+}
+
+/// Reads the scene file at `path` as text (errors as [`load`]'s).
+pub fn read_text(path: &Path) -> Result<String, LoadError> {
+    let bytes =
+        std::fs::read(path).map_err(|source| LoadError::Io { path: path.to_path_buf(), source })?;
+    String::from_utf8(bytes).map_err(|e| {
+        let bytes = e.as_bytes();
+        let valid = std::str::from_utf8(&bytes[..e.utf8_error().valid_up_to()]).unwrap_or("");
+        syntax::invalid_utf8(path, valid).into()
+    })
 }
 
 /// Reads, parses and validates the scene file at `path`.
