@@ -13,7 +13,12 @@ use reyes_measure::DEFAULT_SAMPLES;
     version,
     after_help = "Mass properties (patent FIG. 23): reyes-render measure SCENE --object NAME \
                   [--samples N] [--seed N]\n  prints the volume and centre of mass of a closed \
-                  object or CSG solid; see reyes-render measure --help"
+                  object or CSG solid; see reyes-render measure --help\n\
+                  Tiles: reyes-render merge TILE... -o OUT\n  reassembles the tiles of a frame \
+                  (--tile) into the whole render's file; see docs/farm.md\n\
+                  Slurm: reyes-render farm slurm SCENE --tiles N --frames A-B -o OUT, \
+                  reyes-render farm status\n  submits a frame range as a tiled array job and \
+                  a merge job; see reyes-render farm --help"
 )]
 pub(crate) struct Args {
     /// Scene file: RON (docs/scene-format.md) or RIB, plain or gzipped (docs/rib.md), by its
@@ -37,7 +42,7 @@ pub(crate) struct Args {
     /// Print statistics (hits, misses, lerps, visible points, micropolygons, time per stage).
     #[arg(long)]
     pub stats: bool,
-    /// No progress bar.
+    /// No progress bar (on a terminal) or progress lines (elsewhere).
     #[arg(short, long)]
     pub quiet: bool,
     /// Frames to render, e.g. 1-100 or 1,3,5-9: RIB FrameBegin blocks (default: every

@@ -30,7 +30,7 @@ struct FarmArgs {
 enum Engine {
     /// Write and submit a Slurm array job (one task per tile and frame) and a merge job
     /// that runs after it (--dependency=afterok); prints the job ids.
-    Slurm(SlurmArgs),
+    Slurm(Box<SlurmArgs>),
     /// The state of the jobs `farm slurm` submitted (from sacct, else scontrol).
     Status(StatusArgs),
 }
@@ -65,7 +65,7 @@ struct SlurmArgs {
     /// Time limit per task (sbatch --time), e.g. 2:00:00.
     #[arg(long, value_name = "TIME")]
     time: Option<String>,
-    /// Memory per task (sbatch --mem), e.g. 4G; also the render's --memory-limit.
+    /// Memory per task (sbatch --mem), e.g. 4G.
     #[arg(long, value_name = "SIZE")]
     mem: Option<String>,
     /// Another sbatch option for both jobs, e.g. --sbatch=--qos=low (repeatable).
@@ -130,8 +130,34 @@ fn tile_path(dir: &Path, f: i32, i: u32) -> PathBuf {
     dir.join("tiles").join(format!("frame.{f:04}.tile.{i}.exr"))
 }
 
+/// Refuse, before anything is submitted, what every task would fail on: an output that is
+/// not .exr or .png, a scene that does not load, a frame it does not have, more tiles than
+/// buckets.
+fn check(a: &SlurmArgs, frames: &[i32]) -> Result<(), Exit> {
+    crate::check_output(&a.output)?;
+    let options = reyes_rib::RiOptions { strict: false, frames: Some(a.frames.0.clone()) };
+    let loaded = reyes_rib::load_scene_file(&a.scene, &options)
+        .map_err(|e| Exit::error(e.exit_code(), &e))?;
+    for &f in frames {
+        let Some(frame) = loaded.frames.iter().find(|fr| fr.number.unwrap_or(f) == f) else {
+            return Err(Exit::error(
+                2,
+                format_args!("{}: --frames: no frame {f}", a.scene.display()),
+            ));
+        };
+        crate::pieces::buckets_of(&frame.scene, Some((1, a.tiles as usize))).map_err(|e| {
+            Exit::error(
+                2,
+                format_args!("{}: {}", a.scene.display(), e.replace("--tile 1/", "--tiles ")),
+            )
+        })?;
+    }
+    Ok(())
+}
+
 fn slurm(a: &SlurmArgs) -> Result<(), Exit> {
     let frames = frame_numbers(&a.frames);
+    check(a, &frames)?;
     let cwd = std::env::current_dir()
         .map_err(|e| Exit::error(1, format_args!("current directory: {e}")))?;
     let binary = match &a.binary {
@@ -156,10 +182,7 @@ fn slurm(a: &SlurmArgs) -> Result<(), Exit> {
         common.push_str(&format!("#SBATCH {o}\n"));
     }
     let frame_words: Vec<String> = frames.iter().map(i32::to_string).collect();
-    let mut extra: Vec<String> = a.render.iter().map(|s| quote(s)).collect();
-    if let Some(m) = &a.mem {
-        extra.push(format!("--memory-limit {}", quote(m)));
-    }
+    let extra: Vec<String> = a.render.iter().map(|s| quote(s)).collect();
     let render = format!(
         "#!/bin/sh\n\
          # reyes-render farm slurm: task k renders tile k % N + 1 of frame k / N.\n\
@@ -176,7 +199,7 @@ fn slurm(a: &SlurmArgs) -> Result<(), Exit> {
          shift $((k / n))\n\
          frame=$1\n\
          tile=$((k % n + 1))\n\
-         out={dir}/tiles/frame.$(printf %04d \"$frame\").tile.$tile.exr\n\
+         out={dir}/tiles/frame.####.tile.$tile.exr\n\
          exec {bin} {scene} --frames \"$frame\" --tile \"$tile/$n\" -o \"$out\" \\\n  \
          --threads \"${{SLURM_CPUS_PER_TASK:-1}}\" --checkpoint {dir}/checkpoint/tile.$tile {extra}\n",
         last = tasks - 1,

@@ -372,7 +372,7 @@ fn render_frame(
         memory_limit,
         buckets: Some(&buckets),
         done: checkpoint.as_ref().map(|_| &done),
-        on_result: checkpoint.as_ref().map(|_| &save as &(dyn Fn(usize, &BucketResult) + Sync)),
+        on_result: checkpoint.as_ref().map(|_| &save as &reyes_render::OnResult),
         keep_buckets: args.tile.is_some(),
     };
     let started = Instant::now();

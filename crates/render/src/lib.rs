@@ -37,6 +37,9 @@ pub use stochastic::render_diced;
 
 use reyes_scene::{HiderMethod, Scene};
 
+/// What [`RenderOptions::on_result`] calls: with a bucket's index and its result.
+pub type OnResult<'a> = dyn Fn(usize, &BucketResult) + Sync + 'a;
+
 /// Options that are not part of the scene.
 #[derive(Default)]
 pub struct RenderOptions<'a> {
@@ -56,7 +59,7 @@ pub struct RenderOptions<'a> {
     pub done: Option<&'a std::collections::BTreeMap<usize, BucketResult>>,
     /// Called with every bucket rendered (not those of `done`) as it finishes, from worker
     /// threads, e.g. to write it to a checkpoint.
-    pub on_result: Option<&'a (dyn Fn(usize, &BucketResult) + Sync)>,
+    pub on_result: Option<&'a OnResult<'a>>,
     /// Keep every bucket's result in [`Rendered::buckets`] (for a tile file).
     pub keep_buckets: bool,
 }

@@ -52,7 +52,7 @@ pub fn substitute(text: &str, frame: i32, file: &Path) -> Result<String, SceneEr
             .find(['}', '\n'])
             .filter(|&e| body.as_bytes()[e] == b'}')
             .ok_or_else(|| fail("no closing } on this line".into()))?;
-        let value = Parser { s: body[..end].as_bytes(), at: 0, frame: f64::from(frame) }
+        let value = Parser { s: &body.as_bytes()[..end], at: 0, frame: f64::from(frame) }
             .whole()
             .map_err(|m| fail(format!("{m} in '{}'", &body[..end])))?;
         if !value.is_finite() {
@@ -207,7 +207,7 @@ fn call(name: &str, a: &[f64], frame: f64) -> Result<f64, String> {
 
 /// `key(f0, v0, f1, v1, ...)` at `frame`.
 fn key(a: &[f64], frame: f64) -> Result<f64, String> {
-    if a.is_empty() || a.len() % 2 != 0 {
+    if a.is_empty() || !a.len().is_multiple_of(2) {
         return Err("key takes pairs of frame and value: key(f0, v0, f1, v1, ...)".into());
     }
     let keys: Vec<(f64, f64)> = a.chunks(2).map(|p| (p[0], p[1])).collect();
