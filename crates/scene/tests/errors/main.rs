@@ -281,7 +281,7 @@ fn exact_messages() {
     );
     assert_eq!(
         shown("unknown field"),
-        "scenes/bad.ron:2:36: image.depth: unknown field `depth`, expected `width` or `height`"
+        "scenes/bad.ron:2:36: image.depth: unknown field `depth`, expected `width`, `height` or `crop`"
     );
     assert_eq!(
         shown("missing required field"),

@@ -58,6 +58,10 @@ pub(crate) const CASES: &[Case] = &[
     Case { name: "unknown projection", from: "fov: 35.0", to: "projection: Fisheye, fov: 35.0", field: "camera.projection", at: Some((3, 74)) },
     // Added with the hardening of #20.
     Case { name: "height too large", from: "height: 480", to: "height: 65537", field: "image.height", at: Some((2, 31)) },
+    Case { name: "crop reversed", from: "height: 480)", to: "height: 480, crop: Some((0.5, 0.2, 0.0, 1.0)))", field: "image.crop", at: Some((2, 42)) },
+    Case { name: "crop outside the screen", from: "height: 480)", to: "height: 480, crop: Some((0.0, 1.5, 0.0, 1.0)))", field: "image.crop", at: Some((2, 42)) },
+    Case { name: "crop thinner than a pixel", from: "height: 480)", to: "height: 480, crop: Some((0.5001, 0.5002, 0.0, 1.0)))", field: "image.crop", at: Some((2, 42)) },
+    Case { name: "crop not finite", from: "height: 480)", to: "height: 480, crop: Some((0.0, inf, 0.0, 1.0)))", field: "image.crop[1]", at: Some((2, 53)) },
     Case { name: "missing eye", from: "eye: (0.0, 1.0, -10.0), ", to: "", field: "camera.eye", at: Some((3, 72)) },
     Case { name: "unknown field in the camera", from: "fov: 35.0", to: "fov: 35.0, zoom: 2.0", field: "camera.zoom", at: Some((3, 73)) },
     Case { name: "look_at a denormal from eye", from: "eye: (0.0, 1.0, -10.0), look_at: (0.0, 0.0, 0.0)", to: "eye: (0.0, 0.0, 0.0), look_at: (0.0, 0.0, 1e-40)", field: "camera.look_at", at: Some((3, 43)) },
