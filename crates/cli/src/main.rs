@@ -321,13 +321,15 @@ fn render_frame(
     let scene_path = args.scene.display().to_string();
     let buckets = pieces::buckets_of(scene, args.tile)
         .map_err(|e| Exit::error(2, format_args!("{}: {e}", args.scene.display())))?;
-    let header = Header::new(scene, &scene_path, number, args.tile.unwrap_or((0, 0)));
-    let (checkpoint, done) = match &args.checkpoint {
-        Some(root) => {
-            let (c, done) = Checkpoint::open(root, Header { tile: (0, 0), ..header.clone() })?;
+    // The fingerprint serialises the whole scene: only pieces need it.
+    let header = (args.tile.is_some() || args.checkpoint.is_some())
+        .then(|| Header::new(scene, &scene_path, number, args.tile.unwrap_or((0, 0))));
+    let (checkpoint, done) = match (&args.checkpoint, &header) {
+        (Some(root), Some(h)) => {
+            let (c, done) = Checkpoint::open(root, Header { tile: (0, 0), ..h.clone() })?;
             (Some(c), done)
         }
-        None => (None, BTreeMap::new()),
+        _ => (None, BTreeMap::new()),
     };
     let resumed = buckets.iter().filter(|b| done.contains_key(b)).count() as u64;
     let mut label = String::new();
@@ -403,7 +405,7 @@ fn render_frame(
             after_first_chunk: Some(&pause),
             named_temporary: hooks.named_temporary,
         };
-        let written = if args.tile.is_some() {
+        let written = if let (Some(_), Some(header)) = (args.tile, &header) {
             let header = Header { render_time, ..header.clone() };
             pieces::write_piece(path, &header, &rendered.buckets, &opts)
         } else {

@@ -63,8 +63,10 @@ impl Header {
         ron::to_string(self).unwrap_or_default()
     }
 
+    /// The header `text` of the file `path`; its scene settings must validate (the merge
+    /// lays out buckets and writes a file from them).
     pub(crate) fn parse(path: &Path, text: &str) -> Result<Header, Exit> {
-        ron::from_str(text).map_err(|e| {
+        let header: Header = ron::from_str(text).map_err(|e| {
             Exit::error(
                 2,
                 format_args!(
@@ -72,7 +74,19 @@ impl Header {
                     path.display()
                 ),
             )
-        })
+        })?;
+        if let Err(issue) = reyes_scene::validate(header.scene.clone()) {
+            return Err(Exit::error(
+                2,
+                format_args!(
+                    "{}: reyesTile: scene.{}: {}",
+                    path.display(),
+                    issue.path,
+                    issue.message
+                ),
+            ));
+        }
+        Ok(header)
     }
 }
 

@@ -3,7 +3,7 @@
 //!
 //! - [`settings`]: the one place where scene settings become stage settings (the hider's
 //!   configuration, the bucket frame, the filter table, the shutter's shape);
-//! - [`pool`]: the one thread pool and the fixed-order merge of bucket windows into the film;
+//! - [`pool`]: the one thread pool and the splat of a bucket's samples into its window;
 //! - [`stochastic`]: Appendix A's bucket loop, with lazy dicing row by row of buckets and,
 //!   where the scene needs it, ray-traced vertex shading;
 //! - [`rayhide`]: Appendix B's ray-tracing hider over the same samples and filter;

@@ -156,3 +156,24 @@ fn the_outputs_example_parses_and_its_error_is_shown() {
     let err = parse(&bad, Path::new("aovs.ron")).err().map(|e| e.to_string()).unwrap_or_default();
     assert!(OUTPUTS.contains(&format!("`{err}`")), "docs/outputs.md should show {err}");
 }
+
+/// The animated examples (```text blocks starting with `Scene(` that hold a `${`): every
+/// frame of them substitutes, parses and validates, and the frames differ.
+#[test]
+fn every_animated_example_renders_its_frames() {
+    let animated: Vec<String> = reyes_testkit::docs::fenced_blocks(DOC, "text")
+        .into_iter()
+        .filter(|b| is_complete(b) && reyes_scene::animate::is_animated(b))
+        .collect();
+    assert!(!animated.is_empty(), "no animated example");
+    for block in &animated {
+        let frame = |f| {
+            let text = reyes_scene::animate::substitute(block, f, Path::new("doc"))
+                .unwrap_or_else(|e| panic!("frame {f}: {e}\n{block}"));
+            parse(&text, Path::new("doc")).unwrap_or_else(|e| panic!("frame {f}: {e}\n{text}"))
+        };
+        let scenes: Vec<_> = [1, 12, 24, 30].into_iter().map(frame).collect();
+        assert_ne!(scenes[0], scenes[1]);
+        assert_eq!(scenes[2].objects, scenes[3].objects, "held after the last key");
+    }
+}
