@@ -260,8 +260,9 @@ pub(crate) fn merge(tiles: &[PathBuf], output: &Path) -> Result<(), Exit> {
     let missing: Vec<String> =
         (1..=n).filter(|i| !by_tile.contains_key(i)).map(|i| format!("{i}/{n}")).collect();
     if !missing.is_empty() {
+        let tiles = if missing.len() == 1 { "tile" } else { "tiles" };
         return Err(bad(format_args!(
-            "merge: tile {} missing (the frame has {n} tiles)",
+            "merge: {tiles} {} missing (the frame has {n} tiles)",
             missing.join(", ")
         )));
     }
