@@ -17,7 +17,7 @@ use exr::prelude::*;
 use reyes_scene::{Compression as Comp, Outputs, PixelType, PngView, Scene};
 
 use crate::atomic::{WriteOptions, write_atomic};
-use crate::output::{exr_error, format_of, io_error, png_bytes};
+use crate::output::{exr_error, format_of, io_error, png_bytes, read_all_parts};
 use crate::{AovFilm, Film, FilmError};
 
 /// One AOV layer of the picture: where its channels are in the [`AovFilm`].
@@ -411,14 +411,7 @@ pub struct ReadChannel {
 ///
 /// [`FilmError::Io`] or [`FilmError::Exr`] if the file cannot be read.
 pub fn read_layers(path: &Path) -> std::result::Result<Vec<ReadChannel>, FilmError> {
-    let image = read()
-        .no_deep_data()
-        .largest_resolution_level()
-        .all_channels()
-        .all_layers()
-        .all_attributes()
-        .from_file(path)
-        .map_err(|e| exr_error(path, e))?;
+    let image = read_all_parts(path)?;
     let mut out = Vec::new();
     for layer in &image.layer_data {
         let name = layer.attributes.layer_name.as_ref().map(|n| n.to_string());

@@ -62,6 +62,19 @@ pub fn write_with(path: &Path, film: &Film, opts: &WriteOptions) -> Result<(), F
     }
 }
 
+/// Every channel of every part of the OpenEXR file `path`, at full resolution.
+pub(crate) fn read_all_parts(path: &Path) -> Result<exr::image::FlatImage, FilmError> {
+    use exr::prelude::*;
+    read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .all_channels()
+        .all_layers()
+        .all_attributes()
+        .from_file(path)
+        .map_err(|e| exr_error(path, e))
+}
+
 pub(crate) fn io_error(path: &Path, source: std::io::Error) -> FilmError {
     FilmError::Io { path: path.to_path_buf(), source }
 }

@@ -20,7 +20,7 @@ use std::path::Path;
 use exr::prelude::*;
 
 use crate::atomic::{WriteOptions, write_atomic};
-use crate::output::{exr_error, io_error};
+use crate::output::{exr_error, io_error, read_all_parts};
 use crate::{AovWindow, Film, FilmError, Window};
 
 /// The attribute of part 0 that holds the header text.
@@ -151,14 +151,7 @@ fn encode(
 /// [`FilmError::BadExr`] if it is OpenEXR but not a bucket file (no `reyesTile` header, a
 /// part that is not a bucket, channels missing).
 pub fn read_buckets(path: &Path) -> std::result::Result<BucketFile, FilmError> {
-    let image = read()
-        .no_deep_data()
-        .largest_resolution_level()
-        .all_channels()
-        .all_layers()
-        .all_attributes()
-        .from_file(path)
-        .map_err(|e| exr_error(path, e))?;
+    let image = read_all_parts(path)?;
     let bad = |reason: String| FilmError::BadExr { path: path.to_path_buf(), reason };
     let mut layers = image.layer_data.iter();
     let first = layers.next().ok_or_else(|| bad("no parts".into()))?;
