@@ -480,3 +480,30 @@ fn a_ron_animation_renders_frame_by_frame_and_through_tiles() {
         "anim.ron: ${...}: the scene is animated: choose its frames with --frames",
     );
 }
+
+#[test]
+fn farm_slurm_writes_its_jobs_and_names_the_set_up_without_slurm() {
+    let tmp = tempfile::tempdir().expect("tempdir");
+    let dir = tmp.path();
+    let s = scene(dir, "motion-blur", (64, 48), "m.ron", |t| t);
+    let args = ["farm", "slurm", &s, "--tiles", "3", "--frames", "4-5", "-o", "f.####.exr", "--partition", "render", "--account", "vfx"];
+    let mut no_submit = args.to_vec();
+    no_submit.extend(["--no-submit", "--", "--seed", "7"]);
+    ok(dir, &no_submit);
+    let render = std::fs::read_to_string(dir.join("reyes-farm/render.sbatch")).expect("render.sbatch");
+    for line in ["#SBATCH --array=0-5", "#SBATCH --partition=render", "#SBATCH --account=vfx", "frames=\"4 5\"", "'--seed' '7'"] {
+        assert!(render.contains(line), "{line} not in\n{render}");
+    }
+    let merge = std::fs::read_to_string(dir.join("reyes-farm/merge.sbatch")).expect("merge.sbatch");
+    assert!(merge.contains("frame.0005.tile.3.exr' -o 'f.0005.exr'"), "{merge}");
+    // Without Slurm on PATH: exit 1, one line naming the set-up script.
+    let o = bin().current_dir(dir).args(args).env("PATH", "").output().expect("run");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("sbatch: cannot run") && err.contains("tools/slurm/up.sh"), "{err}");
+    // Bad requests are refused before anything is written or submitted.
+    refused(&run(dir, &["farm", "slurm", &s, "--tiles", "21", "--frames", "1", "-o", "f.exr"]), "--tiles 21: the frame has 20 buckets");
+    refused(&run(dir, &["farm", "slurm", &s, "--tiles", "2", "--frames", "3-1", "-o", "f.exr"]), "--frames");
+    let o = run(dir, &["farm", "status", "--dir", "nowhere"]);
+    assert_eq!(o.status.code(), Some(1));
+}
