@@ -486,12 +486,33 @@ fn farm_slurm_writes_its_jobs_and_names_the_set_up_without_slurm() {
     let tmp = tempfile::tempdir().expect("tempdir");
     let dir = tmp.path();
     let s = scene(dir, "motion-blur", (64, 48), "m.ron", |t| t);
-    let args = ["farm", "slurm", &s, "--tiles", "3", "--frames", "4-5", "-o", "f.####.exr", "--partition", "render", "--account", "vfx"];
+    let args = [
+        "farm",
+        "slurm",
+        &s,
+        "--tiles",
+        "3",
+        "--frames",
+        "4-5",
+        "-o",
+        "f.####.exr",
+        "--partition",
+        "render",
+        "--account",
+        "vfx",
+    ];
     let mut no_submit = args.to_vec();
     no_submit.extend(["--no-submit", "--", "--seed", "7"]);
     ok(dir, &no_submit);
-    let render = std::fs::read_to_string(dir.join("reyes-farm/render.sbatch")).expect("render.sbatch");
-    for line in ["#SBATCH --array=0-5", "#SBATCH --partition=render", "#SBATCH --account=vfx", "frames=\"4 5\"", "'--seed' '7'"] {
+    let render =
+        std::fs::read_to_string(dir.join("reyes-farm/render.sbatch")).expect("render.sbatch");
+    for line in [
+        "#SBATCH --array=0-5",
+        "#SBATCH --partition=render",
+        "#SBATCH --account=vfx",
+        "frames=\"4 5\"",
+        "'--seed' '7'",
+    ] {
         assert!(render.contains(line), "{line} not in\n{render}");
     }
     let merge = std::fs::read_to_string(dir.join("reyes-farm/merge.sbatch")).expect("merge.sbatch");
@@ -502,8 +523,14 @@ fn farm_slurm_writes_its_jobs_and_names_the_set_up_without_slurm() {
     assert_eq!(o.status.code(), Some(1), "{err}");
     assert!(err.contains("sbatch: cannot run") && err.contains("tools/slurm/up.sh"), "{err}");
     // Bad requests are refused before anything is written or submitted.
-    refused(&run(dir, &["farm", "slurm", &s, "--tiles", "21", "--frames", "1", "-o", "f.exr"]), "--tiles 21: the frame has 20 buckets");
-    refused(&run(dir, &["farm", "slurm", &s, "--tiles", "2", "--frames", "3-1", "-o", "f.exr"]), "--frames");
+    refused(
+        &run(dir, &["farm", "slurm", &s, "--tiles", "21", "--frames", "1", "-o", "f.exr"]),
+        "--tiles 21: the frame has 20 buckets",
+    );
+    refused(
+        &run(dir, &["farm", "slurm", &s, "--tiles", "2", "--frames", "3-1", "-o", "f.exr"]),
+        "--frames",
+    );
     let o = run(dir, &["farm", "status", "--dir", "nowhere"]);
     assert_eq!(o.status.code(), Some(1));
 }
