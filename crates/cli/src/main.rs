@@ -12,7 +12,10 @@
 //! `reyes-render measure SCENE --object NAME [--samples N] [--seed N]` (the first argument
 //! `measure`; a scene file of that name is `./measure`) measures the volume and centre of mass
 //! of a closed object or CSG solid instead of rendering (patent FIG. 23; see
-//! `reyes_measure`), with the same exit codes.
+//! `reyes_measure`), with the same exit codes. Likewise `reyes-render merge TILE... -o OUT`
+//! reassembles the tiles of `--tile` renders ([`pieces`]), and `reyes-render farm slurm|status`
+//! submits and follows a Slurm job ([`farm`]); a scene file named `merge` or `farm` is
+//! `./merge` or `./farm` (docs/farm.md).
 #![deny(clippy::print_stdout, clippy::print_stderr)]
 
 mod args;
