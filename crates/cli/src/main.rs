@@ -335,6 +335,9 @@ fn render_frame(
         (RenderError::Cancelled, Some(stop)) => Exit::stopped(stop, main),
         (e, _) => Exit::error(e.exit_code(), format_args!("{}: {e}", args.scene.display())),
     })?;
+    for w in &rendered.warnings {
+        say(format_args!("{}: warning: {w}", args.scene.display()));
+    }
 
     let mut metadata = reyes_film::Metadata::for_scene(scene, &args.scene.display().to_string());
     if scene.outputs.render_time {

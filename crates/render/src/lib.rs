@@ -28,7 +28,7 @@ pub mod stochastic;
 pub use error::RenderError;
 pub use reyes_film::Film;
 pub use settings::{filter_table, frame_for, hider_config, shutter_shape};
-pub use stats::{DiceSummary, RaySummary, RenderStats, peak_memory};
+pub use stats::{DiceSummary, LookdevSummary, RaySummary, RenderStats, peak_memory};
 pub use stochastic::render_diced;
 
 use reyes_scene::{HiderMethod, Scene};
@@ -54,6 +54,9 @@ pub struct Rendered {
     pub stats: RenderStats,
     /// The AOVs, when the scene writes any.
     pub aovs: Option<aovs::RenderedAovs>,
+    /// What the user should hear about (a displacement without or beyond its declared
+    /// bound), one line each.
+    pub warnings: Vec<String>,
 }
 
 /// Render a validated scene: with the ray-tracing hider when the scene asks for it, else

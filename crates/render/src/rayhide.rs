@@ -178,5 +178,5 @@ where
         rays: Some(rays),
         ..RenderStats::new(scene, hider.config(), frame)
     };
-    Ok(Rendered { film, stats, aovs: None })
+    Ok(Rendered { film, stats, aovs: None, warnings: Vec::new() })
 }
