@@ -425,9 +425,9 @@ fn a_missing_or_short_displacement_bound_warns_and_leaves_no_holes() {
     }
     let short = rendered(&bumpy(", bound: Some(0.01)"), 2);
     assert!(lookdev(&short).escapes > 0);
+    // Noise's own bound is loose, so the escapes, counted as diced, are what is reported.
     assert!(
-        short.warnings.iter().any(|w| w.contains("beyond its declared bound"))
-            && short.warnings.iter().any(|w| w.contains("micropolygons were displaced beyond")),
+        short.warnings.iter().any(|w| w.contains("micropolygons were displaced beyond")),
         "{:?}",
         short.warnings
     );
@@ -506,4 +506,16 @@ fn emission_above_one_passes_unclamped() {
     reyes_film::write(&out, &r.film).unwrap_or_else(|e| panic!("{e}"));
     let read = reyes_film::read_exr(&out).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(read.pixel(3, 3).map(|p| p[0]), Some(4.0));
+}
+
+/// The committed maps of scenes/textures/ are what `cargo xtask textures` makes, texel for
+/// texel (reyes_testkit::textures), so the look-development scenes can be remade.
+#[test]
+fn the_scene_textures_are_the_generated_ones() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/textures");
+    for (name, made) in reyes_testkit::textures::scene_maps() {
+        let file = dir.join(name);
+        let read = image::open(&file).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+        assert!(read.as_bytes() == made.as_bytes(), "{name} differs: run cargo xtask textures");
+    }
 }

@@ -137,6 +137,12 @@ pub(crate) struct Attributes {
     pub lights_on: Vec<usize>,
     /// `Basis` for bicubic patches: `(u basis, u step, v basis, v step)`.
     pub basis: (Basis, u32, Basis, u32),
+    /// The `Displacement` shader (its name None: none).
+    pub displacement: SurfaceShader,
+    /// `Attribute "displacementbound" "sphere"`, when given.
+    pub displacement_bound: Option<f32>,
+    /// `TextureCoordinates` as a scale: `s = repeat.0 u`, `t = repeat.1 v`.
+    pub repeat: (f32, f32),
 }
 
 impl Default for Attributes {
@@ -153,6 +159,9 @@ impl Default for Attributes {
             name: None,
             lights_on: Vec::new(),
             basis: (Basis::Bezier, 3, Basis::Bezier, 3),
+            displacement: SurfaceShader { name: None, params: Vec::new(), at: None },
+            displacement_bound: None,
+            repeat: (1.0, 1.0),
         }
     }
 }

@@ -5,7 +5,9 @@
 //! file is only named here (whether it can be read is known when the render loads it, as an
 //! error naming the file).
 
-use super::primitives::{Check, fail, finite, finite_all, int_in, non_negative, positive};
+use super::primitives::{
+    Check, fail, finite, finite_all, int_in, light_rgb, non_negative, positive,
+};
 use crate::model::{Bump, Displacement, HiderMethod, Maps, Object, Scalar, Scene, TextureMap};
 use crate::model::MIN_TEXTURE_CACHE_BYTES;
 
@@ -28,13 +30,7 @@ pub(super) fn lookdev(at: &str, object: &Object) -> Check {
         finite(&format!("{at}.center"), *center)?;
     }
     if let Some(e) = &object.emission {
-        let path = format!("{at}.emission");
-        finite_all(&path, e)?;
-        for (c, v) in e.iter().enumerate() {
-            if *v < 0.0 {
-                return fail(&path, format!("channel {c} must be >= 0, got {v}"));
-            }
-        }
+        light_rgb(&format!("{at}.emission"), e)?;
     }
     Ok(())
 }
