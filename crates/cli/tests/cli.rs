@@ -485,11 +485,21 @@ fn the_lookdev_scenes_render() {
     for scene in ["lookdev.ron", "lookdev.rib"] {
         let out = dir.path().join("lookdev.exr");
         let path = root().join("scenes").join(scene);
-        let o = run(&[path.to_str().unwrap(), "-o", out.to_str().unwrap(), "--stats", "--samples", "1x1"]);
+        let o = run(&[
+            path.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--stats",
+            "--samples",
+            "1x1",
+        ]);
         let err = stderr(&o);
         assert_eq!(o.status.code(), Some(0), "{scene}: {err}");
         assert!(!err.contains("warning"), "{scene}: {err}");
         let stats = String::from_utf8_lossy(&o.stdout).into_owned() + &err;
-        assert!(stats.contains("Look development:") && stats.contains("texture lookups"), "{stats}");
+        assert!(
+            stats.contains("Look development:") && stats.contains("texture lookups"),
+            "{stats}"
+        );
     }
 }

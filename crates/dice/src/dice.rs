@@ -22,10 +22,10 @@ use reyes_hider::{Micropolygon, flags};
 
 use crate::aov::VertexAovs;
 use crate::bucket::{BucketRange, Bucketer};
-use crate::displace;
 use crate::camera::{CameraSetup, Viewer};
-use crate::lookdev::{At, Look, Looked};
+use crate::displace;
 use crate::hook::{VertexContext, VertexShader};
+use crate::lookdev::{At, Look, Looked};
 use crate::motion::{Placement, Pose};
 use crate::shade::Shader;
 use crate::split::Patch;
@@ -341,7 +341,8 @@ impl<'b> Emitter<'b> {
         // Look development hook (crate::displace): the grid displaced along its normals at
         // every breakpoint, and its shading normals recomputed, before anything is shaded
         // or projected; the lookups' footprint is the grid's parameter spacing.
-        let displaced = object.look.as_ref().and_then(|l| displace::grid(l, poses, patch, (nu, nv)));
+        let displaced =
+            object.look.as_ref().and_then(|l| displace::grid(l, poses, patch, (nu, nv)));
         self.escaped += displaced.as_ref().map_or(0, |d| d.escaped);
         let duv = [(patch.u[1] - patch.u[0]) / nu as f32, (patch.v[1] - patch.v[0]) / nv as f32];
         for (b, pose) in poses.iter().enumerate() {

@@ -110,7 +110,7 @@ pub(crate) fn grid(
             let g = du.cross(dv);
             // Degenerate where the grid collapses (a pole): keep the surface's normal.
             let scale = du.length() * dv.length();
-            if !(g.length() > 1e-6 * scale) || !g.is_finite() {
+            if !g.is_finite() || g.length() <= 1e-6 * scale {
                 return normal[c];
             }
             let g = g.normalize();
@@ -125,7 +125,8 @@ pub(crate) fn grid(
             let mut cells = 0;
             for j in 0..nv {
                 for i in 0..nu {
-                    cells += u64::from(far(i, j) || far(i + 1, j) || far(i, j + 1) || far(i + 1, j + 1));
+                    cells +=
+                        u64::from(far(i, j) || far(i + 1, j) || far(i, j + 1) || far(i + 1, j + 1));
                 }
             }
             cells

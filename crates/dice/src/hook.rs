@@ -8,7 +8,7 @@
 
 use glam::Vec3;
 
-use crate::lookdev::{Looked, Lookdev};
+use crate::lookdev::{Lookdev, Looked};
 
 /// One grid vertex to shade, at shutter open.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -118,7 +118,7 @@ pub use camera::{CameraSetup, Viewer};
 pub use csg::CsgSetup;
 pub use hook::{DiceOptions, VertexContext, VertexShader};
 pub use lazy::{Dicer, MICROPOLYGON_BYTES};
-pub use lookdev::{Looked, Lookdev};
+pub use lookdev::{Lookdev, Looked};
 
 impl From<TextureError> for DiceError {
     fn from(e: TextureError) -> DiceError {

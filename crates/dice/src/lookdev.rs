@@ -155,10 +155,11 @@ impl Lookdev {
                         )),
                         // Noise's own bound is a proven but loose one (reached nowhere
                         // near): a declared bound below it is judged by the escapes alone.
-                        Some(b) if b < own && !displace.is_some_and(|f| f.is_noise()) => warnings.push(format!(
-                            "objects[{i}] ({name}): the displacement can reach {own}, beyond \
+                        Some(b) if b < own && !displace.is_some_and(|f| f.is_noise()) => warnings
+                            .push(format!(
+                                "objects[{i}] ({name}): the displacement can reach {own}, beyond \
                              its declared bound {b}; bounds use {own}"
-                        )),
+                            )),
                         Some(_) => {}
                     }
                 }

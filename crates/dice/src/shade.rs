@@ -227,13 +227,9 @@ impl Shader {
     fn model_looked(&self, looked: &Looked) -> Model {
         let exponent = |e: f32| e / looked.roughness.max(MIN_ROUGHNESS);
         match self.model {
-            Model::Plastic { ka, kd, ks, exponent: e, specular } => Model::Plastic {
-                ka,
-                kd,
-                ks: ks * looked.specular,
-                exponent: exponent(e),
-                specular,
-            },
+            Model::Plastic { ka, kd, ks, exponent: e, specular } => {
+                Model::Plastic { ka, kd, ks: ks * looked.specular, exponent: exponent(e), specular }
+            }
             Model::Metal { ka, ks, exponent: e } => {
                 Model::Metal { ka, ks: ks * looked.specular, exponent: exponent(e) }
             }

@@ -170,6 +170,7 @@ mod tests {
             n_world: Vec3::Z,
             p_object: Vec3::ZERO,
             tint: Vec3::ONE,
+            looked: reyes_dice::Looked::NONE,
         }
     }
 

@@ -12,7 +12,7 @@ use reyes_texture::noise::fbm;
 /// square at the origin `hi`.
 pub fn checker(size: u32, check: u32, lo: u8, hi: u8) -> GrayImage {
     GrayImage::from_fn(size, size, |x, y| {
-        Luma([if (x / check + y / check) % 2 == 0 { hi } else { lo }])
+        Luma([if (x / check + y / check).is_multiple_of(2) { hi } else { lo }])
     })
 }
 

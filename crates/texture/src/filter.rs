@@ -141,7 +141,7 @@ pub fn lookup(
     let fx = (ds.abs() * base.width as f32).min(1e9);
     let fy = (dt.abs() * base.height as f32).min(1e9);
     let (major, minor) = if fx >= fy { (fx, fy) } else { (fy, fx) };
-    if !(major > 1.0) {
+    if major.is_nan() || major <= 1.0 {
         // Within one texel (or not a number): level 0 at the centre.
         return reader.bilinear(texture, 0, s, t, wrap);
     }

@@ -35,8 +35,9 @@ impl MipLevel {
             for x in 0..w {
                 let (x0, x1) = (2 * x, (2 * x + 1).min(self.width - 1));
                 let q = [self.at(x0, y0), self.at(x1, y0), self.at(x0, y1), self.at(x1, y1)];
-                for c in 0..4 {
-                    texels.push(0.25 * ((q[0][c] + q[1][c]) + (q[2][c] + q[3][c])));
+                let [a, b, c, d] = q;
+                for k in 0..4 {
+                    texels.push(0.25 * ((a[k] + b[k]) + (c[k] + d[k])));
                 }
             }
         }

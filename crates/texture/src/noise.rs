@@ -16,7 +16,7 @@
 use reyes_sampling::hash;
 
 /// Seed of the lattice hash (the noise is one fixed function).
-const NOISE_SEED: u64 = 0x6e6f_6973_65;
+const NOISE_SEED: u64 = 0x006e_6f69_7365;
 
 /// A bound on `|noise(p)|` for every `p` (see the module).
 pub const NOISE_BOUND: f32 = 2.0;

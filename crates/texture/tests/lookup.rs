@@ -8,7 +8,7 @@ use reyes_texture::{ColorSpace, TILE_BYTES, TextureSystem, Wrap, load::srgb_to_l
 /// A `size` x `size` greyscale checkerboard of `check`-texel squares, `lo` and `hi` bytes.
 fn checker_png(path: &Path, size: u32, check: u32, lo: u8, hi: u8) {
     let img = image::GrayImage::from_fn(size, size, |x, y| {
-        image::Luma([if (x / check + y / check) % 2 == 0 { hi } else { lo }])
+        image::Luma([if (x / check + y / check).is_multiple_of(2) { hi } else { lo }])
     });
     img.save(path).unwrap_or_else(|e| panic!("{e}"));
 }

@@ -134,14 +134,17 @@ fn reference(px: u32, py: u32) -> Option<f64> {
         }
         let z = -1.0 / dy;
         let x = z * (rx - 64.0) / k;
-        (z <= 101.0 && z >= 1.0 && x.abs() <= 50.0).then_some((x + 50.0, z - 1.0))
+        ((1.0..=101.0).contains(&z) && x.abs() <= 50.0).then_some((x + 50.0, z - 1.0))
     };
     const N: u32 = 8;
     let mut sum = 0.0;
     for j in 0..N {
         for i in 0..N {
             let corners = [(i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1)].map(|(ci, cj)| {
-                hit(f64::from(px) + f64::from(ci) / f64::from(N), f64::from(py) + f64::from(cj) / f64::from(N))
+                hit(
+                    f64::from(px) + f64::from(ci) / f64::from(N),
+                    f64::from(py) + f64::from(cj) / f64::from(N),
+                )
             });
             let mut s = (f64::INFINITY, f64::NEG_INFINITY);
             let mut t = (f64::INFINITY, f64::NEG_INFINITY);
@@ -334,7 +337,12 @@ fn displacement_works_in_csg() {
     // The red inside of the cut shows in both, as much.
     let red = |r: &Rendered| r.film.rgba().iter().map(|p| f64::from(p[0] - p[1])).sum::<f64>();
     assert!(red(&truth) > 200.0, "the cut shows the subtracted sphere's inside");
-    assert!((red(&shown) - red(&truth)).abs() < 0.03 * red(&truth), "{} vs {}", red(&shown), red(&truth));
+    assert!(
+        (red(&shown) - red(&truth)).abs() < 0.03 * red(&truth),
+        "{} vs {}",
+        red(&shown),
+        red(&truth)
+    );
 }
 
 /// A sinusoidal displacement of a plane matches the analytic height field in the depth: the

@@ -274,12 +274,18 @@ impl Machine {
                 // The corners' (s, t) at (u, v) = (0, 0), (1, 0), (0, 1), (1, 1). A scale
                 // of the parameters (s = a u, t = b v) is texture maps' `repeat`; other
                 // maps are not supported.
-                let st: Vec<f32> = r.floats(0).map(<[f32]>::to_vec).unwrap_or_else(|| {
-                    (0..8).map(|i| r.float(i).unwrap_or(f32::NAN)).collect()
-                });
+                let st: Vec<f32> = r
+                    .floats(0)
+                    .map(<[f32]>::to_vec)
+                    .unwrap_or_else(|| (0..8).map(|i| r.float(i).unwrap_or(f32::NAN)).collect());
                 match st.as_slice() {
                     [0.0, 0.0, a, 0.0, 0.0, b, a2, b2]
-                        if a == a2 && b == b2 && *a != 0.0 && *b != 0.0 && a.is_finite() && b.is_finite() =>
+                        if a == a2
+                            && b == b2
+                            && *a != 0.0
+                            && *b != 0.0
+                            && a.is_finite()
+                            && b.is_finite() =>
                     {
                         self.attributes.repeat = (*a, *b);
                     }

@@ -282,8 +282,12 @@ pub(crate) fn lookdev(
     let displace = match (displacement.name.as_deref(), &displacement.at) {
         (Some("bumpy"), Some(at)) => {
             if report {
-                let numbers: Vec<Param> =
-                    displacement.params.iter().filter(|q| q.name != "texturename").cloned().collect();
+                let numbers: Vec<Param> = displacement
+                    .params
+                    .iter()
+                    .filter(|q| q.name != "texturename")
+                    .cloned()
+                    .collect();
                 unused("bumpy", &numbers, &[("Km", 1)], at, warnings);
             }
             let km = float(&displacement.params, "Km").unwrap_or(1.0);
@@ -298,7 +302,9 @@ pub(crate) fn lookdev(
                     if report {
                         warnings.push(Warning {
                             at: at.clone(),
-                            message: "bumpy: no \"texturename\": displaces by 0 (texture(\"\") is 0)".into(),
+                            message:
+                                "bumpy: no \"texturename\": displaces by 0 (texture(\"\") is 0)"
+                                    .into(),
                         });
                     }
                     None

@@ -20,7 +20,10 @@ fn paintedplastic_bumpy_and_texture_coordinates_map_onto_the_model() {
     ));
     let o = &s.objects[0];
     let color = o.maps.color.as_ref().unwrap_or_else(|| panic!("a colour map"));
-    assert_eq!((color.file.as_str(), color.color_space, color.repeat), ("wood.png", ColorSpace::Srgb, (4.0, 2.0)));
+    assert_eq!(
+        (color.file.as_str(), color.color_space, color.repeat),
+        ("wood.png", ColorSpace::Srgb, (4.0, 2.0))
+    );
     let d = o.displacement.as_ref().unwrap_or_else(|| panic!("displaced"));
     assert_eq!((d.amount, d.bound, d.center), (0.25, Some(0.25), 0.0));
     match &d.source {
@@ -40,11 +43,17 @@ fn unknown_displacement_shaders_and_other_texture_coordinates_warn() {
     .unwrap_or_else(|e| panic!("{e}"));
     let messages: Vec<String> = l.warnings.iter().map(|w| w.to_string()).collect();
     assert!(messages.iter().any(|m| m.contains("unknown shader \"dented\"")), "{messages:?}");
-    assert!(messages.iter().any(|m| m.contains("only a scale of the surface parameters")), "{messages:?}");
+    assert!(
+        messages.iter().any(|m| m.contains("only a scale of the surface parameters")),
+        "{messages:?}"
+    );
     assert!(l.frames[0].scene.objects[0].displacement.is_none());
     let strict = RiOptions { strict: true, ..RiOptions::default() };
     let e = load(
-        Source::from_bytes("test.rib", world("Displacement \"dented\"\nSphere 1 -1 1 360").into_bytes()),
+        Source::from_bytes(
+            "test.rib",
+            world("Displacement \"dented\"\nSphere 1 -1 1 360").into_bytes(),
+        ),
         &strict,
     );
     assert!(e.is_err_and(|e| e.to_string().contains("unknown displacement shader \"dented\"")));

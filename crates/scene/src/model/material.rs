@@ -1,8 +1,7 @@
 //! Surface materials: [`Material`].
 //!
 //! Invariant: colours and opacities are per channel, in [0, 1] once validated (a Constant's
-//! colour >= 0 and unbounded); the
-//! coefficients default as in RenderMan's shaders.
+//! colour only non-negative, unbounded); the coefficients default as in RenderMan's shaders.
 
 use serde::{Deserialize, Serialize};
 

@@ -109,9 +109,16 @@ impl Scene {
                 Scalar::Texture(m) => Some(m),
                 _ => None,
             });
-            [color.as_mut(), opacity.as_mut(), roughness.as_mut(), specular.as_mut(), displace, bump]
-                .into_iter()
-                .flatten()
+            [
+                color.as_mut(),
+                opacity.as_mut(),
+                roughness.as_mut(),
+                specular.as_mut(),
+                displace,
+                bump,
+            ]
+            .into_iter()
+            .flatten()
         })
     }
 
@@ -119,7 +126,10 @@ impl Scene {
     /// development of docs/lookdev.md).
     pub fn has_lookdev(&self) -> bool {
         self.objects.iter().any(|o| {
-            !o.maps.is_empty() || o.displacement.is_some() || o.bump.is_some() || o.emission.is_some()
+            !o.maps.is_empty()
+                || o.displacement.is_some()
+                || o.bump.is_some()
+                || o.emission.is_some()
         })
     }
 }

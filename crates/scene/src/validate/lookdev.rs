@@ -8,8 +8,8 @@
 use super::primitives::{
     Check, fail, finite, finite_all, int_in, light_rgb, non_negative, positive,
 };
-use crate::model::{Bump, Displacement, HiderMethod, Maps, Object, Scalar, Scene, TextureMap};
 use crate::model::MIN_TEXTURE_CACHE_BYTES;
+use crate::model::{Bump, Displacement, HiderMethod, Maps, Object, Scalar, Scene, TextureMap};
 
 /// An object's maps, displacement, bump and emission.
 pub(super) fn lookdev(at: &str, object: &Object) -> Check {
@@ -80,9 +80,10 @@ pub(super) fn scene(scene: &Scene) -> Check {
         );
     }
     if scene.hider.method == HiderMethod::RayTrace
-        && let Some(i) = scene.objects.iter().position(|o| {
-            !o.maps.is_empty() || o.displacement.is_some() || o.bump.is_some()
-        })
+        && let Some(i) = scene
+            .objects
+            .iter()
+            .position(|o| !o.maps.is_empty() || o.displacement.is_some() || o.bump.is_some())
     {
         return fail(
             "hider.method",

@@ -1,6 +1,6 @@
 //! The rules of a surface [`Material`]: colours and opacities in [0, 1] (a Constant's colour
-//! >= 0 and unbounded: it is emitted light), coefficients
-//! non-negative, roughness positive, in field order.
+//! only non-negative, unbounded: it is emitted light), coefficients non-negative, roughness
+//! positive, in field order.
 //!
 //! Invariant: reports under the material's path (`objects[i].material`).
 
