@@ -262,12 +262,7 @@ impl Machine {
                 Ok(())
             }
             K::Surface => {
-                let name = r.string(0).unwrap_or_default().to_string();
-                self.attributes.surface = SurfaceShader {
-                    name: Some(name),
-                    params: r.params.clone(),
-                    at: Some(r.at.clone()),
-                };
+                self.attributes.surface = SurfaceShader::of(&r);
                 Ok(())
             }
             K::TextureCoordinates => {
@@ -299,12 +294,7 @@ impl Machine {
                 Ok(())
             }
             K::Displacement => {
-                let name = r.string(0).unwrap_or_default().to_string();
-                self.attributes.displacement = SurfaceShader {
-                    name: Some(name),
-                    params: r.params.clone(),
-                    at: Some(r.at.clone()),
-                };
+                self.attributes.displacement = SurfaceShader::of(&r);
                 Ok(())
             }
             K::ShadingRate => {

@@ -120,6 +120,17 @@ pub(crate) struct SurfaceShader {
     pub at: Option<Location>,
 }
 
+impl SurfaceShader {
+    /// The shader a `Surface` or `Displacement` request names, with its parameters.
+    pub(crate) fn of(r: &crate::Request) -> SurfaceShader {
+        SurfaceShader {
+            name: Some(r.string(0).unwrap_or_default().to_string()),
+            params: r.params.clone(),
+            at: Some(r.at.clone()),
+        }
+    }
+}
+
 /// The attributes of the current block (Spec 3.2, 4.2).
 #[derive(Debug, Clone)]
 pub(crate) struct Attributes {
