@@ -35,6 +35,12 @@ fn main() {
             );
         }
         let c = sys.stats().cache;
-        println!("{name}: cache peak {} kB of {} kB, {} misses of {} requests", c.peak / 1024, c.bound.min(1 << 30) / 1024, c.misses, c.requests);
+        println!(
+            "{name}: cache peak {} kB of {} kB, {} misses of {} requests",
+            c.peak / 1024,
+            c.bound.min(1 << 30) / 1024,
+            c.misses,
+            c.requests
+        );
     }
 }

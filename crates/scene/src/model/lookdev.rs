@@ -63,7 +63,7 @@ pub struct Maps {
     /// Multiplies the opacity `Os` (RGB; a grey map is the same in each channel).
     #[serde(default)]
     pub opacity: Option<TextureMap>,
-    /// Multiplies the specular roughness of Plastic and Metal (first channel; the product
+    /// Multiplies the specular roughness of Plastic and Metal (first channel; the factor
     /// is kept at or above 0.001).
     #[serde(default)]
     pub roughness: Option<TextureMap>,
