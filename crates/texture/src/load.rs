@@ -5,7 +5,10 @@
 //!
 //! Invariants: a missing or unreadable file is [`TextureError::Io`]; anything else wrong
 //! (an unknown format, a truncated or corrupt image, an empty image, one over
-//! [`MAX_SIDE`] texels a side) is [`TextureError::Decode`]; non-finite values become 0.
+//! [`MAX_SIDE`] texels a side) is [`TextureError::Decode`]; non-finite values become 0. No
+//! decoder allocates for a picture larger than that: the `image` crate's default limits
+//! (512 MiB) hold for PNG, JPEG and TIFF, and an OpenEXR header is checked before its pixels
+//! are read.
 
 use std::io::Read;
 use std::path::Path;
@@ -96,6 +99,15 @@ fn decode_image(file: &Path) -> Result<Image, TextureError> {
 }
 
 fn decode_exr(file: &Path) -> Result<Image, String> {
+    // The header first: refuse an over-size image before allocating its pixels.
+    let meta = exr::meta::MetaData::read_from_file(file, false)
+        .map_err(|e| format!("cannot decode OpenEXR: {e}"))?;
+    for header in &meta.headers {
+        let (w, h) = (header.layer_size.width(), header.layer_size.height());
+        if w > MAX_SIDE as usize || h > MAX_SIDE as usize {
+            return Err(format!("{w} x {h} texels is over the limit of {MAX_SIDE} a side"));
+        }
+    }
     let image = exr::prelude::read_first_rgba_layer_from_file(
         file,
         |resolution, _| Image {

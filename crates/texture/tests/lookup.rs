@@ -122,3 +122,33 @@ fn cache_stays_within_its_bound_on_four_times_its_size() {
     assert!(s.evictions > 0, "{s:?}");
     assert!(!tight.read_failed());
 }
+
+/// A truncated OpenEXR file and one of a size beyond the limit are bad input naming the
+/// file, not a crash or an allocation of the size it claims.
+#[test]
+fn broken_and_huge_exr_files_are_refused() {
+    let dir = tempfile::tempdir().unwrap_or_else(|e| panic!("{e}"));
+    let good = dir.path().join("good.exr");
+    exr::prelude::write_rgba_file(&good, 4, 4, |_, _| (1.0f32, 1.0f32, 1.0f32, 1.0f32))
+        .unwrap_or_else(|e| panic!("{e}"));
+    let bytes = std::fs::read(&good).unwrap_or_else(|e| panic!("{e}"));
+    let cut = dir.path().join("cut.exr");
+    std::fs::write(&cut, &bytes[..bytes.len() / 2]).unwrap_or_else(|e| panic!("{e}"));
+    let mut sys = system(1 << 20);
+    let e = sys.load(&cut, ColorSpace::Linear).err().unwrap_or_else(|| panic!("loaded"));
+    assert_eq!(e.exit_code(), 2, "{e}");
+    assert!(e.to_string().starts_with(&format!("{}: texture: ", cut.display())), "{e}");
+    let huge = dir.path().join("huge.exr");
+    let layer = exr::prelude::Layer::new(
+        (70_000, 1),
+        exr::prelude::LayerAttributes::default(),
+        exr::prelude::Encoding::FAST_LOSSLESS,
+        exr::prelude::SpecificChannels::rgba(|_| (0.5f32, 0.5f32, 0.5f32, 1.0f32)),
+    );
+    exr::prelude::WritableImage::write(&exr::prelude::Image::from_layer(layer))
+        .to_file(&huge)
+        .unwrap_or_else(|e| panic!("{e}"));
+    let e = sys.load(&huge, ColorSpace::Linear).err().unwrap_or_else(|| panic!("loaded"));
+    assert_eq!(e.exit_code(), 2, "{e}");
+    assert!(e.to_string().contains("over the limit"), "{e}");
+}
