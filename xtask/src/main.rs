@@ -61,6 +61,25 @@ fn main() -> ExitCode {
             }
         };
     }
+    if args.first().map(String::as_str) == Some("textures") {
+        // The texture maps of the look-development scenes, made by code (testkit/textures.rs).
+        let dir = root.join("scenes/textures");
+        let written = std::fs::create_dir_all(&dir).map_err(|e| e.to_string()).and_then(|()| {
+            reyes_testkit::textures::scene_maps().into_iter().try_for_each(|(name, image)| {
+                let path = dir.join(name);
+                image.save(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+                println!("wrote {}", path.display());
+                Ok(())
+            })
+        });
+        return match written {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(e) => {
+                eprintln!("xtask textures: {e}");
+                ExitCode::FAILURE
+            }
+        };
+    }
     if args.first().map(String::as_str) == Some("geometry") {
         return match study::geometry::run(&root, &args[1..]) {
             Ok(()) => ExitCode::SUCCESS,

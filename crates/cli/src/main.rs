@@ -394,6 +394,9 @@ fn render_frame(
         (RenderError::Cancelled, Some(stop)) => Exit::stopped(stop, main),
         (e, _) => Exit::error(e.exit_code(), format_args!("{}: {e}", args.scene.display())),
     })?;
+    for w in &rendered.warnings {
+        say(format_args!("{}: warning: {w}", args.scene.display()));
+    }
     let render_time = scene.outputs.render_time.then_some(render_time.as_secs_f32());
 
     let t = Instant::now();

@@ -448,3 +448,58 @@ fn sobol_patterns_without_power_of_two_samples_fall_back_with_a_warning() {
     assert!(files[0] == files[2], "SobolJoint at 3 x 3 is FIG. 6");
     assert!(files[1] == files[2], "Sobol at 3 x 3 is FIG. 6");
 }
+
+/// A texture that is missing is an I/O error (exit 1), one that is not an image bad input
+/// (exit 2): one line naming the file, relative names resolved beside the scene, no output.
+#[test]
+fn texture_errors_name_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("junk.png"), b"\x89PNG\r\n\x1a\n not an image").unwrap();
+    for (file, code, says) in
+        [("missing.png", 1, "texture: cannot read"), ("junk.png", 2, "texture: cannot decode")]
+    {
+        let scene = scene_with(dir.path(), "tex.ron", |t| {
+            t.replace(
+                "material: Matte",
+                &format!(
+                    "maps: (color: Some((file: \"{file}\", color_space: Srgb))), material: Matte"
+                ),
+            )
+        });
+        let out = dir.path().join("tex.exr");
+        let o = run(&[scene.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(code), "{file}: {err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+        let named = dir.path().join(file);
+        assert!(err.contains(&format!("{}: {says}", named.display())), "{err}");
+        assert!(!out.exists());
+    }
+}
+
+/// The look-development scene renders from RON and from its RIB twin, the displacement
+/// counts in --stats.
+#[test]
+fn the_lookdev_scenes_render() {
+    let dir = tempfile::tempdir().unwrap();
+    for scene in ["lookdev.ron", "lookdev.rib"] {
+        let out = dir.path().join("lookdev.exr");
+        let path = root().join("scenes").join(scene);
+        let o = run(&[
+            path.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--stats",
+            "--samples",
+            "1x1",
+        ]);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(0), "{scene}: {err}");
+        assert!(!err.contains("warning"), "{scene}: {err}");
+        let stats = String::from_utf8_lossy(&o.stdout).into_owned() + &err;
+        assert!(
+            stats.contains("Look development:") && stats.contains("texture lookups"),
+            "{stats}"
+        );
+    }
+}

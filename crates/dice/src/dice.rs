@@ -23,7 +23,9 @@ use reyes_hider::{Micropolygon, flags};
 use crate::aov::VertexAovs;
 use crate::bucket::{BucketRange, Bucketer};
 use crate::camera::{CameraSetup, Viewer};
+use crate::displace;
 use crate::hook::{VertexContext, VertexShader};
+use crate::lookdev::{At, Look, Looked};
 use crate::motion::{Placement, Pose};
 use crate::shade::Shader;
 use crate::split::Patch;
@@ -58,6 +60,8 @@ pub(crate) struct ObjectContext<'a> {
     pub cull_back: bool,
     /// The per-vertex AOV layout when the scene writes AOVs, and the object's ids.
     pub aov: Option<(std::sync::Arc<VertexAovs>, [f32; 2])>,
+    /// Texture maps, displacement, bump and emission ([`crate::lookdev`]).
+    pub look: Option<Look>,
 }
 
 /// What every micropolygon of one object carries besides its geometry and colour.
@@ -244,6 +248,8 @@ pub(crate) struct Emitter<'b> {
     pub moving: u64,
     /// Of `culled`, those dropped as back faces.
     pub backfacing: u64,
+    /// Diced cells with a corner displaced beyond the object's declared bound.
+    pub escaped: u64,
     /// The grid's winding sign when its back faces may be culled: a cell is front-facing
     /// where `sign * (raster signed area) > 0` ([`Emitter::calibrate`]).
     cull: Option<f32>,
@@ -278,6 +284,7 @@ impl<'b> Emitter<'b> {
             quads: Vec::new(),
             moving: 0,
             backfacing: 0,
+            escaped: 0,
             cull: None,
             camera: None,
         }
@@ -331,6 +338,13 @@ impl<'b> Emitter<'b> {
         // Cosine between each vertex's normal and the direction to the eye at shutter open,
         // to calibrate the grid's winding (see `calibrate`); only when culling.
         let mut cosines = Vec::new();
+        // Look development hook (crate::displace): the grid displaced along its normals at
+        // every breakpoint, and its shading normals recomputed, before anything is shaded
+        // or projected; the lookups' footprint is the grid's parameter spacing.
+        let displaced =
+            object.look.as_ref().and_then(|l| displace::grid(l, poses, patch, (nu, nv)));
+        self.escaped += displaced.as_ref().map_or(0, |d| d.escaped);
+        let duv = [(patch.u[1] - patch.u[0]) / nu as f32, (patch.v[1] - patch.v[0]) / nv as f32];
         for (b, pose) in poses.iter().enumerate() {
             for j in 0..=nv {
                 let v = Patch::at(patch.v, j, nv);
@@ -344,11 +358,19 @@ impl<'b> Emitter<'b> {
                         // the result, whose outward normal there is B's inward one. The
                         // geometric (outward) normal itself is not stored: the orientation
                         // survives only in the vertex winding.
-                        let sp = pose.surface.eval(u, v);
+                        let mut sp = pose.surface.eval(u, v);
+                        let vertex = j * (nu + 1) + i;
+                        let looked = object.look.as_ref().map_or(Looked::NONE, |l| {
+                            l.object.looked(&l.system, &At { uv: [u, v], duv, p_object: sp.p })
+                        });
+                        if let Some(d) = &displaced {
+                            sp.p = d.position(0, vertex).unwrap_or(sp.p);
+                            sp.n = d.normal(vertex);
+                        }
                         let (p_world, p_camera) = pose.moment.world_and_camera(sp.p);
                         let n_world = object.normal_to_world * sp.n;
-                        let (color, trans) = match &hook {
-                            None => object.shader.shade(p_world, n_world, sp.tint),
+                        let (mut color, trans) = match &hook {
+                            None => object.shader.shade_looked(p_world, n_world, sp.tint, &looked),
                             Some(hook) => hook.shader.shade(&VertexContext {
                                 object: hook.object,
                                 surface: hook.surface,
@@ -361,9 +383,16 @@ impl<'b> Emitter<'b> {
                                 p_world,
                                 n_world: n_world.normalize_or_zero(),
                                 p_object: sp.p,
-                                tint: sp.tint,
+                                tint: sp.tint * looked.color,
+                                looked,
                             }),
                         };
+                        if let Some(e) = object.look.as_ref().and_then(|l| l.object.emission) {
+                            // Emission, premultiplied by the opacity (1 - trans).
+                            for a in 0..3 {
+                                color[a] += e[a] * (1.0 - trans[a]);
+                            }
+                        }
                         if object.cull_back {
                             let to_eye = camera.viewer().seen_from(p_world) - p_world;
                             cosines.push(
@@ -387,11 +416,12 @@ impl<'b> Emitter<'b> {
                                 // Local illumination's terms; the ray-traced shader's are not
                                 // split (the render refuses component AOVs with it).
                                 let terms = match &hook {
-                                    None => object.shader.components(
+                                    None => object.shader.components_looked(
                                         p_world,
                                         n_world,
                                         sp.tint,
                                         group.as_deref(),
+                                        &looked,
                                     ),
                                     Some(_) => [glam::Vec3::ZERO; 3],
                                 };
@@ -401,7 +431,11 @@ impl<'b> Emitter<'b> {
                             }
                         }
                     } else {
-                        let p_object = pose.surface.position(u, v);
+                        let p_object = match &displaced {
+                            Some(d) => d.position(b, j * (nu + 1) + i),
+                            None => None,
+                        }
+                        .unwrap_or_else(|| pose.surface.position(u, v));
                         let p_camera = pose.moment.world_and_camera(p_object).1;
                         g.pos.push(project(p_camera));
                         g.cam.push(p_camera);
@@ -742,5 +776,6 @@ pub(crate) fn object_context(
         hook: None,
         cull_back: false,
         aov: None,
+        look: None,
     }
 }

@@ -8,6 +8,8 @@
 
 use glam::Vec3;
 
+use crate::lookdev::{Lookdev, Looked};
+
 /// One grid vertex to shade, at shutter open.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct VertexContext {
@@ -33,8 +35,12 @@ pub struct VertexContext {
     pub n_world: Vec3,
     /// Position in object space (before the object's transform).
     pub p_object: Vec3,
-    /// Colour multiplying the material colour (mesh vertex colours; white otherwise).
+    /// Colour multiplying the material colour: mesh vertex colours (white otherwise) times
+    /// the colour map's value.
     pub tint: Vec3,
+    /// What the object's texture maps make of its material here (the colour map is in
+    /// `tint` already).
+    pub looked: Looked,
 }
 
 /// Shades grid vertices in place of the dicer's own local illumination.
@@ -51,4 +57,7 @@ pub struct DiceOptions<'a> {
     /// The most micropolygons the lazy dicer may hold at once (the memory budget's share for
     /// grids); `None`: no limit. Exceeding it is [`crate::DiceError::MicropolygonBudget`].
     pub max_micropolygons: Option<u64>,
+    /// The scene's textures and look development, loaded once for the render
+    /// ([`Lookdev::load`]); `None`: the dicer loads its own when the scene has any.
+    pub lookdev: Option<&'a Lookdev>,
 }

@@ -202,6 +202,12 @@ impl<'a> Dicer<'a> {
         let rows = frame.buckets_y as usize;
         let aovs = VertexAovs::for_scene(scene).map(std::sync::Arc::new);
         let ids = if aovs.is_some() { crate::aov::object_ids(scene) } else { Vec::new() };
+        // Look development: the render's textures, or the dicer's own.
+        let own_lookdev = match options.lookdev {
+            None if scene.has_lookdev() => Some(crate::Lookdev::load(scene)?),
+            _ => None,
+        };
+        let lookdev = options.lookdev.or(own_lookdev.as_ref());
         let mut dicer = Dicer {
             frame: *frame,
             camera,
@@ -241,7 +247,13 @@ impl<'a> Dicer<'a> {
             ctx.hook =
                 options.vertex_shader.map(|shader| dice::Hook { shader, object: i, surface: 0 });
             ctx.aov = aovs.as_ref().map(|a| (a.clone(), ids[i]));
-            ctx.cull_back = scene.hider.cull_back_faces
+            ctx.look = lookdev.and_then(|l| l.object(i));
+            let reach = ctx.look.as_ref().map_or(0.0, |l| l.object.bound);
+            if ctx.look.as_ref().is_some_and(|l| l.object.may_be_transparent()) {
+                ctx.labels.flags &= !reyes_hider::flags::OPAQUE;
+            }
+            ctx.cull_back = reach == 0.0
+                && scene.hider.cull_back_faces
                 && dice::cull_back_faces(
                     object,
                     &ctx.labels,
@@ -252,11 +264,14 @@ impl<'a> Dicer<'a> {
             // own rate and accuracy.
             let rate = object.shading_rate.filter(|&rate| rate != hider.shading_rate);
             let flatness = object.flatness.filter(|&f| f != hider.flatness);
-            let splitter = (rate.is_some() || flatness.is_some()).then(|| {
+            // Displacement: bounds grow by the most a point can move, in camera space.
+            let displace = reach * motion.largest_scale();
+            let splitter = (rate.is_some() || flatness.is_some() || displace > 0.0).then(|| {
                 dicer
                     .splitter
                     .with_shading_rate(rate.unwrap_or(hider.shading_rate))
                     .with_flatness(flatness.unwrap_or(hider.flatness), hider.relative_flatness)
+                    .with_displacement(displace)
             });
             let decide = splitter.as_ref().unwrap_or(&dicer.splitter);
             for surface in 0..motion.surface_count() {
@@ -511,6 +526,7 @@ impl<'a> Dicer<'a> {
                     return;
                 }
                 out.stats.grids += 1;
+                out.stats.vertices += u64::from(nu + 1) * u64::from(nv + 1);
                 out.stats.depth_limited += u64::from(limited);
                 out.stats.flatness += u64::from(extra);
                 let (hither, yon) = (self.camera.hither(), self.camera.yon());
@@ -527,6 +543,7 @@ impl<'a> Dicer<'a> {
                 out.stats.backfacing += em.backfacing;
                 out.stats.crossing += em.crossing;
                 out.stats.moving += em.moving;
+                out.stats.displacement_escapes += em.escaped;
                 if em.grid.len() > 0 {
                     em.grid.shrink_to_fit();
                     out.grids.push(NewGrid { key: task.key, grid: em.grid, ranges: em.ranges });

@@ -102,8 +102,10 @@ mod bucket;
 mod camera;
 mod csg;
 mod dice;
+mod displace;
 mod hook;
 mod lazy;
+mod lookdev;
 mod motion;
 mod shade;
 mod shapes;
@@ -116,6 +118,14 @@ pub use camera::{CameraSetup, Viewer};
 pub use csg::CsgSetup;
 pub use hook::{DiceOptions, VertexContext, VertexShader};
 pub use lazy::{Dicer, MICROPOLYGON_BYTES};
+pub use lookdev::{Lookdev, Looked};
+
+impl From<TextureError> for DiceError {
+    fn from(e: TextureError) -> DiceError {
+        DiceError::Texture { message: e.to_string(), code: e.exit_code() }
+    }
+}
+pub use reyes_texture::{TextureError, TextureStats};
 pub use shade::{Shader, facing};
 pub use spot::{SpotLight, smoothstep};
 
@@ -169,6 +179,11 @@ pub struct DiceStats {
     pub moving: u64,
     /// Total entries over all bucket lists.
     pub bucket_entries: u64,
+    /// Diced cells with a corner displaced further than its object's declared displacement
+    /// bound (counted, and still rendered: bounds use the displacement's own bound too).
+    pub displacement_escapes: u64,
+    /// Grid vertices shaded (`(nu + 1) (nv + 1)` per grid).
+    pub vertices: u64,
 }
 
 impl DiceStats {
@@ -188,6 +203,8 @@ impl DiceStats {
             crossing,
             moving,
             bucket_entries,
+            displacement_escapes,
+            vertices,
         } = *other;
         self.primitives += primitives;
         self.splits += splits;
@@ -202,12 +219,22 @@ impl DiceStats {
         self.crossing += crossing;
         self.moving += moving;
         self.bucket_entries += bucket_entries;
+        self.displacement_escapes += displacement_escapes;
+        self.vertices += vertices;
     }
 }
 
 /// Why a scene could not be diced.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum DiceError {
+    /// A texture map could not be loaded (the message names the file).
+    #[error("{message}")]
+    Texture {
+        /// The loader's message.
+        message: String,
+        /// Its exit code: 1 for I/O, 2 for a file that is not a usable image.
+        code: u8,
+    },
     /// The camera's eye and look-at points coincide.
     #[error("camera eye and look_at coincide, so there is no view direction")]
     EyeAtLookAt,

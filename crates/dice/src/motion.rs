@@ -329,6 +329,28 @@ impl ObjectMotion {
         ObjectMotion { moments, shapes }
     }
 
+    /// A bound on how far a displacement of object-space length 1 moves a point in camera
+    /// space, at any breakpoint: the largest Frobenius norm (at least the largest singular
+    /// value) of the linear part of object to camera. Between two transform keys a point is
+    /// lerped between the keys' images, so the larger of the two bounds it. (For affine
+    /// placements; a projective matrix has no such constant.)
+    pub fn largest_scale(&self) -> f32 {
+        let norm = |m: Mat4, w: Mat4| {
+            let l = Mat3::from_mat4(w * m);
+            (l.x_axis.length_squared() + l.y_axis.length_squared() + l.z_axis.length_squared())
+                .sqrt()
+        };
+        self.moments
+            .iter()
+            .map(|m| match m.place {
+                Placement::Matrix(a) => norm(a, m.world_to_camera),
+                Placement::Between { from, to, .. } => {
+                    norm(from, m.world_to_camera).max(norm(to, m.world_to_camera))
+                }
+            })
+            .fold(0.0, f32::max)
+    }
+
     /// The breakpoints, the first at time 0.
     pub fn moments(&self) -> &[Moment] {
         &self.moments

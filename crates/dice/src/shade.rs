@@ -16,6 +16,7 @@ use glam::Vec3;
 use reyes_scene::{Light, Material, Object};
 
 use crate::camera::Viewer;
+pub use crate::lookdev::Looked;
 use crate::spot::SpotLight;
 
 /// A light after setup: the ambient ones are summed into [`Shader`]'s ambient term.
@@ -62,6 +63,10 @@ pub struct Shader {
 /// The premultiplied ambient, diffuse and specular terms of one shaded point
 /// ([`Shader::components`]).
 pub type Components = [Vec3; 3];
+
+/// The smallest factor a roughness map may scale a material's roughness by (the exponent
+/// `8 / roughness` stays finite).
+pub const MIN_ROUGHNESS: f32 = 1e-3;
 
 /// `d^2` below which a point light is taken to sit on the surface and is ignored.
 const MIN_DIST2: f32 = 1e-20;
@@ -201,7 +206,46 @@ impl Shader {
         v: Vec3,
         lights: impl IntoIterator<Item = (Vec3, Vec3)>,
     ) -> Vec3 {
+        self.illuminate_with(self.model, cs, n, v, lights)
+    }
+
+    /// [`Shader::illuminate`] with the model's roughness and specular coefficient scaled by
+    /// texture maps (`looked`; the colour and opacity maps are the caller's).
+    pub fn illuminate_looked(
+        &self,
+        looked: &Looked,
+        cs: Vec3,
+        n: Vec3,
+        v: Vec3,
+        lights: impl IntoIterator<Item = (Vec3, Vec3)>,
+    ) -> Vec3 {
+        self.illuminate_with(self.model_looked(looked), cs, n, v, lights)
+    }
+
+    /// The model with its roughness multiplied by `looked.roughness` (kept at or above
+    /// [`MIN_ROUGHNESS`] times the material's) and its `ks` by `looked.specular`.
+    fn model_looked(&self, looked: &Looked) -> Model {
+        let exponent = |e: f32| e / looked.roughness.max(MIN_ROUGHNESS);
         match self.model {
+            Model::Plastic { ka, kd, ks, exponent: e, specular } => {
+                Model::Plastic { ka, kd, ks: ks * looked.specular, exponent: exponent(e), specular }
+            }
+            Model::Metal { ka, ks, exponent: e } => {
+                Model::Metal { ka, ks: ks * looked.specular, exponent: exponent(e) }
+            }
+            other => other,
+        }
+    }
+
+    fn illuminate_with(
+        &self,
+        model: Model,
+        cs: Vec3,
+        n: Vec3,
+        v: Vec3,
+        lights: impl IntoIterator<Item = (Vec3, Vec3)>,
+    ) -> Vec3 {
+        match model {
             Model::Constant => cs,
             Model::Matte { ka, kd } => {
                 let (diffuse, _) = direct(n, None, lights);
@@ -225,14 +269,28 @@ impl Shader {
     /// Premultiplied colour `Os * Ci` and transmittance `1 - Os` at a world-space point with
     /// (not necessarily face-forwarded) normal `n_world`; `tint` multiplies `Cs`.
     pub fn shade(&self, p_world: Vec3, n_world: Vec3, tint: Vec3) -> ([f32; 3], [f32; 3]) {
-        let cs = self.cs * tint;
+        self.shade_looked(p_world, n_world, tint, &Looked::NONE)
+    }
+
+    /// [`Shader::shade`] under texture maps: `looked.color` multiplies `Cs`, `looked.opacity`
+    /// multiplies `Os`, and the roughness and `ks` are scaled ([`Shader::illuminate_looked`]).
+    pub fn shade_looked(
+        &self,
+        p_world: Vec3,
+        n_world: Vec3,
+        tint: Vec3,
+        looked: &Looked,
+    ) -> ([f32; 3], [f32; 3]) {
+        let cs = self.cs * tint * looked.color;
+        let os = self.os * looked.opacity;
         let ci = if self.unlit() {
             cs
         } else {
             let (n, v) = facing(p_world, n_world, self.viewer.seen_from(p_world));
-            self.illuminate(cs, n, v, self.arriving(p_world).map(|(_, l, cl)| (l, cl)))
+            let lights = self.arriving(p_world).map(|(_, l, cl)| (l, cl));
+            self.illuminate_with(self.model_looked(looked), cs, n, v, lights)
         };
-        ((self.os * ci).to_array(), (Vec3::ONE - self.os).to_array())
+        ((os * ci).to_array(), (Vec3::ONE - os).to_array())
     }
 
     /// The direct lights arriving at `p_world`: each one's position in `lights`, unit vector
@@ -266,7 +324,20 @@ impl Shader {
         tint: Vec3,
         group: Option<&[u32]>,
     ) -> Components {
-        let cs = self.cs * tint;
+        self.components_looked(p_world, n_world, tint, group, &Looked::NONE)
+    }
+
+    /// [`Shader::components`] under texture maps, as [`Shader::shade_looked`] shades.
+    pub fn components_looked(
+        &self,
+        p_world: Vec3,
+        n_world: Vec3,
+        tint: Vec3,
+        group: Option<&[u32]>,
+        looked: &Looked,
+    ) -> Components {
+        let cs = self.cs * tint * looked.color;
+        let os = self.os * looked.opacity;
         let in_group = |index: usize| group.is_none_or(|g| g.iter().any(|&i| i as usize == index));
         let ungrouped = group.is_none();
         let mut ambient = Vec3::ZERO;
@@ -281,7 +352,7 @@ impl Shader {
                 .filter(|&(k, _, _)| in_group(self.light_index[k]))
                 .map(|(_, l, cl)| (l, cl))
         };
-        let c = match self.model {
+        let c = match self.model_looked(looked) {
             Model::Constant => [if ungrouped { cs } else { Vec3::ZERO }, Vec3::ZERO, Vec3::ZERO],
             Model::Matte { ka, kd } => {
                 let (diffuse, _) = direct(n, None, lights());
@@ -301,7 +372,7 @@ impl Shader {
             }
             Model::Headlight { .. } => [Vec3::ZERO; 3],
         };
-        c.map(|term| self.os * term)
+        c.map(|term| os * term)
     }
 }
 

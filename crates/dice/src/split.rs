@@ -170,6 +170,9 @@ pub(crate) struct Splitter {
     /// patch's raster extent (0: that bound is off).
     flatness: f32,
     relative_flatness: f32,
+    /// Displacement (crate::displace): the most a point of the surface may move, in camera
+    /// space; bounds grow by it (0: no displacement).
+    displace: f32,
 }
 
 /// The test grid of a patch: camera-space points, row `j` (v) by column `i` (u).
@@ -228,6 +231,7 @@ impl Splitter {
             max_grid: u64::from(max_grid_size.max(1)),
             flatness: 0.0,
             relative_flatness: 0.0,
+            displace: 0.0,
         }
     }
 
@@ -259,6 +263,13 @@ impl Splitter {
             extent = extent.min((hi - lo).max_element());
         }
         extent
+    }
+
+    /// The same decisions for a displaced surface whose points move up to `reach` in
+    /// camera space (RenderMan's displacement bound): bounds, depth ranges and side-plane
+    /// tests take in the cube of half-side `reach` about every test and hull point.
+    pub fn with_displacement(&self, reach: f32) -> Splitter {
+        Splitter { displace: reach, ..self.clone() }
     }
 
     /// The same decisions at another shading rate (an object's own `shading_rate`).
@@ -345,6 +356,9 @@ impl Splitter {
     /// (`poses`, in time order; one pose for a still object), with the top of the patch's
     /// raster bound (see [`Splitter::decide_grids_bound`]).
     pub fn decide_bound(&self, poses: &[Pose<'_>], patch: &Patch) -> (Decision, Option<f32>) {
+        if self.displace > 0.0 {
+            return self.decide_displaced(poses, patch);
+        }
         let hulls: Vec<Vec<Vec3>> =
             poses.iter().filter_map(|pose| self.hull_points(pose, patch)).collect();
         if !hulls.is_empty() && hulls.len() == poses.len() {
@@ -358,6 +372,33 @@ impl Splitter {
         }
         let grids: Vec<TestGrid> = poses.iter().map(|pose| self.test_grid(pose, patch)).collect();
         self.decide_grids_bound(&grids, patch)
+    }
+
+    /// [`Splitter::decide_bound`] of a displaced surface: the hull of every breakpoint is
+    /// the corners of the cube of half-side `displace` about each of its points (its control
+    /// hull's, or its test points'), which holds every displaced point within the margin.
+    fn decide_displaced(&self, poses: &[Pose<'_>], patch: &Patch) -> (Decision, Option<f32>) {
+        let r = self.displace;
+        let grids: Vec<TestGrid> = poses.iter().map(|pose| self.test_grid(pose, patch)).collect();
+        let hulls: Vec<Vec<Vec3>> = poses
+            .iter()
+            .zip(&grids)
+            .map(|(pose, grid)| {
+                let points = self
+                    .hull_points(pose, patch)
+                    .unwrap_or_else(|| grid.iter().flatten().copied().collect());
+                points
+                    .iter()
+                    .flat_map(|p| {
+                        (0..8).map(move |k| {
+                            let s = |bit: u32| if k & bit == 0 { -r } else { r };
+                            *p + Vec3::new(s(1), s(2), s(4))
+                        })
+                    })
+                    .collect()
+            })
+            .collect();
+        self.decide_grids_hulls_bound(&grids, &hulls, patch)
     }
 
     /// Decide from the test grids of every breakpoint, with the smallest raster y of the union of the

@@ -314,6 +314,7 @@ pub(crate) fn member(
                 solids: Vec::new(),
                 raytrace: scene.raytrace,
                 outputs: Default::default(),
+                texture_cache: scene.texture_cache,
             };
             Ok((Member::Mesh(Box::new(Tracer::new(&alone))), bounds))
         }

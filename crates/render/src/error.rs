@@ -6,6 +6,7 @@ impl RenderError {
     pub fn exit_code(&self) -> u8 {
         match self {
             RenderError::WontFit { .. } => 2,
+            RenderError::Dice(reyes_dice::DiceError::Texture { code, .. }) => *code,
             _ => 1,
         }
     }
@@ -45,6 +46,9 @@ pub enum RenderError {
     /// The thread pool could not be built.
     #[error("cannot start render threads: {0}")]
     Threads(#[from] rayon::ThreadPoolBuildError),
+    /// A texture tile could not be read back from the cache's temporary file.
+    #[error("texture cache: a tile could not be read back from its temporary file")]
+    TextureRead,
     /// [`crate::cancel::request`] was called: the render stopped before its last bucket.
     #[error("the render was cancelled")]
     Cancelled,

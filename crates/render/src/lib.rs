@@ -32,7 +32,7 @@ pub use buckets::BucketResult;
 pub use error::RenderError;
 pub use reyes_film::Film;
 pub use settings::{filter_table, frame_for, hider_config, shutter_shape};
-pub use stats::{DiceSummary, RaySummary, RenderStats, peak_memory};
+pub use stats::{DiceSummary, LookdevSummary, RaySummary, RenderStats, peak_memory};
 pub use stochastic::render_diced;
 
 use reyes_scene::{HiderMethod, Scene};
@@ -74,6 +74,9 @@ pub struct Rendered {
     pub aovs: Option<aovs::RenderedAovs>,
     /// With [`RenderOptions::keep_buckets`]: each bucket's result, in raster order.
     pub buckets: Vec<(usize, BucketResult)>,
+    /// What the user should hear about (a displacement without or beyond its declared
+    /// bound), one line each.
+    pub warnings: Vec<String>,
 }
 
 /// Render a validated scene: with the ray-tracing hider when the scene asks for it, else

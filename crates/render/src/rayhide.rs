@@ -197,5 +197,5 @@ where
         rays: Some(rays),
         ..RenderStats::new(scene, hider.config(), frame)
     };
-    Ok(Rendered { film, stats, aovs: None, buckets: kept })
+    Ok(Rendered { film, stats, aovs: None, buckets: kept, warnings: Vec::new() })
 }

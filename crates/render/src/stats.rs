@@ -102,6 +102,21 @@ pub struct RenderStats {
     /// The ray-tracing hider's counts, when it rendered the frame (then the dicer and hider
     /// counts are zero and not printed).
     pub rays: Option<RaySummary>,
+    /// Look development's counts, when the scene has texture maps, displacement, bump or
+    /// emission.
+    pub lookdev: Option<LookdevSummary>,
+}
+
+/// Look development's counts (docs/lookdev.md).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct LookdevSummary {
+    /// Grid vertices shaded (every diced vertex, once).
+    pub vertices: u64,
+    /// The texture system's totals (its cache counts depend on thread timing: they are
+    /// printed with the times, not the counts).
+    pub textures: reyes_dice::TextureStats,
+    /// Diced cells with a corner displaced beyond its object's declared bound.
+    pub escapes: u64,
 }
 
 /// Peak resident set size of this process (Linux: `VmHWM` in /proc/self/status).
@@ -137,6 +152,7 @@ impl RenderStats {
             t_write: Duration::ZERO,
             peak_memory: None,
             rays: None,
+            lookdev: None,
         }
     }
 
@@ -242,6 +258,19 @@ impl RenderStats {
             );
             let _ = writeln!(s, "{}", r.secondary_line());
         }
+        if let Some(l) = &self.lookdev {
+            let t = &l.textures;
+            let _ = writeln!(
+                s,
+                " Look development: {} vertices shaded, {} textures ({} texels in their MIP pyramids, {} kB), {} texture lookups, {} micropolygons displaced beyond their declared bound",
+                l.vertices,
+                t.textures,
+                t.texels,
+                t.pyramid_bytes / 1024,
+                t.lookups,
+                l.escapes
+            );
+        }
         s
     }
 }
@@ -283,6 +312,21 @@ impl fmt::Display for RenderStats {
             " Sample tests per second (bucket loop, all threads): {:.1} million",
             tests as f64 / self.t_hide.as_secs_f64().max(1e-9) / 1e6
         )?;
+        if let Some(l) = &self.lookdev {
+            let c = &l.textures.cache;
+            writeln!(
+                f,
+                " Textures: loaded and MIP-mapped in {:.3} s; cache at most {} of {} kB, {} tile misses of {} requests, {} evictions; {:.2} million lookups and {:.2} million vertices shaded per second of dicing",
+                l.textures.load_time.as_secs_f64(),
+                c.peak / 1024,
+                c.bound / 1024,
+                c.misses,
+                c.requests,
+                c.evictions,
+                l.textures.lookups as f64 / self.t_dice.as_secs_f64().max(1e-9) / 1e6,
+                l.vertices as f64 / self.t_dice.as_secs_f64().max(1e-9) / 1e6
+            )?;
+        }
         if let Some(m) = self.peak_memory {
             write!(f, " Memory: peak resident {:.1} MB", m as f64 / 1e6)?;
             if self.dice.peak_micropolygons > 0 {

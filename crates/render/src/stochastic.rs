@@ -17,7 +17,7 @@
 use std::time::{Duration, Instant};
 
 use rayon::prelude::*;
-use reyes_dice::{DiceError, DiceOptions, DiceStats, Dicer};
+use reyes_dice::{DiceError, DiceOptions, DiceStats, Dicer, Lookdev};
 use reyes_film::{AovFilm, AovSamples, AovWindow, Film, Window};
 use reyes_hider::Scratch;
 use reyes_scene::Scene;
@@ -29,7 +29,7 @@ use crate::buckets::{self, BucketResult};
 use crate::cancel;
 use crate::pool::{self, Pool};
 use crate::settings::{Stages, frame_for, shutter_shape};
-use crate::stats::{DiceSummary, RaySummary, RenderStats};
+use crate::stats::{DiceSummary, LookdevSummary, RaySummary, RenderStats};
 use crate::{RenderError, RenderOptions, Rendered};
 
 /// Render `scene` with the stochastic hider, shading vertices with distributed rays where
@@ -38,16 +38,40 @@ pub(crate) fn render_stochastic(
     scene: &Scene,
     opts: &RenderOptions,
 ) -> Result<Rendered, RenderError> {
-    if Shading::needed(scene) {
-        render_shaded(scene, opts)
+    let lookdev = match scene.has_lookdev() {
+        true => Some(Lookdev::load(scene).map_err(reyes_dice::DiceError::from)?),
+        false => None,
+    };
+    let mut rendered = if Shading::needed(scene) {
+        render_shaded(scene, opts, lookdev.as_ref())
     } else {
-        render_diced(scene, opts, &DiceOptions::default())
+        render_diced(scene, opts, &DiceOptions { lookdev: lookdev.as_ref(), ..Default::default() })
+    }?;
+    if let Some(l) = &lookdev {
+        if l.read_failed() {
+            return Err(RenderError::TextureRead);
+        }
+        rendered.warnings.extend(l.warnings().iter().cloned());
+        if let Some(s) = rendered.stats.lookdev.as_mut() {
+            s.textures = l.texture_stats();
+            if s.escapes > 0 {
+                rendered.warnings.push(format!(
+                    "{} micropolygons were displaced beyond their object's declared displacement bound (rendered whole: bounds use the displacement's own)",
+                    s.escapes
+                ));
+            }
+        }
     }
+    Ok(rendered)
 }
 
 /// Render `scene` with the stochastic hider and ray-traced vertex shading. The statistics
 /// gain the vertex and secondary-ray counts.
-fn render_shaded(scene: &Scene, opts: &RenderOptions) -> Result<Rendered, RenderError> {
+fn render_shaded(
+    scene: &Scene,
+    opts: &RenderOptions,
+    lookdev: Option<&Lookdev>,
+) -> Result<Rendered, RenderError> {
     // Validation refuses shading-component AOVs with ray-traced shading (outputs.rs).
     debug_assert!(!AovSetup::has_components(scene));
     let t0 = Instant::now();
@@ -58,7 +82,7 @@ fn render_shaded(scene: &Scene, opts: &RenderOptions) -> Result<Rendered, Render
     let mut rendered = render_diced(
         scene,
         opts,
-        &DiceOptions { vertex_shader: Some(&shader), ..Default::default() },
+        &DiceOptions { vertex_shader: Some(&shader), lookdev, ..Default::default() },
     )?;
     rendered.stats.t_dice += t_build;
     let (vertices, secondary) = shader.counts();
@@ -225,10 +249,15 @@ fn render_rows(
         t_dice,
         t_hide,
         t_film,
+        lookdev: scene.has_lookdev().then(|| LookdevSummary {
+            vertices: dice_stats.vertices,
+            escapes: dice_stats.displacement_escapes,
+            ..Default::default()
+        }),
         ..RenderStats::new(scene, hider.config(), frame)
     };
     let aovs = aov.zip(aov_film).map(|(a, film)| RenderedAovs { film, layers: a.layers });
-    Ok(Rendered { film, stats, aovs, buckets: kept })
+    Ok(Rendered { film, stats, aovs, buckets: kept, warnings: Vec::new() })
 }
 
 /// Render bucket `b` of the diced scene: its beauty window (None if nothing is in it) and,

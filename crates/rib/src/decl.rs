@@ -288,6 +288,7 @@ pub const STANDARD: &[(&str, Class, Type, Option<u32>)] = {
         ("Kd", Uniform, Float, None),
         ("Ks", Uniform, Float, None),
         ("Kr", Uniform, Float, None),
+        ("Km", Uniform, Float, None),
         ("roughness", Uniform, Float, None),
         ("specularcolor", Uniform, Color, None),
         ("texturename", Uniform, String, None),

@@ -31,6 +31,8 @@ pub use xform::{normal_matrix, object_to_world, transform_matrix};
 /// After validation every object's `roll` is expanded into its `motion` keys (see
 /// [`Roll`]); `roll` itself is kept, so a `Scene` written back out reads back the same.
 ///
+/// Relative texture file names are resolved against `file`'s folder ([`resolve_textures`]).
+///
 /// A leading byte-order mark is ignored. Errors carry the line and column of the offending
 /// text and the path of the offending field, e.g.
 /// `scenes/x.ron:12:30: objects[0].shape.radius: must be > 0, got -1`.
@@ -41,7 +43,7 @@ pub fn parse(text: &str, file: &Path) -> Result<Scene, SceneError> {
         Err(err) => return Err(syntax::from_ron(text, file, &err)),
     };
     match validate(scene) {
-        Ok(scene) => Ok(scene),
+        Ok(scene) => Ok(resolve_textures(scene, file)),
         Err(issue) => {
             let pos = locate::SourceMap::scan(text).find(&issue.path);
             Err(SceneError {
@@ -63,6 +65,21 @@ pub fn validate(scene: Scene) -> Result<Scene, Issue> {
         None => Ok(expand_rolls(scene)),
         Some(issue) => Err(issue),
     }
+}
+
+/// The scene with every relative texture file name joined to the folder of `file`, the
+/// scene file it was read from (a name already absolute, or a scene read from standard input,
+/// keeps its name).
+pub fn resolve_textures(mut scene: Scene, file: &Path) -> Scene {
+    let Some(dir) = file.parent().filter(|d| !d.as_os_str().is_empty()) else {
+        return scene;
+    };
+    for map in scene.texture_maps_mut() {
+        if Path::new(&map.file).is_relative() {
+            map.file = dir.join(&map.file).to_string_lossy().into_owned();
+        }
+    }
+    scene
 }
 
 /// Replaces the `motion` of every object with a `roll` by the keys the roll expands to.

@@ -108,6 +108,7 @@ fn the_full_example_parses_with_the_expected_values() {
         solids: vec![],
         raytrace: reyes_scene::RayTrace::default(),
         outputs: Default::default(),
+        texture_cache: Default::default(),
     };
     assert_eq!(scene, expected);
 }

@@ -88,7 +88,7 @@ pub use sample::{concentric_disk, disperse};
 pub use vertex::RayVertexShader;
 
 use glam::Vec3;
-use reyes_dice::{Shader, Viewer, facing};
+use reyes_dice::{Looked, Shader, Viewer, facing};
 use reyes_sampling::Strata;
 use reyes_scene::{Object, Scene, Shape};
 use reyes_trace::{Hit, Ray, Tracer};
@@ -160,6 +160,10 @@ pub struct SurfacePoint {
     pub from: Vec3,
     /// Time normalised over the shutter, for shadow and secondary rays.
     pub time: f32,
+    /// What the object's texture maps make of its opacity, roughness and specular
+    /// coefficient at a grid vertex (the colour map is in `tint`); [`Looked::NONE`] at
+    /// ray hits, which have no micropolygon footprint to filter over.
+    pub looked: Looked,
 }
 
 /// Numbers of rays traced, by kind: each is one query of the ray engine.
@@ -353,6 +357,7 @@ impl<'a> Shading<'a> {
                     tint: self.tint(setup, &hit),
                     from: ray.origin,
                     time: ray.time,
+                    looked: Looked::NONE,
                 };
                 let (c, _) = self.shade_point(&at, depth, weight * trans, strata, walk);
                 color += trans * c;
@@ -404,7 +409,7 @@ impl<'a> Shading<'a> {
             return (Vec3::ZERO, Vec3::ONE);
         };
         let shader = &setup.shader;
-        let os = shader.opacity();
+        let os = shader.opacity() * at.looked.opacity;
         let base = match &object.pattern {
             Some(pattern) => pattern_color(pattern, at.p_object),
             None => shader.color(),
@@ -428,7 +433,7 @@ impl<'a> Shading<'a> {
                 }
                 self.light(light, p, at.n_world, n, at.time, &mut light_strata, walk.counts)
             });
-            shader.illuminate(cs, n, v, lights)
+            shader.illuminate_looked(&at.looked, cs, n, v, lights)
         };
         let mut color = os * ci;
 

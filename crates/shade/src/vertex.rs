@@ -107,6 +107,7 @@ impl VertexShader for RayVertexShader<'_> {
             tint: v.tint,
             from: self.viewer.seen_from(v.p_world),
             time: 0.0,
+            looked: v.looked,
         };
         let (set, first) = self.set_of(v);
         let count = TILE * TILE * self.rays;
@@ -169,6 +170,7 @@ mod tests {
             n_world: Vec3::Z,
             p_object: Vec3::ZERO,
             tint: Vec3::ONE,
+            looked: reyes_dice::Looked::NONE,
         }
     }
 

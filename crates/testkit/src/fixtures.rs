@@ -55,6 +55,7 @@ pub fn scene(width: u32, height: u32, camera: Camera, objects: Vec<Object>) -> S
         solids: Vec::new(),
         raytrace: Default::default(),
         outputs: Default::default(),
+        texture_cache: Default::default(),
     }
 }
 

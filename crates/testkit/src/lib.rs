@@ -8,6 +8,7 @@
 //! - [`image`]: comparing films (PSNR);
 //! - [`random`]: pseudo-random test inputs, the same on every run;
 //! - [`shading`]: closed forms of the Shading Language (smoothstep) for shading tests;
+//! - [`textures`]: the texture maps of the look-development scenes and tests, made by code;
 //! - [`fixtures`]: scenes and objects built in code, and the frame a scene lays out.
 #![deny(missing_docs)]
 
@@ -20,3 +21,4 @@ pub mod golden;
 pub mod image;
 pub mod random;
 pub mod shading;
+pub mod textures;

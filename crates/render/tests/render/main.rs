@@ -10,6 +10,7 @@ mod csg;
 mod filters;
 mod geometry;
 mod lens;
+mod lookdev;
 mod pipeline;
 mod raytrace;
 mod sampling;

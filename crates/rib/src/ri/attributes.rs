@@ -17,6 +17,26 @@ impl Machine {
                 ("identifier", "name") => {
                     self.attributes.name = p.strings().and_then(|s| s.first()).cloned();
                 }
+                ("displacementbound", "sphere") => match p.floats() {
+                    Some([r]) if r.is_finite() && *r >= 0.0 => {
+                        self.attributes.displacement_bound = Some(*r);
+                    }
+                    _ => {
+                        return Err(r.param_error(p, "\"sphere\" must be one number >= 0"));
+                    }
+                },
+                ("displacementbound", "coordinatesystem") => {
+                    let space = p.strings().and_then(|s| s.first()).map_or("", String::as_str);
+                    if space != "object" {
+                        let w = Warning {
+                            at: r.param_location(p),
+                            message: format!(
+                                "Attribute: displacementbound in \"{space}\" space is taken in object space, where displacement happens here"
+                            ),
+                        };
+                        self.warn_once(format!("displacementbound space {space}"), w);
+                    }
+                }
                 _ => {
                     let w = Warning {
                         at: r.param_location(p),

@@ -314,6 +314,7 @@ impl FrameBuild {
             solids: std::mem::take(&mut self.solids),
             raytrace: Default::default(),
             outputs: reyes_scene::Outputs { aovs: o.aovs.clone(), ..Default::default() },
+            texture_cache: Default::default(),
         };
         let displays = self.options.displays.clone();
         match reyes_scene::validate(scene) {

@@ -58,7 +58,7 @@ pub(super) struct Motion {
 
 /// The RI state machine over one reader.
 pub(crate) struct Machine {
-    reader: Reader,
+    pub(super) reader: Reader,
     pub(super) options: RiOptions,
     /// The options in force (restored at `FrameEnd`).
     pub(super) frame_options: FrameOptions,
@@ -262,12 +262,39 @@ impl Machine {
                 Ok(())
             }
             K::Surface => {
-                let name = r.string(0).unwrap_or_default().to_string();
-                self.attributes.surface = SurfaceShader {
-                    name: Some(name),
-                    params: r.params.clone(),
-                    at: Some(r.at.clone()),
-                };
+                self.attributes.surface = SurfaceShader::of(&r);
+                Ok(())
+            }
+            K::TextureCoordinates => {
+                // The corners' (s, t) at (u, v) = (0, 0), (1, 0), (0, 1), (1, 1). A scale
+                // of the parameters (s = a u, t = b v) is texture maps' `repeat`; other
+                // maps are not supported.
+                let st: Vec<f32> = r
+                    .floats(0)
+                    .map(<[f32]>::to_vec)
+                    .unwrap_or_else(|| (0..8).map(|i| r.float(i).unwrap_or(f32::NAN)).collect());
+                match st.as_slice() {
+                    [0.0, 0.0, a, 0.0, 0.0, b, a2, b2]
+                        if a == a2
+                            && b == b2
+                            && *a != 0.0
+                            && *b != 0.0
+                            && a.is_finite()
+                            && b.is_finite() =>
+                    {
+                        self.attributes.repeat = (*a, *b);
+                    }
+                    _ => {
+                        let w = r.warning(
+                            "only a scale of the surface parameters (0 0 a 0 0 b a b) is supported: ignored",
+                        );
+                        self.warn_once("texture coordinates", w);
+                    }
+                }
+                Ok(())
+            }
+            K::Displacement => {
+                self.attributes.displacement = SurfaceShader::of(&r);
                 Ok(())
             }
             K::ShadingRate => {

@@ -269,7 +269,9 @@ pub(crate) fn unused_primvars(r: &Request, used: &[&str], warnings: &mut Vec<War
         }
         let what = match p.name.as_str() {
             "N" | "Np" => "vertex normals are not used yet: faces shade by their own normals",
-            "st" | "s" | "t" => "texture coordinates are not used yet (no texture maps)",
+            "st" | "s" | "t" => {
+                "per-vertex texture coordinates are not supported: texture maps read the surface parameters (u, v)"
+            }
             "Os" => "per-vertex opacity is not supported: the Opacity attribute is used",
             _ => "primitive variable ignored",
         };

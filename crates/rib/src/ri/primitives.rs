@@ -108,6 +108,39 @@ impl Machine {
             }
         };
         let mut object = Object::new(shape, mat);
+        let reader = &self.reader;
+        let looks = super::shaders::lookdev(
+            &a.surface,
+            &a.displacement,
+            a.displacement_bound,
+            a.repeat,
+            |name, at| reader.resolve_archive(name, at).to_string_lossy().into_owned(),
+            &mut self.warnings,
+            report,
+        );
+        match looks {
+            Ok((maps, displacement)) => {
+                object.maps = maps;
+                object.displacement = displacement;
+            }
+            Err(name) => {
+                let at = a.displacement.at.clone().unwrap_or_else(|| r.at.clone());
+                if self.options.strict {
+                    return Err(RibError::Request {
+                        at,
+                        request: "Displacement",
+                        message: format!("unknown displacement shader \"{name}\" (--strict)"),
+                    });
+                }
+                let w = crate::Warning {
+                    at,
+                    message: format!(
+                        "Displacement: unknown shader \"{name}\": the primitive is not displaced"
+                    ),
+                };
+                self.warn_once(format!("displacement {name}"), w);
+            }
+        }
         object.name = a.name.clone().unwrap_or_default();
         object.matte = a.matte;
         let attributes =

@@ -6,7 +6,7 @@
 //! default is kept. Unknown shaders are named once per name in a warning (an error with
 //! `--strict`) and stand in as `plastic` on the primitive's `Cs` and `Os`.
 
-use reyes_scene::{Light, Material};
+use reyes_scene::{ColorSpace, Displacement, Light, Maps, Material, Scalar, TextureMap};
 
 use crate::ri::state::SurfaceShader;
 use crate::ri::xform::{Xform, point};
@@ -140,10 +140,18 @@ pub(crate) fn material(
             SurfaceResult::Material(plastic(p))
         }
         Some("paintedplastic") => {
-            check(
-                "paintedplastic",
-                &[("Ka", 1), ("Kd", 1), ("Ks", 1), ("roughness", 1), ("specularcolor", 3)],
-            );
+            // `texturename`, a string, is read by `lookdev`.
+            let numbers: Vec<Param> =
+                p.iter().filter(|q| q.name != "texturename").cloned().collect();
+            if report && let Some(at) = &surface.at {
+                unused(
+                    "paintedplastic",
+                    &numbers,
+                    &[("Ka", 1), ("Kd", 1), ("Ks", 1), ("roughness", 1), ("specularcolor", 3)],
+                    at,
+                    warnings,
+                );
+            }
             SurfaceResult::Material(plastic(p))
         }
         Some(other) => SurfaceResult::Unknown(plastic(&[]), other.to_string()),
@@ -231,4 +239,80 @@ pub(crate) fn light(
         }
         other => LightResult::Unknown(other.to_string()),
     }
+}
+
+/// A string parameter of a shader, if given as one string.
+fn string<'p>(params: &'p [Param], name: &str) -> Option<&'p str> {
+    params.iter().find(|p| p.name == name).and_then(|p| match p.strings() {
+        Some([s]) => Some(s.as_str()),
+        _ => None,
+    })
+}
+
+/// Look development of a primitive from its shaders: `paintedplastic`'s `texturename` as a
+/// colour map (sRGB, periodic, over the surface's `(u, v)` scaled by `TextureCoordinates`'
+/// `repeat`), and the standard displacement
+/// shader `bumpy` (`P += Km * texture(texturename) * normalize(N)`, the map read as linear
+/// data) as true displacement with the block's `displacementbound`. `resolve` turns a
+/// texture name into a file name (relative to the RIB file). Other displacement shaders
+/// are unknown: reported through `unknown`, and no displacement.
+pub(crate) fn lookdev(
+    surface: &SurfaceShader,
+    displacement: &SurfaceShader,
+    bound: Option<f32>,
+    repeat: (f32, f32),
+    resolve: impl Fn(&str, &Location) -> String,
+    warnings: &mut Vec<Warning>,
+    report: bool,
+) -> Result<(Maps, Option<Displacement>), String> {
+    let map = |file: String, color_space| TextureMap {
+        file,
+        color_space,
+        wrap: Default::default(),
+        repeat,
+        width: 1.0,
+    };
+    let mut maps = Maps::default();
+    if surface.name.as_deref() == Some("paintedplastic")
+        && let (Some(name), Some(at)) = (string(&surface.params, "texturename"), &surface.at)
+        && !name.is_empty()
+    {
+        maps.color = Some(map(resolve(name, at), ColorSpace::Srgb));
+    }
+    let displace = match (displacement.name.as_deref(), &displacement.at) {
+        (Some("bumpy"), Some(at)) => {
+            if report {
+                let numbers: Vec<Param> = displacement
+                    .params
+                    .iter()
+                    .filter(|q| q.name != "texturename")
+                    .cloned()
+                    .collect();
+                unused("bumpy", &numbers, &[("Km", 1)], at, warnings);
+            }
+            let km = float(&displacement.params, "Km").unwrap_or(1.0);
+            match string(&displacement.params, "texturename").filter(|n| !n.is_empty()) {
+                Some(name) => Some(Displacement {
+                    source: Scalar::Texture(map(resolve(name, at), ColorSpace::Linear)),
+                    amount: km,
+                    center: 0.0,
+                    bound,
+                }),
+                None => {
+                    if report {
+                        warnings.push(Warning {
+                            at: at.clone(),
+                            message:
+                                "bumpy: no \"texturename\": displaces by 0 (texture(\"\") is 0)"
+                                    .into(),
+                        });
+                    }
+                    None
+                }
+            }
+        }
+        (Some(other), _) => return Err(other.to_string()),
+        (None, _) => None,
+    };
+    Ok((maps, displace))
 }

@@ -120,6 +120,17 @@ pub(crate) struct SurfaceShader {
     pub at: Option<Location>,
 }
 
+impl SurfaceShader {
+    /// The shader a `Surface` or `Displacement` request names, with its parameters.
+    pub(crate) fn of(r: &crate::Request) -> SurfaceShader {
+        SurfaceShader {
+            name: Some(r.string(0).unwrap_or_default().to_string()),
+            params: r.params.clone(),
+            at: Some(r.at.clone()),
+        }
+    }
+}
+
 /// The attributes of the current block (Spec 3.2, 4.2).
 #[derive(Debug, Clone)]
 pub(crate) struct Attributes {
@@ -137,6 +148,12 @@ pub(crate) struct Attributes {
     pub lights_on: Vec<usize>,
     /// `Basis` for bicubic patches: `(u basis, u step, v basis, v step)`.
     pub basis: (Basis, u32, Basis, u32),
+    /// The `Displacement` shader (its name None: none).
+    pub displacement: SurfaceShader,
+    /// `Attribute "displacementbound" "sphere"`, when given.
+    pub displacement_bound: Option<f32>,
+    /// `TextureCoordinates` as a scale: `s = repeat.0 u`, `t = repeat.1 v`.
+    pub repeat: (f32, f32),
 }
 
 impl Default for Attributes {
@@ -153,6 +170,9 @@ impl Default for Attributes {
             name: None,
             lights_on: Vec::new(),
             basis: (Basis::Bezier, 3, Basis::Bezier, 3),
+            displacement: SurfaceShader { name: None, params: Vec::new(), at: None },
+            displacement_bound: None,
+            repeat: (1.0, 1.0),
         }
     }
 }

@@ -4,6 +4,7 @@
 
 mod deep;
 mod errors;
+mod lookdev;
 mod mapping;
 mod peers;
 mod renderman;

@@ -1,7 +1,7 @@
 //! Surface materials: [`Material`].
 //!
-//! Invariant: colours and opacities are per channel, in [0, 1] once validated; the
-//! coefficients default as in RenderMan's shaders.
+//! Invariant: colours and opacities are per channel, in [0, 1] once validated (a Constant's
+//! colour only non-negative, unbounded); the coefficients default as in RenderMan's shaders.
 
 use serde::{Deserialize, Serialize};
 
@@ -13,7 +13,7 @@ use super::{Rgb, one, white};
 pub enum Material {
     /// Unlit colour.
     Constant {
-        /// Colour.
+        /// Colour: the light the surface sends (>= 0, unbounded: above 1 it glows).
         color: Rgb,
         /// Opacity per channel.
         #[serde(default = "white")]

@@ -16,6 +16,7 @@ mod camera;
 mod faces;
 mod hider;
 mod light;
+mod lookdev;
 mod material;
 mod object;
 mod output;
@@ -27,6 +28,7 @@ pub use camera::*;
 pub use faces::{FaceIter, Faces};
 pub use hider::*;
 pub use light::*;
+pub use lookdev::*;
 pub use material::*;
 pub use object::*;
 pub use output::*;
@@ -68,6 +70,9 @@ pub struct Scene {
     /// compression, the background depth, the PNG view transform (docs/outputs.md).
     #[serde(default)]
     pub outputs: Outputs,
+    /// The texture cache's memory bound (docs/lookdev.md).
+    #[serde(default)]
+    pub texture_cache: TextureCache,
 }
 
 impl Scene {
@@ -87,6 +92,45 @@ impl Scene {
                 .objects
                 .iter()
                 .any(|o| o.reflect.is_some() || o.refract.is_some() || o.pattern.is_some())
+    }
+}
+
+impl Scene {
+    /// Every texture map of the scene, in object order, then the order of the fields
+    /// (maps, displacement, bump), for setting up and for resolving file names.
+    pub fn texture_maps_mut(&mut self) -> impl Iterator<Item = &mut TextureMap> {
+        self.objects.iter_mut().flat_map(|o| {
+            let Maps { color, opacity, roughness, specular } = &mut o.maps;
+            let displace = o.displacement.as_mut().and_then(|d| match &mut d.source {
+                Scalar::Texture(m) => Some(m),
+                _ => None,
+            });
+            let bump = o.bump.as_mut().and_then(|b| match &mut b.source {
+                Scalar::Texture(m) => Some(m),
+                _ => None,
+            });
+            [
+                color.as_mut(),
+                opacity.as_mut(),
+                roughness.as_mut(),
+                specular.as_mut(),
+                displace,
+                bump,
+            ]
+            .into_iter()
+            .flatten()
+        })
+    }
+
+    /// True if some object has a texture map, displacement, bump or emission (the look
+    /// development of docs/lookdev.md).
+    pub fn has_lookdev(&self) -> bool {
+        self.objects.iter().any(|o| {
+            !o.maps.is_empty()
+                || o.displacement.is_some()
+                || o.bump.is_some()
+                || o.emission.is_some()
+        })
     }
 }
 

@@ -6,7 +6,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{Material, Rgb, Shape, Transform, V3, default_up, white};
+use super::{Bump, Displacement, Maps, Material, Rgb, Shape, Transform, V3, default_up, white};
 
 /// A geometric object.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -72,6 +72,21 @@ pub struct Object {
     /// `None`: every light of the scene.
     #[serde(default)]
     pub lights: Option<Vec<u32>>,
+    /// Texture maps modulating the material's colour, opacity, roughness and specular
+    /// coefficient (docs/lookdev.md).
+    #[serde(default, skip_serializing_if = "Maps::is_empty")]
+    pub maps: Maps,
+    /// True micropolygon displacement.
+    #[serde(default)]
+    pub displacement: Option<Displacement>,
+    /// Bump mapping (normals only).
+    #[serde(default)]
+    pub bump: Option<Bump>,
+    /// Light the surface emits (linear RGB, each channel >= 0 and unbounded): added to its
+    /// shaded colour, premultiplied by its opacity, whatever the lights. A lamp card glows
+    /// with `emission: (4.0, 3.5, 2.5)`; values above 1 reach an EXR unclamped.
+    #[serde(default)]
+    pub emission: Option<Rgb>,
 }
 
 impl Object {
@@ -110,6 +125,10 @@ impl Object {
             shading_rate: None,
             flatness: None,
             lights: None,
+            maps: Maps::default(),
+            displacement: None,
+            bump: None,
+            emission: None,
         }
     }
 

@@ -1,16 +1,18 @@
-//! The rules of a surface [`Material`]: colours and opacities in [0, 1], coefficients
-//! non-negative, roughness positive, in field order.
+//! The rules of a surface [`Material`]: colours and opacities in [0, 1] (a Constant's colour
+//! only non-negative, unbounded: it is emitted light), coefficients non-negative, roughness
+//! positive, in field order.
 //!
 //! Invariant: reports under the material's path (`objects[i].material`).
 
-use super::primitives::{Check, non_negative, positive, unit_rgb};
+use super::primitives::{Check, light_rgb, non_negative, positive, unit_rgb};
 use crate::model::Material;
 
 pub(super) fn material(at: &str, m: &Material) -> Check {
     let field = |name: &str| format!("{at}.{name}");
     match m {
         Material::Constant { color, opacity } => {
-            unit_rgb(&field("color"), color)?;
+            // Unlit: its colour is the light it sends, and may exceed 1 (a lamp card).
+            light_rgb(&field("color"), color)?;
             unit_rgb(&field("opacity"), opacity)
         }
         Material::Matte { color, opacity, ka, kd } => {

@@ -1,7 +1,7 @@
 //! Semantic validation of a deserialised [`Scene`]: ranges, finiteness and consistency.
 //!
 //! Invariants: checks run in a fixed order (image, camera, hider, lights, objects, solids,
-//! raytrace, outputs, each in field order) and stop at the first failure, so the reported error is stable; each failure
+//! raytrace, outputs, texture cache, each in field order) and stop at the first failure, so the reported error is stable; each failure
 //! names the path of the offending value as the source map spells it (`objects[0].shape.radius`).
 //! Every `f32` is checked finite before any range test on it. No check can panic: geometric
 //! tests are done in `f64`, where products of finite `f32`s cannot overflow.
@@ -32,6 +32,7 @@ mod camera;
 mod hider;
 mod keys;
 mod light;
+mod lookdev;
 mod material;
 mod object;
 mod output;
@@ -70,5 +71,6 @@ fn check_scene(scene: &Scene) -> Check {
     }
     solid::solids(scene)?;
     raytrace::raytrace(&scene.raytrace, scene)?;
-    output::outputs(&scene.outputs, scene)
+    output::outputs(&scene.outputs, scene)?;
+    lookdev::scene(scene)
 }

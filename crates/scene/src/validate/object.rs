@@ -1,6 +1,6 @@
 //! The rules of one object, in field order: shape, transforms, material, motion and
 //! deformation keys, glass, reflection, refraction, pattern, a rolling ball, then its shading
-//! rate and light set.
+//! rate and light set, then its look development (`lookdev`).
 //!
 //! Invariant: every check reports under the object's own path (`objects[i]`); the shape and
 //! transforms are valid before any motion key is judged against them.
@@ -48,7 +48,7 @@ pub(super) fn object(at: &str, object: &Object, shutter: &Shutter, lights: usize
     if let Some(set) = &object.lights {
         light_set(&format!("{at}.lights"), set, lights)?;
     }
-    Ok(())
+    super::lookdev::lookdev(at, object)
 }
 
 /// A light set: every index names one of the scene's `count` lights, none twice.

@@ -158,6 +158,12 @@ pub(super) fn unit_rgb(path: &str, rgb: &Rgb) -> Check {
     each(path, rgb, |p, v| within(p, v, UNIT, ""))
 }
 
+/// A colour of light (an unlit surface's, an emission): every channel finite and >= 0,
+/// unbounded above (values above 1 glow, and reach an EXR unclamped).
+pub(super) fn light_rgb(path: &str, rgb: &Rgb) -> Check {
+    each(path, rgb, non_negative)
+}
+
 /// Every component finite, and not all zero.
 pub(super) fn nonzero_vector(path: &str, v: &V3) -> Check {
     finite_all(path, v)?;

@@ -9,6 +9,7 @@ mod common;
 
 mod hider;
 mod lights;
+mod lookdev;
 mod objects;
 mod shapes;
 mod solids;
@@ -52,6 +53,7 @@ const FAMILIES: &[&[Case]] = &[
     shapes::CASES,
     objects::CASES,
     solids::CASES,
+    lookdev::CASES,
 ];
 
 /// Every case of every family.

@@ -53,7 +53,7 @@ pub(crate) const CASES: &[Case] = &[
     Case { name: "metal ks negative", from: "Matte(color: (0.8, 0.1, 0.1))", to: "Metal(color: (0.8, 0.1, 0.1), ks: -0.5)", field: "objects[0].material.ks", at: Some((7, 92)) },
     Case { name: "metal with kd", from: "Matte(color: (0.8, 0.1, 0.1))", to: "Metal(color: (0.8, 0.1, 0.1), kd: 0.5)", field: "objects[0].material.kd", at: Some((7, 88)) },
     // Added with the hardening of #20.
-    Case { name: "constant colour above 1", from: "Matte(color: (0.8, 0.1, 0.1))", to: "Constant(color: (0.8, 1.5, 0.1))", field: "objects[0].material.color[1]", at: Some((7, 80)) },
+    Case { name: "constant colour negative", from: "Matte(color: (0.8, 0.1, 0.1))", to: "Constant(color: (0.8, -1.5, 0.1))", field: "objects[0].material.color[1]", at: Some((7, 80)) },
     Case { name: "constant opacity NaN", from: "Matte(color: (0.8, 0.1, 0.1))", to: "Constant(color: (0.8, 0.1, 0.1), opacity: (1.0, NaN, 1.0))", field: "objects[0].material.opacity[1]", at: Some((7, 106)) },
     Case { name: "constant with kd", from: "Matte(color: (0.8, 0.1, 0.1))", to: "Constant(color: (0.8, 0.1, 0.1), kd: 1.0)", field: "objects[0].material.kd", at: Some((7, 91)) },
     Case { name: "matte ka NaN", from: "Matte(color: (0.8, 0.1, 0.1))", to: "Matte(color: (0.8, 0.1, 0.1), ka: NaN)", field: "objects[0].material.ka", at: Some((7, 92)) },

@@ -91,6 +91,7 @@ pub fn floor_point(object: u32, x: f32, z: f32, time: f32) -> SurfacePoint {
         tint: Vec3::ONE,
         from: Vec3::new(0.0, 20.0, -20.0),
         time,
+        looked: reyes_dice::Looked::NONE,
     }
 }
 

@@ -39,6 +39,7 @@ fn local_illumination_is_the_dicers_bit_for_bit() {
                 tint,
                 from: eye,
                 time: 0.5,
+                looked: reyes_dice::Looked::NONE,
             };
             let got = shading.shade_surface(&at, &mut Strata::new(0, 0, 0, 1));
             assert_eq!(got, shader.shade(p, n, tint), "object {k}, point {i}");

@@ -115,6 +115,7 @@ fn metal_shades_as_the_dicers_metal_and_its_formula() {
             tint: Vec3::ONE,
             from: eye,
             time: 0.5,
+            looked: reyes_dice::Looked::NONE,
         };
         let got = shading.shade_surface(&at, &mut Strata::new(0, 0, 0, 1));
         assert_eq!(got, shader.shade(p, n, Vec3::ONE), "point {i}");
@@ -136,6 +137,7 @@ fn metal_shades_as_the_dicers_metal_and_its_formula() {
         tint: Vec3::ONE,
         from: Vec3::new(0.0, 0.0, -10.0),
         time: 0.0,
+        looked: reyes_dice::Looked::NONE,
     };
     let (c, trans) = shading.shade_surface(&at, &mut Strata::new(0, 0, 0, 1));
     // Ci = Os * Cs * (Ka * ambient + Ks * Cl * 1^(8/roughness)).
@@ -271,6 +273,7 @@ fn ray_traced_vertices_under_an_orthographic_camera_are_seen_along_the_view() {
             n_world: Vec3::NEG_Z,
             p_object: p,
             tint: Vec3::ONE,
+            looked: reyes_dice::Looked::NONE,
         };
         let (c, _) = VertexShader::shade(&vertex, &ctx);
         assert!((c[0] - 1.0).abs() < 1e-5, "({x}, {y}): the peak of the highlight, {c:?}");
