@@ -52,7 +52,10 @@ pub fn hider_config(scene: &Scene, camera: &CameraSetup) -> HiderConfig {
         original_moving_clip: h.original.moving_clip,
         matte: if h.original.matte { MatteRule::Original } else { MatteRule::Holdout },
         csg_order: if h.original.csg_order { CsgOrder::Original } else { CsgOrder::Exact },
-        original_linear_motion: h.original.linear_motion,
+        // An orthographic projection is affine: a path linear in camera space is linear in
+        // raster, so the perspective warp (`ALPHABETA`) would bend a straight path.
+        original_linear_motion: h.original.linear_motion
+            || scene.camera.projection == reyes_scene::Projection::Orthographic,
         adaptive: (h.adaptive.max_level > 0).then_some(reyes_hider::Adaptive {
             max_level: h.adaptive.max_level,
             threshold: h.adaptive.threshold,

@@ -258,3 +258,30 @@ fn an_objects_shading_rate_sets_its_micropolygon_count() {
     let ratio = fine / base;
     assert!((3.2..=4.0).contains(&ratio), "a quarter of the rate: {ratio:.2}x micropolygons");
 }
+
+/// Under an orthographic camera a point moving linearly in camera space moves linearly in
+/// raster (the projection is affine), so a ball moving across and away from the camera
+/// must render exactly as with the hider's straight-line motion
+/// (`hider.original.linear_motion`), bit for bit: the perspective-correct warp, which
+/// weights a vertex's raster displacement by its depth ratio, is for perspective cameras.
+#[test]
+fn orthographic_motion_is_straight_in_raster() {
+    let scene = |linear: bool| {
+        parse(&format!(
+            "Scene(image: (width: 64, height: 64),
+               camera: (eye: (0.0, 0.0, 0.0), look_at: (0.0, 0.0, 1.0), projection: Orthographic,
+                        hither: 0.1, yon: 100.0, shutter: (open: 0.0, close: 1.0)),
+               hider: (pixel_samples: (4, 4), seed: 7, original: (linear_motion: {linear})),
+               objects: [(shape: Sphere(radius: 0.4),
+                          motion: [(time: 0.0, transform: [Translate((-0.5, 0.0, 2.0))]),
+                                   (time: 1.0, transform: [Translate((0.5, 0.2, 9.0))])],
+                          material: Constant(color: (1.0, 1.0, 1.0)))])"
+        ))
+    };
+    let (warped, straight) = (film(&scene(false)), film(&scene(true)));
+    assert_eq!(
+        warped.rgba(),
+        straight.rgba(),
+        "the default path bends under an orthographic camera"
+    );
+}
