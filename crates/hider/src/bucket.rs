@@ -123,6 +123,21 @@ struct Surface<'a> {
     crossing: bool,
 }
 
+impl<'a> Surface<'a> {
+    /// Micropolygon `mp` (number `index` in the bucket's list) with the depth range of the
+    /// bound `lo..hi`.
+    #[inline]
+    fn new(mp: &'a Micropolygon, index: u32, lo: &[f32; 3], hi: &[f32; 3]) -> Surface<'a> {
+        Surface {
+            mp,
+            index,
+            zmin: lo[2],
+            zmax: hi[2],
+            crossing: mp.has(flags::HITHER_YON_CROSSING),
+        }
+    }
+}
+
 /// One sample as paths D and M read it: position less the lens's depth-independent shift
 /// (`x - lx * Dof_b`, or `x` for a pinhole), lens shift at depth 1 (`lx * Dof_a`), time and
 /// list index `pixel*NS + s` — exactly the values the paths would compute from
@@ -318,13 +333,7 @@ impl Hider {
             }
             let (lo, hi) = bound(&vertex);
 
-            let surface_z = |lo: [f32; 3], hi: [f32; 3]| Surface {
-                mp,
-                index: m,
-                zmin: lo[2],
-                zmax: hi[2],
-                crossing: mp.has(flags::HITHER_YON_CROSSING),
-            };
+            let surface_z = |lo: [f32; 3], hi: [f32; 3]| Surface::new(mp, m, &lo, &hi);
             if mp.has(flags::MOVING) || !mp.whole_shutter() {
                 b.path_moving(mp, m, &vertex, lo, hi);
             } else if self.config.lens.is_some() {
@@ -588,13 +597,7 @@ impl Bucket<'_> {
         // z range over the whole segment: the visible points' depth range.
         lo[2] += slo[2].min(0.0);
         hi[2] += shi[2].max(0.0);
-        let surf = Surface {
-            mp,
-            index,
-            zmin: lo[2],
-            zmax: hi[2],
-            crossing: mp.has(flags::HITHER_YON_CROSSING),
-        };
+        let surf = Surface::new(mp, index, &lo, &hi);
         let lens = hider.config.lens;
         if let Some(l) = &lens {
             l.grow(&mut lo, &mut hi, hider.config.hither, hider.config.yon);

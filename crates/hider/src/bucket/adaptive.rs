@@ -259,13 +259,7 @@ impl Hider {
                 hi[a] = hi[a].max(ehi[a]);
             }
         }
-        let surf = Surface {
-            mp,
-            index,
-            zmin: lo[2],
-            zmax: hi[2],
-            crossing: mp.has(flags::HITHER_YON_CROSSING),
-        };
+        let surf = Surface::new(mp, index, &lo, &hi);
         let lens = self.config.lens;
         if let Some(l) = &lens {
             l.grow(&mut lo, &mut hi, self.config.hither, self.config.yon);
