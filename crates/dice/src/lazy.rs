@@ -196,7 +196,8 @@ impl<'a> Dicer<'a> {
         let shutter = ShutterTime::new(&scene.camera.shutter);
         let hider = &scene.hider;
         let splitter = Splitter::new(&camera, frame, hider.shading_rate, hider.max_grid_size)
-            .with_flatness(hider.flatness, hider.relative_flatness);
+            .with_flatness(hider.flatness, hider.relative_flatness)
+            .with_blur_factors(hider.motion_factor, hider.focus_factor);
         let bucketer = Bucketer::new(frame, camera.lens(), camera.hither(), camera.yon());
         let csg = CsgSetup::new(scene);
         let rows = frame.buckets_y as usize;
@@ -264,13 +265,22 @@ impl<'a> Dicer<'a> {
             // own rate and accuracy.
             let rate = object.shading_rate.filter(|&rate| rate != hider.shading_rate);
             let flatness = object.flatness.filter(|&f| f != hider.flatness);
+            // So are GeometricApproximation's motionfactor and focusfactor.
+            let motion_factor = object.motion_factor.filter(|&f| f != hider.motion_factor);
+            let focus_factor = object.focus_factor.filter(|&f| f != hider.focus_factor);
+            let blur = motion_factor.is_some() || focus_factor.is_some();
             // Displacement: bounds grow by the most a point can move, in camera space.
             let displace = reach * motion.largest_scale();
-            let splitter = (rate.is_some() || flatness.is_some() || displace > 0.0).then(|| {
+            let own = rate.is_some() || flatness.is_some() || blur || displace > 0.0;
+            let splitter = own.then(|| {
                 dicer
                     .splitter
                     .with_shading_rate(rate.unwrap_or(hider.shading_rate))
                     .with_flatness(flatness.unwrap_or(hider.flatness), hider.relative_flatness)
+                    .with_blur_factors(
+                        motion_factor.unwrap_or(hider.motion_factor),
+                        focus_factor.unwrap_or(hider.focus_factor),
+                    )
                     .with_displacement(displace)
             });
             let decide = splitter.as_ref().unwrap_or(&dicer.splitter);

@@ -173,6 +173,10 @@ pub(crate) struct Splitter {
     /// Displacement (crate::displace): the most a point of the surface may move, in camera
     /// space; bounds grow by it (0: no displacement).
     displace: f32,
+    /// Motion- and focus-aware dicing ([`Splitter::with_blur_factors`]): the factors on a
+    /// patch's motion and defocus blur in pixels (0: off).
+    motion_factor: f32,
+    focus_factor: f32,
 }
 
 /// The test grid of a patch: camera-space points, row `j` (v) by column `i` (u).
@@ -232,6 +236,8 @@ impl Splitter {
             flatness: 0.0,
             relative_flatness: 0.0,
             displace: 0.0,
+            motion_factor: 0.0,
+            focus_factor: 0.0,
         }
     }
 
@@ -566,8 +572,11 @@ impl Splitter {
             len_u = len_u.min(OFF_SCREEN_GROWTH * on_u);
             len_v = len_v.min(OFF_SCREEN_GROWTH * on_v);
         }
+        // The micropolygon side, grown for a blurred patch (exactly `step` with the motion
+        // and focus factors off).
+        let step = self.step * self.blur_step_scale(facts);
         let count =
-            |len: f32| ((f64::from(len) / f64::from(self.step)).ceil()).clamp(1.0, MAX_SIDE) as u64;
+            |len: f32| ((f64::from(len) / f64::from(step)).ceil()).clamp(1.0, MAX_SIDE) as u64;
         let (shade_u, shade_v) = (count(len_u), count(len_v));
         // The flatness rule, from the breakpoints the lengths came from.
         let measured = if !on_screen.is_empty() { &on_screen[..] } else { facts };
@@ -658,6 +667,7 @@ fn clamp_grid(nu: u64, nv: u64, max: u64) -> (u32, u32) {
     (nu2 as u32, nv2 as u32)
 }
 
+mod blur;
 mod flat;
 
 #[cfg(test)]

@@ -75,6 +75,8 @@ fn the_full_example_parses_with_the_expected_values() {
             max_grid_size: 256,
             flatness: 0.05,
             relative_flatness: 1.0 / 512.0,
+            motion_factor: 0.0,
+            focus_factor: 0.0,
             cull_back_faces: false,
             adaptive: reyes_scene::Adaptive::default(),
             original: Original::default(),

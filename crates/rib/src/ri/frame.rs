@@ -316,6 +316,16 @@ impl Machine {
                         return Err(r.error(format!("flatness must be >= 0, got {value}")));
                     }
                     self.attributes.flatness = Some(value);
+                } else if kind.eq_ignore_ascii_case("motionfactor") {
+                    if value < 0.0 {
+                        return Err(r.error(format!("motionfactor must be >= 0, got {value}")));
+                    }
+                    self.attributes.motion_factor = Some(value);
+                } else if kind.eq_ignore_ascii_case("focusfactor") {
+                    if value < 0.0 {
+                        return Err(r.error(format!("focusfactor must be >= 0, got {value}")));
+                    }
+                    self.attributes.focus_factor = Some(value);
                 } else {
                     let w = r.warning(format!("\"{kind}\" is not supported: ignored"));
                     self.warn_once(format!("geometric approximation {kind}"), w);

@@ -146,6 +146,8 @@ impl Machine {
         let attributes =
             ObjectAttributes { shading_rate: a.shading_rate, lights: a.lights_on.clone() };
         object.flatness = a.flatness;
+        object.motion_factor = a.motion_factor;
+        object.focus_factor = a.focus_factor;
         if a.sides == 1 {
             let w = r.warning("Sides 1 is not supported yet: the primitive is two-sided");
             self.warn_once("sides 1", w);

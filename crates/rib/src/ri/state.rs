@@ -140,6 +140,10 @@ pub(crate) struct Attributes {
     pub shading_rate: f32,
     /// `GeometricApproximation "flatness"`, when given (else the model's default).
     pub flatness: Option<f32>,
+    /// `GeometricApproximation "motionfactor"` and `"focusfactor"`, when given (else the
+    /// model's default, off).
+    pub motion_factor: Option<f32>,
+    pub focus_factor: Option<f32>,
     pub sides: i32,
     pub reverse_orientation: bool,
     pub matte: bool,
@@ -164,6 +168,8 @@ impl Default for Attributes {
             surface: SurfaceShader { name: None, params: Vec::new(), at: None },
             shading_rate: 1.0,
             flatness: None,
+            motion_factor: None,
+            focus_factor: None,
             sides: 2,
             reverse_orientation: false,
             matte: false,

@@ -102,6 +102,23 @@ fn geometric_approximation_flatness_is_per_object() {
     assert_eq!(flatness, [None, Some(0.5), Some(0.5), None]);
 }
 
+#[test]
+fn geometric_approximation_motion_and_focus_factors_are_per_object() {
+    let s = scene(&world(
+        "Sphere 1 -1 1 360
+         AttributeBegin
+           GeometricApproximation \"motionfactor\" 1
+           Sphere 1 -1 1 360
+           GeometricApproximation \"FocusFactor\" 2.5
+           Sphere 1 -1 1 360
+         AttributeEnd
+         Sphere 1 -1 1 360",
+    ));
+    let factors: Vec<(Option<f32>, Option<f32>)> =
+        s.objects.iter().map(|o| (o.motion_factor, o.focus_factor)).collect();
+    assert_eq!(factors, [(None, None), (Some(1.0), None), (Some(1.0), Some(2.5)), (None, None)]);
+}
+
 /// `U M G M^T V^T` of the Specification at `(u, v)`, written out for one coordinate: `m` as
 /// RtBasis stores it (rows), `g` the 4 x 4 control values, `g[j][i]` at u-index i, v-index j.
 fn spec_patch(m: &[[f64; 4]; 4], g: &[[f64; 4]; 4], u: f64, v: f64) -> f64 {

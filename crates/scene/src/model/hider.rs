@@ -38,6 +38,15 @@ pub struct Hider {
     /// smaller of the two holds. What keeps small objects their true size: at 1/512 a disk's
     /// polygon loses at most about 0.5% of its area, however small the disk.
     pub relative_flatness: f32,
+    /// Motion-aware dicing, RenderMan's `GeometricApproximation "motionfactor"` (>= 0; 0, the
+    /// default, is off): a patch that moves `B` pixels over the shutter is diced at the
+    /// shading rate times `1 + motion_factor * B / 16` (docs/geometry.md). The scene's value;
+    /// an object may give its own.
+    pub motion_factor: f32,
+    /// Focus-aware dicing, RenderMan's `GeometricApproximation "focusfactor"` (>= 0; 0 is
+    /// off): a patch whose circle of confusion is `C` pixels across is diced at the shading
+    /// rate times `1 + focus_factor * C / 16`. The scene's value; an object may give its own.
+    pub focus_factor: f32,
     /// Drop back-facing micropolygons of closed, opaque objects (RenderMan's `Sides 1`;
     /// pinhole cameras only): about half the micropolygons and sample tests of a scene of
     /// balls. Off by default, because the back faces also fill the cracks between grids
@@ -86,6 +95,8 @@ impl Default for Hider {
             max_grid_size: 256,
             flatness: 0.05,
             relative_flatness: 1.0 / 512.0,
+            motion_factor: 0.0,
+            focus_factor: 0.0,
             cull_back_faces: false,
             adaptive: Adaptive::default(),
             original: Original::default(),

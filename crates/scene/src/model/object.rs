@@ -67,6 +67,16 @@ pub struct Object {
     /// `hider.flatness`.
     #[serde(default)]
     pub flatness: Option<f32>,
+    /// RenderMan's `GeometricApproximation "motionfactor"` as an attribute of this object
+    /// (>= 0; 0 is off): coarser dicing in proportion to its motion blur in pixels. `None`:
+    /// the scene's `hider.motion_factor`.
+    #[serde(default)]
+    pub motion_factor: Option<f32>,
+    /// RenderMan's `GeometricApproximation "focusfactor"` as an attribute of this object
+    /// (>= 0; 0 is off): coarser dicing in proportion to its depth-of-field blur in pixels.
+    /// `None`: the scene's `hider.focus_factor`.
+    #[serde(default)]
+    pub focus_factor: Option<f32>,
     /// The lights that illuminate this object (RenderMan's `Illuminate` and attribute-scoped
     /// lights): indices into `Scene::lights`, each at most once, ambient lights included.
     /// `None`: every light of the scene.
@@ -124,6 +134,8 @@ impl Object {
             roll: None,
             shading_rate: None,
             flatness: None,
+            motion_factor: None,
+            focus_factor: None,
             lights: None,
             maps: Maps::default(),
             displacement: None,

@@ -40,6 +40,8 @@ pub(super) fn hider(h: &Hider, scene: &Scene) -> Check {
     }
     non_negative("hider.flatness", h.flatness)?;
     within("hider.relative_flatness", h.relative_flatness, UNIT, "")?;
+    non_negative("hider.motion_factor", h.motion_factor)?;
+    non_negative("hider.focus_factor", h.focus_factor)?;
     Ok(())
 }
 

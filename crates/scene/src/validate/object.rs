@@ -45,6 +45,12 @@ pub(super) fn object(at: &str, object: &Object, shutter: &Shutter, lights: usize
     if let Some(flatness) = object.flatness {
         non_negative(&format!("{at}.flatness"), flatness)?;
     }
+    if let Some(factor) = object.motion_factor {
+        non_negative(&format!("{at}.motion_factor"), factor)?;
+    }
+    if let Some(factor) = object.focus_factor {
+        non_negative(&format!("{at}.focus_factor"), factor)?;
+    }
     if let Some(set) = &object.lights {
         light_set(&format!("{at}.lights"), set, lights)?;
     }

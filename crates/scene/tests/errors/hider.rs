@@ -22,6 +22,10 @@ pub(crate) const CASES: &[Case] = &[
     Case { name: "flatness negative", from: "(4, 4),", to: "(4, 4), flatness: -0.1,", field: "hider.flatness", at: Some((4, 44)) },
     Case { name: "flatness NaN", from: "(4, 4),", to: "(4, 4), flatness: NaN,", field: "hider.flatness", at: Some((4, 44)) },
     Case { name: "relative flatness above 1", from: "(4, 4),", to: "(4, 4), relative_flatness: 2.0,", field: "hider.relative_flatness", at: Some((4, 53)) },
+    Case { name: "motion factor negative", from: "(4, 4),", to: "(4, 4), motion_factor: -1.0,", field: "hider.motion_factor", at: Some((4, 49)) },
+    Case { name: "motion factor NaN", from: "(4, 4),", to: "(4, 4), motion_factor: NaN,", field: "hider.motion_factor", at: Some((4, 49)) },
+    Case { name: "focus factor negative", from: "(4, 4),", to: "(4, 4), focus_factor: -0.5,", field: "hider.focus_factor", at: Some((4, 48)) },
+    Case { name: "focus factor infinite", from: "(4, 4),", to: "(4, 4), focus_factor: inf,", field: "hider.focus_factor", at: Some((4, 48)) },
     Case { name: "max grid size 0", from: "(4, 4),", to: "(4, 4), max_grid_size: 0,", field: "hider.max_grid_size", at: Some((4, 49)) },
     // Added with the hardening of #20.
     Case { name: "jitter not a bool", from: "(4, 4),", to: "(4, 4), jitter: 1,", field: "hider.jitter", at: Some((4, 42)) },
