@@ -1,6 +1,7 @@
 //! `cargo xtask compare A.exr B.exr`: how closely two renders agree, as the peer comparison
 //! of `../shared/peers/README.md` measures it: PSNR over the whole image (values in 0..1,
 //! peak 1) of each of R, G, B and alpha, of RGB together, and each image's channel means.
+//! Also the RMS and the largest absolute difference of each channel.
 //! With `--diff OUT.png`, also how many pixels differ by more than 0.01 in some channel,
 //! and a picture of where: `|a - b|` times 10 per channel, alpha 1, to look at.
 
@@ -19,6 +20,20 @@ pub fn psnr(a: &Film, b: &Film, channels: &[usize]) -> f64 {
         }
     }
     10.0 * (n as f64 / se.max(1e-30)).log10()
+}
+
+/// Per channel (R, G, B, alpha): the RMS of `b - a` over every pixel, and the largest `|b - a|`.
+fn rms_max(a: &Film, b: &Film) -> ([f64; 4], [f64; 4]) {
+    let (mut se, mut max) = ([0.0f64; 4], [0.0f64; 4]);
+    for (p, q) in a.rgba().iter().zip(b.rgba()) {
+        for c in 0..4 {
+            let d = f64::from(p[c] - q[c]);
+            se[c] += d * d;
+            max[c] = max[c].max(d.abs());
+        }
+    }
+    let n = a.rgba().len().max(1) as f64;
+    (se.map(|v| (v / n).sqrt()), max)
 }
 
 fn means(f: &Film) -> [f64; 4] {
@@ -55,6 +70,11 @@ pub fn run(args: &[String]) -> Result<(), String> {
         psnr(&fa, &fb, &[2]),
         psnr(&fa, &fb, &[0, 1, 2]),
         psnr(&fa, &fb, &[3])
+    );
+    let (rms, max) = rms_max(&fa, &fb);
+    println!(
+        "RMS: R {:.5}, G {:.5}, B {:.5}, A {:.5}; max |a - b|: R {:.4}, G {:.4}, B {:.4}, A {:.4}",
+        rms[0], rms[1], rms[2], rms[3], max[0], max[1], max[2], max[3]
     );
     for (name, f) in [(a, &fa), (b, &fb)] {
         let m = means(f);
