@@ -28,7 +28,7 @@ use crate::hook::{VertexContext, VertexShader};
 use crate::lookdev::{At, Look, Looked};
 use crate::motion::{Placement, Pose};
 use crate::shade::Shader;
-use crate::split::Patch;
+use crate::split::{OVERLAP, Patch};
 
 /// A vertex shader from [`crate::DiceOptions`], with where the dicer is.
 #[derive(Clone, Copy)]
@@ -62,6 +62,9 @@ pub(crate) struct ObjectContext<'a> {
     pub aov: Option<(std::sync::Arc<VertexAovs>, [f32; 2])>,
     /// Texture maps, displacement, bump and emission ([`crate::lookdev`]).
     pub look: Option<Look>,
+    /// Push crack-free grids' boundary vertices out by [`OVERLAP`] (not for CSG operands,
+    /// for which a sample seeing a surface twice is as wrong as one seeing it not at all).
+    pub overlap: bool,
 }
 
 /// What every micropolygon of one object carries besides its geometry and colour.
@@ -255,6 +258,10 @@ pub(crate) struct Emitter<'b> {
     cull: Option<f32>,
     /// The camera, while emitting a grid that comes near the eye ([`Grid::cam`]).
     camera: Option<CameraSetup>,
+    /// The hider moves a micropolygon whose depth changes perspective-correctly (Appendix
+    /// A's `ALPHABETA`: straight in camera space), not linearly in raster: the back-face
+    /// test follows ([`Emitter::backfacing`]).
+    pub warp: bool,
 }
 
 impl<'b> Emitter<'b> {
@@ -287,6 +294,7 @@ impl<'b> Emitter<'b> {
             escaped: 0,
             cull: None,
             camera: None,
+            warp: false,
         }
     }
 
@@ -345,6 +353,9 @@ impl<'b> Emitter<'b> {
             object.look.as_ref().and_then(|l| displace::grid(l, poses, patch, (nu, nv)));
         self.escaped += displaced.as_ref().map_or(0, |d| d.escaped);
         let duv = [(patch.u[1] - patch.u[0]) / nu as f32, (patch.v[1] - patch.v[0]) / nv as f32];
+        let boundary = |b: usize, u: f32, v: f32, i: usize, j: usize| {
+            patch.sides.as_ref().and_then(|s| s.boundary(b, (u, v), (i, j), (nu, nv)))
+        };
         for (b, pose) in poses.iter().enumerate() {
             for j in 0..=nv {
                 let v = Patch::at(patch.v, j, nv);
@@ -360,6 +371,11 @@ impl<'b> Emitter<'b> {
                         // survives only in the vertex winding.
                         let mut sp = pose.surface.eval(u, v);
                         let vertex = j * (nu + 1) + i;
+                        // Crack-free dicing: a boundary vertex on its side's polyline (the
+                        // shading still sees the surface there).
+                        if let Some(p) = boundary(0, u, v, i, j) {
+                            sp.p = p;
+                        }
                         let looked = object.look.as_ref().map_or(Looked::NONE, |l| {
                             l.object.looked(&l.system, &At { uv: [u, v], duv, p_object: sp.p })
                         });
@@ -435,12 +451,18 @@ impl<'b> Emitter<'b> {
                             Some(d) => d.position(b, j * (nu + 1) + i),
                             None => None,
                         }
+                        .or_else(|| boundary(b, u, v, i, j))
                         .unwrap_or_else(|| pose.surface.position(u, v));
                         let p_camera = pose.moment.world_and_camera(p_object).1;
                         g.pos.push(project(p_camera));
                         g.cam.push(p_camera);
                     }
                 }
+            }
+        }
+        if object.overlap && patch.sides.is_some() {
+            for b in 0..poses.len() {
+                overlap(&mut self.grid.pos[b * count..(b + 1) * count], nu, nv);
             }
         }
         self.cull = if object.cull_back { self.calibrate(&cosines) } else { None };
@@ -508,9 +530,15 @@ impl<'b> Emitter<'b> {
     /// (no culling) when no cell qualifies.
     fn calibrate(&self, cosines: &[f32]) -> Option<f32> {
         let nu = self.grid.nu as usize;
-        let cells = self.grid.count as usize / (nu + 1) * nu - nu;
-        (0..cells as u32).find_map(|cell| {
-            let (i, j) = ((cell as usize) % nu, (cell as usize) / nu);
+        let nv = self.grid.count as usize / (nu + 1) - 1;
+        // Interior cells first: a crack-free grid's boundary vertices lie on its sides'
+        // polylines, a little off the surface whose normals `cosines` are.
+        let interior = (1..nv.saturating_sub(1)).flat_map(|j| (1..nu - 1).map(move |i| (i, j)));
+        let border = (0..nv)
+            .flat_map(|j| (0..nu).map(move |i| (i, j)))
+            .filter(|&(i, j)| i == 0 || j == 0 || i + 1 == nu || j + 1 == nv);
+        interior.chain(border).find_map(|(i, j)| {
+            let cell = (j * nu + i) as u32;
             let cos = *cosines.get(j * (nu + 1) + i)?;
             let q = self.grid.quad(cell, 0);
             let (area, scale) = corner_area(&q, 0);
@@ -528,8 +556,12 @@ impl<'b> Emitter<'b> {
     /// linearly as the hider moves them) faces away from the eye at every time, with a
     /// margin: every corner's signed area, `sign` times a quadratic in time, stays below
     /// `-WINDING_MARGIN` times the corner's edge lengths. A non-convex or nearly edge-on
-    /// micropolygon is kept.
-    fn backfacing(sign: f32, from: &Quad, to: Option<&Quad>) -> bool {
+    /// micropolygon is kept. Under the perspective warp (`warp`) a moving cell's corners are
+    /// tested as the hider moves them ([`corner_cubic_negative`]).
+    fn backfacing(sign: f32, from: &Quad, to: Option<&Quad>, warp: bool) -> bool {
+        if let (true, Some(to)) = (warp, to) {
+            return (0..4).all(|k| corner_cubic_negative(sign, from, to, k));
+        }
         let mid = to.map(|to| {
             let mut m = *from;
             for (p, q) in m.iter_mut().zip(to) {
@@ -661,7 +693,7 @@ impl<'b> Emitter<'b> {
             return;
         }
         if let Some(sign) = self.cull
-            && Self::backfacing(sign, from.1, to.map(|t| t.1))
+            && Self::backfacing(sign, from.1, to.map(|t| t.1), self.warp)
         {
             self.culled += 1;
             self.backfacing += 1;
@@ -710,8 +742,8 @@ fn corner_area(q: &Quad, k: usize) -> (f32, f32) {
     (area, scale)
 }
 
-/// Whether back faces of `object` may be culled (see [`ObjectContext::cull_back`]):
-/// a pinhole camera (under a lens a micropolygon turned away from the eye may face part
+/// Whether back faces of `object` may be culled (see [`ObjectContext::cull_back`]): it is
+/// one-sided (RenderMan's `Sides 1`), or they cannot be seen: a pinhole camera (under a lens a micropolygon turned away from the eye may face part
 /// of the lens), a closed surface (a full sphere or torus, a closed mesh), opaque, and not
 /// matte, glass or a CSG operand (CSG needs both sides: a difference shows the inside of
 /// its subtracted operand). Affine placements only: a projective matrix can turn a surface
@@ -733,12 +765,10 @@ pub(crate) fn cull_back_faces(
     } else {
         object.motion.iter().all(|k| affine(&k.transform))
     };
-    pinhole
-        && !csg_operand
-        && f & flags::OPAQUE != 0
+    let hidden = f & flags::OPAQUE != 0
         && f & (flags::MATTE | flags::GLASS) == 0
-        && closure(&object.shape) == Closure::Closed
-        && placements_affine
+        && closure(&object.shape) == Closure::Closed;
+    pinhole && !csg_operand && (hidden || object.one_sided) && placements_affine
 }
 
 /// Per-object setup: shading (under the object's light set, seen by `viewer`, with the object
@@ -777,5 +807,68 @@ pub(crate) fn object_context(
         cull_back: false,
         aov: None,
         look: None,
+        overlap: csg.is_none(),
     }
+}
+
+/// Push the boundary vertices of one breakpoint's raster positions `pos` (a grid of
+/// `nu x nv` cells) out of the grid by [`OVERLAP`] pixels, each away from its neighbour
+/// toward the inside (the diagonal one at a corner), so that two crack-free grids along a
+/// shared edge overlap by a sliver instead of leaving one of rounding width between them.
+fn overlap(pos: &mut [[f32; 3]], nu: usize, nv: usize) {
+    let at = |i: usize, j: usize| j * (nu + 1) + i;
+    let inward = |k: usize, n: usize| {
+        if k == 0 {
+            1.min(n)
+        } else if k == n {
+            n - 1
+        } else {
+            k
+        }
+    };
+    let mut moved = Vec::with_capacity(2 * (nu + nv));
+    for j in 0..=nv {
+        let edge_row = j == 0 || j == nv;
+        let step = if edge_row { 1 } else { nu.max(1) };
+        let mut i = 0;
+        while i <= nu {
+            let (p, q) = (pos[at(i, j)], pos[at(inward(i, nu), inward(j, nv))]);
+            let (dx, dy) = (p[0] - q[0], p[1] - q[1]);
+            let len = dx.hypot(dy);
+            if len > 0.0 && len.is_finite() {
+                let k = OVERLAP / len;
+                moved.push((at(i, j), [p[0] + k * dx, p[1] + k * dy]));
+            }
+            i += step;
+        }
+    }
+    for (c, [x, y]) in moved {
+        pos[c][0] = x;
+        pos[c][1] = y;
+    }
+}
+
+/// True if the corner `k` of a cell moving from quad `from` to quad `to` as the hider moves
+/// it under the perspective warp (straight in camera space: the homogeneous raster point
+/// `(x z, y z, z)` of each vertex moves linearly) keeps `sign * (signed area) <
+/// -WINDING_MARGIN * (edge lengths)` throughout. The signed area times the three depths is
+/// the determinant of the corner's three homogeneous points, a cubic in the time of the
+/// segment; it is below the margin throughout if its four Bernstein coefficients are.
+fn corner_cubic_negative(sign: f32, from: &Quad, to: &Quad, k: usize) -> bool {
+    let idx = [k, (k + 1) % 4, (k + 3) % 4];
+    let h = |q: &Quad| idx.map(|i| Vec3::new(q[i][0] * q[i][2], q[i][1] * q[i][2], q[i][2]));
+    let (a, b) = (h(from), h(to));
+    let det = |x: Vec3, y: Vec3, z: Vec3| x.dot(y.cross(z));
+    let bern = [
+        det(a[0], a[1], a[2]),
+        (det(b[0], a[1], a[2]) + det(a[0], b[1], a[2]) + det(a[0], a[1], b[2])) / 3.0,
+        (det(a[0], b[1], b[2]) + det(b[0], a[1], b[2]) + det(b[0], b[1], a[2])) / 3.0,
+        det(b[0], b[1], b[2]),
+    ];
+    let scale = |q: &Quad| {
+        let (_, s) = corner_area(q, k);
+        s * idx.iter().map(|&i| q[i][2]).product::<f32>()
+    };
+    let margin = -WINDING_MARGIN * scale(from).min(scale(to));
+    bern.iter().all(|&c| sign * c < margin)
 }

@@ -73,7 +73,7 @@ impl GridKey {
 }
 
 /// A patch waiting to be processed, with its decision (made when it was bounded).
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 struct Task {
     key: GridKey,
     patch: Patch,
@@ -144,6 +144,8 @@ pub struct Dicer<'a> {
     csg_trees: Vec<CsgTree>,
     /// Everything goes in row 0.
     eager: bool,
+    /// The hider moves micropolygons under the perspective warp ([`Emitter::warp`]).
+    warp: bool,
     /// Patches waiting for each bucket row.
     pending: Vec<Vec<Task>>,
     /// Grids alive (or released, with no micropolygons), and the free slots.
@@ -217,6 +219,8 @@ impl<'a> Dicer<'a> {
             objects: Vec::with_capacity(scene.objects.len()),
             csg_trees: Vec::new(),
             eager,
+            warp: !scene.hider.original.linear_motion
+                && scene.camera.projection == reyes_scene::Projection::Perspective,
             pending: vec![Vec::new(); rows],
             slots: Vec::new(),
             free: Vec::new(),
@@ -254,7 +258,7 @@ impl<'a> Dicer<'a> {
                 ctx.labels.flags &= !reyes_hider::flags::OPAQUE;
             }
             ctx.cull_back = reach == 0.0
-                && scene.hider.cull_back_faces
+                && (scene.hider.cull_back_faces || object.one_sided)
                 && dice::cull_back_faces(
                     object,
                     &ctx.labels,
@@ -284,11 +288,17 @@ impl<'a> Dicer<'a> {
                     .with_displacement(displace)
             });
             let decide = splitter.as_ref().unwrap_or(&dicer.splitter);
+            // Crack-free dicing needs boundary points the displacement would move apart.
+            let crack_free = scene.hider.crack_free && reach == 0.0;
+            // The back of a closed object shows through where hither cuts it open.
+            let mut beyond_hither = true;
             for surface in 0..motion.surface_count() {
                 dicer.stats.primitives += 1;
                 let poses = motion.poses(surface);
-                let root = Patch::root();
-                let patch = root.with_extent(decide.extent(&poses, &root));
+                beyond_hither &= decide.beyond_hither(&poses);
+                let root = if crack_free { decide.root_with_sides(&poses) } else { Patch::root() };
+                let extent = decide.extent(&poses, &root);
+                let patch = root.with_extent(extent);
                 let (decision, top) = decide.decide_bound(&poses, &patch);
                 if decision == Decision::Cull {
                     dicer.stats.patches_culled += 1;
@@ -298,6 +308,7 @@ impl<'a> Dicer<'a> {
                 let row = dicer.row_of(top, 0);
                 dicer.pending[row as usize].push(Task { key, patch, decision });
             }
+            ctx.cull_back &= beyond_hither || object.one_sided;
             dicer.objects.push(Some(ObjectSetup { motion, ctx, splitter }));
         }
         dicer.csg_trees = csg.trees;
@@ -492,10 +503,11 @@ impl<'a> Dicer<'a> {
                 out.stats.splits += 1;
                 out.stats.hither_splits += u64::from(hither);
                 let mut now = Vec::with_capacity(2);
-                for (k, patch) in task.patch.split(along_u, hither, count).into_iter().enumerate() {
+                let splitter = object.splitter(&self.splitter);
+                let halves = splitter.split(poses, &task.patch, (along_u, hither, count));
+                for (k, patch) in halves.into_iter().enumerate() {
                     let key = task.key.child(task.patch.depth, k == 1);
-                    let (decision, top) =
-                        object.splitter(&self.splitter).decide_bound(poses, &patch);
+                    let (decision, top) = splitter.decide_bound(poses, &patch);
                     if decision == Decision::Cull {
                         out.stats.patches_culled += 1;
                         continue;
@@ -506,24 +518,25 @@ impl<'a> Dicer<'a> {
                         r => out.deferred.push((r, child)),
                     }
                 }
-                match now.as_slice() {
-                    [a, b] => {
+                let mut now = now.into_iter();
+                match (now.next(), now.next()) {
+                    (Some(a), Some(b)) => {
                         let (wa, wb) = rayon::join(
                             || {
                                 let mut w = Wave::default();
-                                self.run(object, poses, *a, row, &mut w);
+                                self.run(object, poses, a, row, &mut w);
                                 w
                             },
                             || {
                                 let mut w = Wave::default();
-                                self.run(object, poses, *b, row, &mut w);
+                                self.run(object, poses, b, row, &mut w);
                                 w
                             },
                         );
                         out.append(wa);
                         out.append(wb);
                     }
-                    [a] => self.run(object, poses, *a, row, out),
+                    (Some(a), None) => self.run(object, poses, a, row, out),
                     _ => {}
                 }
             }
@@ -541,6 +554,7 @@ impl<'a> Dicer<'a> {
                 out.stats.flatness += u64::from(extra);
                 let (hither, yon) = (self.camera.hither(), self.camera.yon());
                 let mut em = Emitter::new(&self.bucketer, hither, yon, self.splitter.near());
+                em.warp = self.warp;
                 em.dice(
                     &self.camera,
                     &object.ctx,

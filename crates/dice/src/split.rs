@@ -14,12 +14,15 @@
 //! side-plane tests, so its bound is conservative whatever its curvature; surfaces without
 //! one are decided exactly as before.
 
+use std::sync::Arc;
+
 use glam::{Vec2, Vec3};
 use reyes_hider::{Frame, LensSetup};
 use reyes_scene::Projection;
 
 use crate::camera::CameraSetup;
 use crate::motion::Pose;
+pub(crate) use edge::{Edge, Line, OVERLAP, Sides};
 
 /// Test points per parameter direction.
 pub(crate) const TEST_N: usize = 8;
@@ -48,7 +51,7 @@ const MARGIN_PIXELS: f32 = 2.0;
 const MAX_SIDE: f64 = 1.0e9;
 
 /// A rectangle of an object's parameter space, with its split history.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Patch {
     /// `[u0, u1]`.
     pub u: [f32; 2],
@@ -66,6 +69,8 @@ pub(crate) struct Patch {
     /// Raster extent of the whole primitive the patch was split from, the scale of the
     /// relative flatness bound (infinite when unknown: the patch's own extent is used).
     pub extent: f32,
+    /// Its four sides, under crack-free dicing ([`edge`]); `None`: diced on its own.
+    pub sides: Option<Arc<Sides>>,
 }
 
 impl Patch {
@@ -79,6 +84,7 @@ impl Patch {
             parent_count: 0,
             stalls: 0,
             extent: f32::INFINITY,
+            sides: None,
         }
     }
 
@@ -115,9 +121,9 @@ impl Patch {
             } else {
                 0
             },
-            ..*self
+            ..self.clone()
         };
-        let (mut a, mut b) = (child, child);
+        let (mut a, mut b) = (child.clone(), child);
         if along_u {
             let mid = 0.5 * (self.u[0] + self.u[1]);
             a.u[1] = mid;
@@ -288,6 +294,112 @@ impl Splitter {
         self.near
     }
 
+    /// Camera-space position of object-space point `p` of the surface in `pose`, as the
+    /// test grids see it.
+    #[inline]
+    pub(crate) fn to_camera(&self, pose: &Pose<'_>, p: Vec3) -> Vec3 {
+        match pose.moment.object_to_camera() {
+            Some(m) => m.project_point3(p),
+            None => pose.moment.camera_point(p),
+        }
+    }
+
+    /// True if the whole surface seen in `poses` lies beyond hither at every breakpoint,
+    /// with the safety margin for bulges between test points: hither does not cut it open.
+    pub fn beyond_hither(&self, poses: &[Pose<'_>]) -> bool {
+        let root = Patch::root();
+        poses.iter().all(|pose| {
+            let grid = self.test_grid(pose, &root);
+            let (mut lo, mut hi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
+            for p in grid.iter().flatten() {
+                if !p.is_finite() {
+                    return false;
+                }
+                lo = lo.min(*p);
+                hi = hi.max(*p);
+            }
+            lo.z - MARGIN_FRACTION * (hi - lo).max_element() > self.hither
+        })
+    }
+
+    /// How far in raster pixels an edge's polyline may stray from the surface
+    /// ([`edge`]): the flatness bound the grids are diced to, for a primitive of raster
+    /// extent `extent` (see [`Splitter::with_flatness`]); half a micropolygon side with both
+    /// bounds off. Never below a thousandth of a pixel.
+    pub fn edge_tolerance(&self, extent: f32) -> f32 {
+        let mut tol = f32::INFINITY;
+        if self.flatness > 0.0 {
+            tol = self.flatness;
+        }
+        if self.relative_flatness > 0.0 && extent.is_finite() {
+            tol = tol.min(self.relative_flatness * extent);
+        }
+        if !tol.is_finite() {
+            tol = 0.5 * self.step;
+        }
+        tol.max(1e-3)
+    }
+
+    /// The root patch of a surface seen in `poses`, with its four sides for crack-free
+    /// dicing ([`edge`]), its corners on the surface.
+    pub fn root_with_sides(&self, poses: &[Pose<'_>]) -> Patch {
+        let corner = |u: f32, v: f32| -> Vec<Vec3> {
+            poses.iter().map(|pose| pose.surface.position(u, v)).collect()
+        };
+        let (c00, c10, c01, c11) =
+            (corner(0.0, 0.0), corner(1.0, 0.0), corner(0.0, 1.0), corner(1.0, 1.0));
+        let ends = |a: &[Vec3], b: &[Vec3]| -> Vec<[Vec3; 2]> {
+            a.iter().zip(b).map(|(a, b)| [*a, *b]).collect()
+        };
+        let tol = self.edge_tolerance(self.extent(poses, &Patch::root()));
+        let edge = |line: Line, a: &[Vec3], b: &[Vec3]| {
+            Arc::new(Edge::new(self, poses, line, [0.0, 1.0], &ends(a, b), tol))
+        };
+        let sides = Sides {
+            bottom: edge(Line::AlongU(0.0), &c00, &c10),
+            top: edge(Line::AlongU(1.0), &c01, &c11),
+            left: edge(Line::AlongV(0.0), &c00, &c01),
+            right: edge(Line::AlongV(1.0), &c10, &c11),
+        };
+        Patch { sides: Some(Arc::new(sides)), ..Patch::root() }
+    }
+
+    /// [`Patch::split`], with the halves' sides under crack-free dicing: the new edge
+    /// between them, whose ends are the points of the sides it crosses at its line.
+    pub fn split(
+        &self,
+        poses: &[Pose<'_>],
+        patch: &Patch,
+        (along_u, hither, count): (bool, bool, u64),
+    ) -> [Patch; 2] {
+        let mut halves = patch.split(along_u, hither, count);
+        let Some(sides) = &patch.sides else {
+            return halves;
+        };
+        let (line, range, from, to) = if along_u {
+            let mid = halves[0].u[1];
+            (Line::AlongV(mid), patch.v, (&sides.bottom, mid), (&sides.top, mid))
+        } else {
+            let mid = halves[0].v[1];
+            (Line::AlongU(mid), patch.u, (&sides.left, mid), (&sides.right, mid))
+        };
+        let ends: Vec<[Vec3; 2]> =
+            (0..poses.len()).map(|b| [from.0.at(b, from.1), to.0.at(b, to.1)]).collect();
+        let tol = self.edge_tolerance(patch.extent);
+        let middle = Arc::new(Edge::new(self, poses, line, range, &ends, tol));
+        let (mut lower, mut upper) = ((**sides).clone(), (**sides).clone());
+        if along_u {
+            lower.right = middle.clone();
+            upper.left = middle;
+        } else {
+            lower.top = middle.clone();
+            upper.bottom = middle;
+        }
+        halves[0].sides = Some(Arc::new(lower));
+        halves[1].sides = Some(Arc::new(upper));
+        halves
+    }
+
     /// Camera-space test points of `patch` of the surface in `pose`, at the pose's time.
     pub fn test_grid(&self, pose: &Pose<'_>, patch: &Patch) -> TestGrid {
         fn fill(pose: &Pose<'_>, patch: &Patch, to_camera: impl Fn(Vec3) -> Vec3) -> TestGrid {
@@ -301,6 +413,7 @@ impl Splitter {
             }
             grid
         }
+        // One matrix or not, decided once per grid rather than per point.
         match pose.moment.object_to_camera() {
             Some(m) => fill(pose, patch, |p| m.project_point3(p)),
             None => fill(pose, patch, |p| pose.moment.camera_point(p)),
@@ -582,14 +695,26 @@ impl Splitter {
         let measured = if !on_screen.is_empty() { &on_screen[..] } else { facts };
         let (flat_u, flat_v) = self.flat_counts(measured, patch, raster);
         let (nu, nv) = (shade_u.max(flat_u), shade_v.max(flat_v));
-        if nu * nv <= self.max_grid {
-            let extra = (nu * nv - shade_u * shade_v) as u32;
-            return Decision::Dice { nu: nu as u32, nv: nv as u32, limited: at_limit, extra };
+        // Crack-free dicing: a vertex at every polyline vertex of every side (edge.rs).
+        let (nu_c, nv_c) = match &patch.sides {
+            Some(sides) => {
+                let (du, dv) = sides.floors(patch.u, patch.v);
+                (multiple(shade_u, flat_u, du), multiple(shade_v, flat_v, dv))
+            }
+            None => (nu, nv),
+        };
+        if nu_c.saturating_mul(nv_c) <= self.max_grid {
+            let extra = (nu_c * nv_c).saturating_sub(shade_u * shade_v) as u32;
+            return Decision::Dice { nu: nu_c as u32, nv: nv_c as u32, limited: at_limit, extra };
         }
+        // Progress is judged on the rates' own counts: halving a patch halves its sides'
+        // floors too.
         let count = nu * nv;
         let stalled = stalls(patch.parent_count, count) && patch.stalls + 1 >= MAX_STALLS;
         if !at_limit && patch.depth < MAX_SPLIT_DEPTH && !stalled {
-            return Decision::Split { along_u: len_u >= len_v, hither: false, count };
+            // Where the floors made the grid too big, halve the side they raised most.
+            let along_u = if (nu_c, nv_c) == (nu, nv) { len_u >= len_v } else { nu_c >= nv_c };
+            return Decision::Split { along_u, hither: false, count };
         }
         let (nu, nv) = clamp_grid(nu, nv, self.max_grid);
         let (su, sv) = clamp_grid(shade_u, shade_v, self.max_grid);
@@ -608,6 +733,16 @@ impl Splitter {
 fn stalls(parent_count: u64, count: u64) -> bool {
     parent_count > 0
         && u128::from(count) * STALL_RATIO.1 >= u128::from(parent_count) * STALL_RATIO.0
+}
+
+/// A count along a side that is a multiple of `2^d` (crack-free dicing's floor): the
+/// multiple nearest the shading rate's count `shade` (rounding half up), but at least the
+/// flatness rule's `flat` and at least `2^d`; clamped to [`MAX_SIDE`].
+fn multiple(shade: u64, flat: u64, d: u32) -> u64 {
+    let step = 1_u64 << d.min(40);
+    let near = (shade + step / 2) / step;
+    let flat = flat.div_ceil(step);
+    near.max(flat).max(1).saturating_mul(step).min(MAX_SIDE as u64)
 }
 
 /// Micropolygon side length in pixels at `shading_rate` pixels per micropolygon.
@@ -668,6 +803,7 @@ fn clamp_grid(nu: u64, nv: u64, max: u64) -> (u32, u32) {
 }
 
 mod blur;
+pub(crate) mod edge;
 mod flat;
 
 #[cfg(test)]

@@ -72,38 +72,64 @@ pub(crate) enum Surface {
     Bezier(Box<BezierPatch>),
 }
 
+/// `(sin, cos)` of the sweep angle `u * theta_max`, exactly `(0, 1)` where a full turn
+/// closes (`u = 1` with `|theta_max|` a full turn, to rounding): the seam `u = 1` is then
+/// the seam `u = 0` bit for bit, so the two edges of a closed sweep dice to the same points
+/// and crack-free dicing holds across it.
+#[inline]
+pub(crate) fn sweep(u: f32, theta_max: f32) -> (f32, f32) {
+    if u == 1.0 && full_turn(theta_max) { (0.0, 1.0) } else { (u * theta_max).sin_cos() }
+}
+
+/// `(sin, cos)` of the tube angle at `v` over `[phi_min, phi_max]`, exact at a closed end:
+/// where the range is a full turn, `v = 1` gives the point of `v = 0` bit for bit.
+#[inline]
+pub(crate) fn tube(phi_min: f32, phi_max: f32, v: f32) -> (f32, f32) {
+    if v == 1.0 && full_turn(phi_max - phi_min) {
+        phi_min.sin_cos()
+    } else {
+        (phi_min + v * (phi_max - phi_min)).sin_cos()
+    }
+}
+
+/// True if `angle` is a whole turn either way, to the rounding of a conversion from degrees.
+#[inline]
+fn full_turn(angle: f32) -> bool {
+    (angle.abs() - std::f32::consts::TAU).abs() <= 4.0 * f32::EPSILON * std::f32::consts::TAU
+}
+
 impl Surface {
     /// Object-space position at `(u, v)`.
     pub fn position(&self, u: f32, v: f32) -> Vec3 {
         match self {
             Surface::Sphere { radius, phi_min, phi_max, theta_max } => {
-                let (st, ct) = (u * theta_max).sin_cos();
-                let (sp, cp) = (phi_min + v * (phi_max - phi_min)).sin_cos();
+                let (st, ct) = sweep(u, *theta_max);
+                let (sp, cp) = tube(*phi_min, *phi_max, v);
                 Vec3::new(radius * cp * ct, radius * cp * st, radius * sp)
             }
             Surface::Cylinder { radius, zmin, zmax, theta_max } => {
-                let (st, ct) = (u * theta_max).sin_cos();
+                let (st, ct) = sweep(u, *theta_max);
                 Vec3::new(radius * ct, radius * st, zmin + v * (zmax - zmin))
             }
             Surface::Cone { height, radius, theta_max } => {
-                let (st, ct) = (u * theta_max).sin_cos();
+                let (st, ct) = sweep(u, *theta_max);
                 let r = radius * (1.0 - v);
                 Vec3::new(r * ct, r * st, v * height)
             }
             Surface::Paraboloid { rmax, zmin, zmax, theta_max } => {
-                let (st, ct) = (u * theta_max).sin_cos();
+                let (st, ct) = sweep(u, *theta_max);
                 let z = zmin + v * (zmax - zmin);
                 let r = rmax * (z / zmax).max(0.0).sqrt();
                 Vec3::new(r * ct, r * st, z)
             }
             Surface::Disk { height, radius, theta_max, flip } => {
-                let (st, ct) = (u * theta_max).sin_cos();
+                let (st, ct) = sweep(u, *theta_max);
                 let r = if *flip { radius * v } else { radius * (1.0 - v) };
                 Vec3::new(r * ct, r * st, *height)
             }
             Surface::Torus { major, minor, phi_min, phi_max, theta_max } => {
-                let (st, ct) = (u * theta_max).sin_cos();
-                let (sp, cp) = (phi_min + v * (phi_max - phi_min)).sin_cos();
+                let (st, ct) = sweep(u, *theta_max);
+                let (sp, cp) = tube(*phi_min, *phi_max, v);
                 let ring = major + minor * cp;
                 Vec3::new(ring * ct, ring * st, minor * sp)
             }
@@ -124,11 +150,11 @@ impl Surface {
                 ((p / *radius).try_normalize().unwrap_or(Vec3::Z), white)
             }
             Surface::Cylinder { theta_max, .. } => {
-                let (st, ct) = (u * theta_max).sin_cos();
+                let (st, ct) = sweep(u, *theta_max);
                 (Vec3::new(ct, st, 0.0), white)
             }
             Surface::Cone { height, radius, theta_max } => {
-                let (st, ct) = (u * theta_max).sin_cos();
+                let (st, ct) = sweep(u, *theta_max);
                 // The parametric normal is (h cos, h sin, r); for h < 0 it points into the
                 // cone, so flip it by sign(h) to keep the outward orientation.
                 let s = height.signum();
@@ -143,8 +169,8 @@ impl Surface {
             }
             Surface::Disk { flip, .. } => (if *flip { Vec3::NEG_Z } else { Vec3::Z }, white),
             Surface::Torus { phi_min, phi_max, theta_max, .. } => {
-                let (st, ct) = (u * theta_max).sin_cos();
-                let (sp, cp) = (phi_min + v * (phi_max - phi_min)).sin_cos();
+                let (st, ct) = sweep(u, *theta_max);
+                let (sp, cp) = tube(*phi_min, *phi_max, v);
                 (Vec3::new(cp * ct, cp * st, sp), white)
             }
             Surface::Bilinear(b) => {

@@ -10,7 +10,7 @@ use glam::Vec3;
 /// The point at `(u, v)`.
 #[inline]
 pub(super) fn hyperboloid_position(p1: Vec3, p2: Vec3, theta_max: f32, u: f32, v: f32) -> Vec3 {
-    let (st, ct) = (u * theta_max).sin_cos();
+    let (st, ct) = super::sweep(u, theta_max);
     let l = p1.lerp(p2, v);
     Vec3::new(l.x * ct - l.y * st, l.x * st + l.y * ct, l.z)
 }
@@ -32,7 +32,7 @@ pub(super) fn hyperboloid_normal(p1: Vec3, p2: Vec3, theta_max: f32, u: f32, v: 
     if n.length() <= 1e-6 * scale * scale {
         n = unturned_normal(p1, p2, if v < 0.5 { v + 1e-3 } else { v - 1e-3 });
     }
-    let (st, ct) = (u * theta_max).sin_cos();
+    let (st, ct) = super::sweep(u, theta_max);
     let turned = Vec3::new(n.x * ct - n.y * st, n.x * st + n.y * ct, n.z);
     turned.try_normalize().unwrap_or(Vec3::Z)
 }

@@ -81,7 +81,7 @@ fn a_bezier_patch_is_bounded_by_its_control_hull() {
     let (cam, sp) = splitter(None);
     let moment = Moment::new(0.0, Placement::Matrix(Mat4::IDENTITY), Mat4::IDENTITY, 0);
     let pose = Pose { surface: &surface, moment: &moment };
-    for patch in [Patch::root(), Patch::root().split(true, false, 0)[1]] {
+    for patch in [Patch::root(), Patch::root().split(true, false, 0)[1].clone()] {
         let (_, top) = sp.decide_bound(std::slice::from_ref(&pose), &patch);
         let top = top.expect("in front of the eye");
         for j in 0..=64 {

@@ -6,7 +6,16 @@ use reyes_dice::{Diced, dice_scene};
 use reyes_hider::{Frame, Micropolygon};
 use reyes_scene::{Camera, Lens, Material, Object, Rgb, Scene, Shape, Transform};
 #[allow(unused_imports)]
-pub use reyes_testkit::fixtures::{camera, frame_for as frame_of, object, scene, sphere};
+pub use reyes_testkit::fixtures::{camera, frame_for as frame_of, object, sphere};
+
+/// [`reyes_testkit::fixtures::scene`] drawn two-sided: these tests measure the dicer's
+/// geometry (areas, counts, motion segments) of whole surfaces, both halves of a closed one
+/// included; culling the back faces is tested on its own (`cull.rs`).
+pub fn scene(width: u32, height: u32, camera: Camera, objects: Vec<Object>) -> Scene {
+    let mut s = reyes_testkit::fixtures::scene(width, height, camera, objects);
+    s.hider.cull_back_faces = false;
+    s
+}
 
 /// The camera at the origin looking down +z with field of view `fov`, through `lens`.
 pub fn camera_ahead(fov: f32, lens: Option<Lens>) -> Camera {

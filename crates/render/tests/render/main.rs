@@ -6,6 +6,7 @@
 mod accuracy;
 mod aovs;
 mod camera;
+mod cracks;
 mod csg;
 mod filters;
 mod geometry;

@@ -148,10 +148,7 @@ impl Machine {
         object.flatness = a.flatness;
         object.motion_factor = a.motion_factor;
         object.focus_factor = a.focus_factor;
-        if a.sides == 1 {
-            let w = r.warning("Sides 1 is not supported yet: the primitive is two-sided");
-            self.warn_once("sides 1", w);
-        }
+        object.one_sided = a.sides == 1;
         let to_world = self.to_world();
         let origin = Origin { at: r.at.clone(), request: r.name() };
         if let Some(b) = &mut self.build {

@@ -47,12 +47,17 @@ pub struct Hider {
     /// off): a patch whose circle of confusion is `C` pixels across is diced at the shading
     /// rate times `1 + focus_factor * C / 16`. The scene's value; an object may give its own.
     pub focus_factor: f32,
-    /// Drop back-facing micropolygons of closed, opaque objects (RenderMan's `Sides 1`;
-    /// pinhole cameras only): about half the micropolygons and sample tests of a scene of
-    /// balls. Off by default, because the back faces also fill the cracks between grids
-    /// diced at different rates: without them a few silhouette and crack pixels lose
-    /// coverage (on `scenes/bench/balls.ron` 1045 pixels change, by at most 0.08).
+    /// Drop back-facing micropolygons of closed, opaque objects (pinhole cameras only; not
+    /// matte, glass, CSG operands or displaced objects; only objects wholly beyond hither):
+    /// they can never be seen, and they are about half the micropolygons and sample tests
+    /// of a scene of balls. On by default, which crack-free dicing makes safe (the back
+    /// faces used to fill the cracks between grids diced at different rates). An object's
+    /// own `sides: 1` culls its back faces whether closed or not (RenderMan's `Sides 1`).
     pub cull_back_faces: bool,
+    /// Crack-free dicing: neighbouring grids diced at different rates share their boundary
+    /// points (docs/geometry.md, "Crack-free dicing"), so no sample falls between them. On
+    /// by default; off reproduces the dicer before it (each grid's boundary on the surface).
+    pub crack_free: bool,
     /// Adaptive sampling (the patent's reduced-scale repetition of the pattern): off unless
     /// `max_level` > 0.
     pub adaptive: Adaptive,
@@ -97,7 +102,8 @@ impl Default for Hider {
             relative_flatness: 1.0 / 512.0,
             motion_factor: 0.0,
             focus_factor: 0.0,
-            cull_back_faces: false,
+                        cull_back_faces: true,
+            crack_free: true,
             adaptive: Adaptive::default(),
             original: Original::default(),
         }

@@ -62,6 +62,12 @@ pub struct Object {
     /// pixels (> 0) for its split and dice decisions. `None`: the scene's `hider.shading_rate`.
     #[serde(default)]
     pub shading_rate: Option<f32>,
+    /// RenderMan's `Sides 1`: the object is one-sided, its back faces (where the eye sees
+    /// the side its normals point away from) are not drawn, whether it is closed or not
+    /// (pinhole cameras only; not for CSG operands or displaced objects). `false`: RenderMan's
+    /// default `Sides 2`.
+    #[serde(default)]
+    pub one_sided: bool,
     /// RenderMan's `GeometricApproximation "flatness"` as an attribute of this object: the
     /// geometric accuracy in pixels (>= 0) of its dicing. `None`: the scene's
     /// `hider.flatness`.
@@ -133,6 +139,7 @@ impl Object {
             pattern: None,
             roll: None,
             shading_rate: None,
+            one_sided: false,
             flatness: None,
             motion_factor: None,
             focus_factor: None,

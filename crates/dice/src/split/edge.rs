@@ -1,0 +1,381 @@
+//! Crack-free dicing: the shared edges of split patches.
+//!
+//! Two grids that meet along a patch boundary are diced independently, at their own rates.
+//! Where one puts more vertices along the boundary than the other, the other's straight
+//! micropolygon edges cut across the first one's curved boundary, and samples fall through
+//! the crack between them (the T-junction problem of every bucketed REYES dicer).
+//!
+//! The fix here: every side of a patch is part of an [`Edge`], made once, when the patch the
+//! edge splits (or the root patch) is split, and shared (by reference) by every patch on
+//! either side of it, down the whole split tree. An edge fixes its own polyline when it is
+//! made: its range is halved wherever the curve strays from the chord by more than the
+//! geometric accuracy the grids are diced to (the flatness bound, [`Splitter::edge_tolerance`]),
+//! from its own geometry alone, so it does not matter which patch asks. A diced grid
+//! then
+//! - puts its boundary vertices *on* the polyline of each of its sides (linear in object
+//!   space between the polyline's vertices; lines stay lines under the camera projection),
+//!   not on the surface;
+//! - has, along each side, a vertex at every polyline vertex of that side: its count along
+//!   the side is a multiple of `2^d`, `d` the deepest halving of the polyline within the
+//!   patch's range (a patch's range is itself a dyadic piece of the edge's), see
+//!   [`Edge::floor`].
+//!
+//! So both grids along a boundary trace the same polyline, and their union has no crack, up
+//! to the rounding of the points the finer grid adds between polyline vertices (a few
+//! 1e-5 pixels off the line), which [`OVERLAP`] closes. Corners are points of the edges too:
+//! a split takes the new edge's ends from the polylines of the sides it crosses, so the four
+//! patches about a corner agree on it bit for bit. Motion: an edge holds its polyline's
+//! points at every breakpoint, decided once for all of them (the largest stray over the
+//! breakpoints), so the grids of all times still match vertex for vertex. A straight edge
+//! (every edge of a bilinear patch or mesh face) stays one piece, and asks nothing of the
+//! grids.
+//!
+//! Invariants: `t` is strictly increasing and holds the edge's two ends; every vertex
+//! parameter is a dyadic point of the edge's range; `points` holds `t.len()` points per
+//! breakpoint; [`Edge::at`] at a vertex parameter is that vertex's point exactly.
+
+use glam::{Vec2, Vec3};
+
+use super::Splitter;
+use crate::motion::Pose;
+
+/// Most halvings of an edge's range.
+pub(crate) const EDGE_LIMIT: u32 = 16;
+/// Points along a piece (ends included) at which its distance from its chord is measured:
+/// the three inside ones see a piece that bends one way, or both ways, and a full circle
+/// (a closed sweep's seam seen end on, whose ends coincide).
+const EDGE_TEST: usize = 5;
+/// A piece no longer than this many micropolygon sides (`sqrt(shading_rate)` pixels, along
+/// its test points, at its longest over the breakpoints) is not halved, however it strays:
+/// a grid's own micropolygons are straight over a side each, so a finer polyline would only
+/// force finer grids along it without making the surface truer than its grids are.
+const EDGE_SHORT: f32 = 2.0;
+/// Raster pixels by which a grid's boundary vertices are pushed out of the grid, so that
+/// two grids along a shared edge overlap by a sliver rather than leave one of rounding
+/// width (about 1e-4 pixel at raster coordinates of a thousand pixels, where `f32` steps
+/// by 6e-5).
+pub(crate) const OVERLAP: f32 = 1.0e-3;
+/// Beyond this many halvings below a patch's range the floor is not honoured (the grid
+/// would be too large to dice anyway; the patch is split further or clamped).
+const MAX_FLOOR: u32 = 30;
+
+/// Which line of parameter space an edge lies on.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Line {
+    /// `v` fixed, the edge running along `u`.
+    AlongU(f32),
+    /// `u` fixed, the edge running along `v`.
+    AlongV(f32),
+}
+
+impl Line {
+    /// The parameter point at `t` along the line.
+    #[inline]
+    fn uv(self, t: f32) -> (f32, f32) {
+        match self {
+            Line::AlongU(v) => (t, v),
+            Line::AlongV(u) => (u, t),
+        }
+    }
+}
+
+/// One edge's polyline (see the module documentation).
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Edge {
+    /// Parameters along the edge of the polyline's vertices, increasing, ends included.
+    t: Vec<f32>,
+    /// Object-space points: vertex `k` at breakpoint `b` is `points[b * t.len() + k]`.
+    points: Vec<Vec3>,
+}
+
+impl Edge {
+    /// The edge along `line` over `range`, with its end points `ends[b]` at every
+    /// breakpoint `b` (of `poses`), its polyline fixed by `splitter`: no piece strays from
+    /// the curve by more than `tol` raster pixels at its test points.
+    pub fn new(
+        splitter: &Splitter,
+        poses: &[Pose<'_>],
+        line: Line,
+        range: [f32; 2],
+        ends: &[[Vec3; 2]],
+        tol: f32,
+    ) -> Edge {
+        let mut t = vec![range[0]];
+        let mut per_pose: Vec<Vec<Vec3>> = ends.iter().map(|e| vec![e[0]]).collect();
+        let first: Vec<Vec3> = ends.iter().map(|e| e[0]).collect();
+        let last: Vec<Vec3> = ends.iter().map(|e| e[1]).collect();
+        let mut piece = Piece { splitter, poses, line, tol, t: &mut t, points: &mut per_pose };
+        piece.halve(range, &first, &last, 0);
+        t.push(range[1]);
+        for (p, e) in per_pose.iter_mut().zip(ends) {
+            p.push(e[1]);
+        }
+        Edge { t, points: per_pose.concat() }
+    }
+
+    /// Vertices of the polyline.
+    #[cfg(test)]
+    pub fn len(&self) -> usize {
+        self.t.len()
+    }
+
+    /// The point of the polyline at parameter `t` at breakpoint `b`: a vertex's point
+    /// exactly at its parameter, linear in between, the nearer end outside the range.
+    pub fn at(&self, b: usize, t: f32) -> Vec3 {
+        let n = self.t.len();
+        let points = &self.points[b * n..(b + 1) * n];
+        let k = self.t.partition_point(|&p| p < t);
+        if k >= n {
+            return points[n - 1];
+        }
+        if self.t[k] == t || k == 0 {
+            return points[k];
+        }
+        let (t0, t1) = (self.t[k - 1], self.t[k]);
+        crate::motion::lerp(points[k - 1], points[k], (t - t0) / (t1 - t0))
+    }
+
+    /// The least `d` such that a grid with a multiple of `2^d` micropolygons along `range`
+    /// (a dyadic piece of the edge's range) has a vertex at every polyline vertex inside it;
+    /// capped at `MAX_FLOOR`.
+    pub fn floor(&self, range: [f32; 2]) -> u32 {
+        let lo = self.t.partition_point(|&p| p <= range[0]);
+        let hi = self.t.partition_point(|&p| p < range[1]);
+        let (a, w) = (f64::from(range[0]), f64::from(range[1]) - f64::from(range[0]));
+        let mut d = 0;
+        for &p in self.t.get(lo..hi).unwrap_or(&[]) {
+            let x = (f64::from(p) - a) / w;
+            let mut level = 0;
+            let mut scaled = x;
+            while scaled.fract() != 0.0 && level < MAX_FLOOR {
+                scaled *= 2.0;
+                level += 1;
+            }
+            d = d.max(level);
+        }
+        d
+    }
+}
+
+/// The recursion that fixes an edge's polyline: vertices are appended in order.
+struct Piece<'a, 'p> {
+    splitter: &'a Splitter,
+    poses: &'a [Pose<'p>],
+    line: Line,
+    tol: f32,
+    t: &'a mut Vec<f32>,
+    points: &'a mut Vec<Vec<Vec3>>,
+}
+
+impl Piece<'_, '_> {
+    /// Halve the piece `range` (its end points `a`, `b` per breakpoint) if it is long, and
+    /// append the vertices strictly inside it.
+    fn halve(&mut self, range: [f32; 2], a: &[Vec3], b: &[Vec3], level: u32) {
+        let mid = 0.5 * (range[0] + range[1]);
+        if level >= EDGE_LIMIT || mid <= range[0] || mid >= range[1] {
+            return;
+        }
+        if !self.strays(range, a, b) {
+            return;
+        }
+
+        let (u, v) = self.line.uv(mid);
+        let m: Vec<Vec3> = self.poses.iter().map(|pose| pose.surface.position(u, v)).collect();
+        self.halve([range[0], mid], a, &m, level + 1);
+        self.t.push(mid);
+        for (p, q) in self.points.iter_mut().zip(&m) {
+            p.push(*q);
+        }
+        self.halve([mid, range[1]], &m, b, level + 1);
+    }
+
+    /// True if the piece strays from its chord by more than `tol` in raster at one of its
+    /// `EDGE_TEST` points at some breakpoint (points not in front of the eye skipped) and is
+    /// longer than [`EDGE_SHORT`] micropolygon sides, unless
+    /// it is in a pinhole camera's view and its raster bound, grown by its own size, is off
+    /// the screen at every breakpoint (it is never seen, so its shape does not matter).
+    fn strays(&self, range: [f32; 2], a: &[Vec3], b: &[Vec3]) -> bool {
+        let sp = self.splitter;
+        let (mut lo, mut hi) = (Vec2::INFINITY, Vec2::NEG_INFINITY);
+        let mut stray = 0.0_f32;
+        let mut longest = 0.0_f32;
+        let mut all_seen = true;
+        // Camera-space point and its raster position, for a point in front of the eye.
+        let seen = |pose: &Pose<'_>, p: Vec3| {
+            let c = sp.to_camera(pose, p);
+            (c.is_finite() && c.z >= sp.near)
+                .then(|| (c, sp.camera.eye_to_raster(c)))
+                .filter(|(_, r)| r.is_finite())
+        };
+        // Pixels per camera-space unit at depth z, across the view (the larger axis).
+        let k = sp.camera.raster_scale().abs().max_element();
+        let perspective = sp.camera.projection() == reyes_scene::Projection::Perspective;
+        let px = |z: f32| if perspective { k / z } else { k };
+        for (k, pose) in self.poses.iter().enumerate() {
+            let (ea, eb) = (seen(pose, a[k]), seen(pose, b[k]));
+            // The chord in camera space, even where an end is behind the eye: the part of
+            // a piece that is in front must still follow the surface.
+            let (ca, cb) = (sp.to_camera(pose, a[k]), sp.to_camera(pose, b[k]));
+            let chord = (ca.is_finite() && cb.is_finite()).then_some((ca, cb));
+            for e in [ea, eb] {
+                match e {
+                    Some((_, r)) => {
+                        lo = lo.min(r);
+                        hi = hi.max(r);
+                    }
+                    None => all_seen = false,
+                }
+            }
+            let mut length = 0.0;
+            let mut prev = ea.map(|e| e.1);
+            for i in 1..EDGE_TEST - 1 {
+                let f = i as f32 / (EDGE_TEST - 1) as f32;
+                let (u, v) = self.line.uv(range[0] + (range[1] - range[0]) * f);
+                let Some((c, r)) = seen(pose, pose.surface.position(u, v)) else {
+                    all_seen = false;
+                    prev = None;
+                    continue;
+                };
+                if let Some(q) = prev {
+                    length += r.distance(q);
+                }
+                prev = Some(r);
+                lo = lo.min(r);
+                hi = hi.max(r);
+                // How far the chord is from the curve: across the screen, and in depth
+                // (a chord seen end on is straight on screen but may cut deep under the
+                // surface), the latter as pixels at the point's depth.
+                if let (Some((_, ra)), Some((_, rb))) = (ea, eb) {
+                    stray = stray.max(distance_to_segment(r, ra, rb));
+                }
+                if let Some((ca, cb)) = chord {
+                    stray = stray.max(distance_to_segment(c, ca, cb) * px(c.z));
+                }
+            }
+            if let (Some(q), Some((_, rb))) = (prev, eb) {
+                length += rb.distance(q);
+            }
+            longest = longest.max(length);
+        }
+        if stray <= self.tol || longest <= EDGE_SHORT * sp.step {
+            return false;
+        }
+        if all_seen && sp.lens.is_none() {
+            let grow = (hi - lo).max_element() + super::MARGIN_PIXELS;
+            let off = hi.x + grow < sp.screen_lo.x
+                || hi.y + grow < sp.screen_lo.y
+                || lo.x - grow > sp.screen_hi.x
+                || lo.y - grow > sp.screen_hi.y;
+            if off {
+                return false;
+            }
+        }
+        true
+    }
+}
+
+/// Distance from `p` to the segment `a b` (to `a` when the segment is a point).
+fn distance_to_segment<V: Point>(p: V, a: V, b: V) -> f32 {
+    let d = b - a;
+    let len2 = d.dot(d);
+    let f = if len2 > 0.0 { ((p - a).dot(d) / len2).clamp(0.0, 1.0) } else { 0.0 };
+    let e = p - (a + d * f);
+    e.dot(e).sqrt()
+}
+
+/// What [`distance_to_segment`] needs of a point: 2-D raster or 3-D camera space.
+trait Point:
+    Copy
+    + std::ops::Sub<Output = Self>
+    + std::ops::Add<Output = Self>
+    + std::ops::Mul<f32, Output = Self>
+{
+    fn dot(self, other: Self) -> f32;
+}
+
+impl Point for Vec2 {
+    fn dot(self, other: Vec2) -> f32 {
+        Vec2::dot(self, other)
+    }
+}
+
+impl Point for Vec3 {
+    fn dot(self, other: Vec3) -> f32 {
+        Vec3::dot(self, other)
+    }
+}
+
+/// The four sides of a patch, each a shared [`Edge`] (see the module documentation):
+/// `bottom` and `top` run along `u` at `v0` and `v1`, `left` and `right` along `v` at `u0`
+/// and `u1`.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Sides {
+    pub bottom: std::sync::Arc<Edge>,
+    pub top: std::sync::Arc<Edge>,
+    pub left: std::sync::Arc<Edge>,
+    pub right: std::sync::Arc<Edge>,
+}
+
+impl Sides {
+    /// The object-space point of a patch's boundary vertex at `(u, v)` at breakpoint `b`, on
+    /// the side it lies on (`i`, `j` its grid indices of `nu`, `nv`), or `None` inside.
+    #[inline]
+    pub fn boundary(
+        &self,
+        b: usize,
+        (u, v): (f32, f32),
+        (i, j): (usize, usize),
+        (nu, nv): (usize, usize),
+    ) -> Option<Vec3> {
+        if j == 0 {
+            Some(self.bottom.at(b, u))
+        } else if j == nv {
+            Some(self.top.at(b, u))
+        } else if i == 0 {
+            Some(self.left.at(b, v))
+        } else if i == nu {
+            Some(self.right.at(b, v))
+        } else {
+            None
+        }
+    }
+
+    /// `(du, dv)`: a grid of the patch `u` x `v` must have a multiple of `2^du`
+    /// micropolygons along `u` and of `2^dv` along `v` ([`Edge::floor`]).
+    pub fn floors(&self, u: [f32; 2], v: [f32; 2]) -> (u32, u32) {
+        (self.bottom.floor(u).max(self.top.floor(u)), self.left.floor(v).max(self.right.floor(v)))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn edge(t: Vec<f32>) -> Edge {
+        let points = t.iter().map(|&t| Vec3::new(t, t * t, 0.0)).collect();
+        Edge { t, points }
+    }
+
+    #[test]
+    fn a_vertex_is_exact_and_between_is_linear() {
+        let e = edge(vec![0.0, 0.25, 0.5, 1.0]);
+        assert_eq!(e.at(0, 0.25), Vec3::new(0.25, 0.0625, 0.0));
+        assert_eq!(e.at(0, 1.0), Vec3::new(1.0, 1.0, 0.0));
+        assert_eq!(e.at(0, 0.0), Vec3::ZERO);
+        // Halfway between 0.5 (0.25) and 1 (1): 0.625.
+        assert_eq!(e.at(0, 0.75), Vec3::new(0.75, 0.625, 0.0));
+        assert_eq!(e.at(0, -1.0), Vec3::ZERO);
+        assert_eq!(e.at(0, 2.0), Vec3::new(1.0, 1.0, 0.0));
+    }
+
+    #[test]
+    fn floors_count_the_deepest_halving_inside_a_range() {
+        let e = edge(vec![0.0, 0.125, 0.25, 0.5, 1.0]);
+        // 0.125 is 1/8 of [0, 1]: 3 halvings; 0.5 of [0.5, 1] is its end: none inside.
+        assert_eq!(e.floor([0.0, 1.0]), 3);
+        assert_eq!(e.floor([0.5, 1.0]), 0);
+        assert_eq!(e.floor([0.0, 0.5]), 2);
+        assert_eq!(e.floor([0.0, 0.25]), 1);
+        assert_eq!(e.floor([0.25, 0.5]), 0);
+    }
+}
