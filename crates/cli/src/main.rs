@@ -371,8 +371,29 @@ fn render_frame(
             Err(_) => reyes_render::budget::default_memory_limit(),
         },
     };
+    // A whole frame's EXR beauty is compressed while the frame renders, block by block as
+    // its lines are final (the write then stores those blocks as they are; the file is the
+    // same bytes). Not for tiles (their files hold bucket windows) or crop windows.
+    let exr_out = is_exr(main) || extras.iter().any(|p| is_exr(p));
+    let early = (exr_out && args.tile.is_none() && scene.image.crop.is_none())
+        .then(|| {
+            let named = reyes_render::aovs::AovSetup::for_scene(scene).is_some();
+            reyes_film::EarlyBlocks::new(
+                scene.image.width,
+                scene.image.height,
+                &scene.outputs,
+                named,
+            )
+        })
+        .flatten();
+    let encode_early = |film: &reyes_film::Film, lines: std::ops::Range<u32>| {
+        if let Some(e) = &early {
+            e.encode(film, lines);
+        }
+    };
     let opts = RenderOptions {
         threads: args.threads.map(usize::from),
+        on_film_lines: early.as_ref().map(|_| &encode_early as &reyes_render::OnFilmLines),
         on_bucket: Some(&tick),
         memory_limit,
         buckets: Some(&buckets),
@@ -416,7 +437,8 @@ fn render_frame(
             pieces::write_piece(path, &header, &rendered.buckets, &opts)
         } else {
             let aovs = rendered.aovs.as_ref().map(|a| (&a.film, a.layers.as_slice()));
-            write_picture(scene, &scene_path, (&rendered.film, aovs), render_time, path, &opts)
+            let film = (&rendered.film, aovs);
+            write_picture(scene, &scene_path, film, (render_time, early.as_ref()), path, &opts)
         };
         written.map_err(|e| match (e, signals::received()) {
             (FilmError::Interrupted { path }, Some(stop)) => Exit::stopped(stop, &path),
@@ -444,7 +466,7 @@ fn write_picture(
     scene: &Scene,
     scene_path: &str,
     (film, aovs): (&reyes_film::Film, Option<(&reyes_film::AovFilm, &[reyes_film::AovLayer])>),
-    render_time: Option<f32>,
+    (render_time, early): (Option<f32>, Option<&reyes_film::EarlyBlocks>),
     path: &Path,
     opts: &WriteOptions,
 ) -> Result<(), FilmError> {
@@ -465,6 +487,7 @@ fn write_picture(
         outputs: &scene.outputs,
         metadata: &metadata,
         placement,
+        early,
     };
     reyes_film::write_picture(path, &picture, opts)
 }
@@ -487,6 +510,6 @@ pub(crate) fn write_frame(
         results.values(),
     );
     let aovs = aov.as_ref().zip(aov_film.as_ref()).map(|(a, f)| (f, a.layers.as_slice()));
-    write_picture(scene, scene_path, (&film, aovs), render_time, path, opts)
+    write_picture(scene, scene_path, (&film, aovs), (render_time, None), path, opts)
         .map_err(|e| Exit::error(1, e))
 }

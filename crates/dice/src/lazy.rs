@@ -22,6 +22,10 @@
 //!   scheduling or the row a grid was diced in.
 //! * Counts. Every patch is decided once and counted once (as in the eager dicer), so
 //!   [`DiceStats`] over a whole frame are the eager dicer's.
+//! * Overlap. [`Dicer::dice_row`] is [`Dicer::take_row`] (`&mut`), [`Dicer::process_row`]
+//!   (`&self`, the expensive part) and [`Dicer::finish_row`] (`&mut`), so a renderer may
+//!   process row `r + 1` while it still reads row `r`'s buckets; what a row holds is the
+//!   same either way (the grids, lists and counts do not depend on when a row is processed).
 //! * Bounds. No micropolygon may touch a bucket row already handed out: the bounds are
 //!   conservative only up to the split stage's safety margin (25% of the extent plus 2
 //!   pixels), so this is checked for every micropolygon, and a violation is an error
@@ -120,6 +124,20 @@ impl ObjectSetup<'_> {
     fn splitter<'s>(&'s self, scene: &'s Splitter) -> &'s Splitter {
         self.splitter.as_ref().unwrap_or(scene)
     }
+}
+
+/// The patches of one bucket row, taken from its queue ([`Dicer::take_row`]).
+#[derive(Debug)]
+pub struct RowWork {
+    row: u32,
+    tasks: Vec<Task>,
+}
+
+/// What processing one bucket row's patches made ([`Dicer::process_row`]), to be listed in
+/// its buckets ([`Dicer::finish_row`]).
+pub struct RowWave {
+    row: u32,
+    wave: Wave,
 }
 
 /// A grid kept for the buckets that still need it.
@@ -353,15 +371,45 @@ impl<'a> Dicer<'a> {
     /// Process the patches queued for row `row` (see the module documentation) and prepare
     /// the lists of its buckets. Rows must be diced in order, each once.
     ///
+    /// The same as [`Dicer::take_row`], [`Dicer::process_row`] and [`Dicer::finish_row`] in
+    /// turn.
+    ///
     /// Errors with [`DiceError::BoundMissed`] if a micropolygon touches an earlier row (the
     /// dicer is then unusable: start again with [`Dicer::new_eager`]).
     pub fn dice_row(&mut self, row: u32) -> Result<(), DiceError> {
+        let work = self.take_row(row);
+        let wave = self.process_row(work);
+        self.finish_row(wave)
+    }
+
+    /// Take the patches queued for row `row`, to be processed by [`Dicer::process_row`].
+    /// Rows must be taken in order, each once, and each finished ([`Dicer::finish_row`])
+    /// before the next is taken: row `row`'s queue is complete once row `row - 1` is
+    /// finished (a row's children for later rows are queued when it is finished).
+    pub fn take_row(&mut self, row: u32) -> RowWork {
         assert_eq!(row, self.next_row, "rows are diced in order");
         self.next_row += 1;
         let mut tasks = std::mem::take(&mut self.pending[row as usize]);
         tasks.sort_by_key(|t| t.key);
         self.charged.store(0, Ordering::Relaxed);
-        let wave = self.wave(row, tasks);
+        RowWork { row, tasks }
+    }
+
+    /// Bound, split, dice and shade the patches of a taken row (in parallel over patches).
+    /// This only reads the dicer, so it may run while the buckets of rows finished before
+    /// are read ([`Dicer::copy_bucket`]) and before they are released: the renderer dices
+    /// row `r + 1` while it renders row `r`. The micropolygons still held for those rows
+    /// count toward [`DiceOptions::max_micropolygons`] meanwhile, as they are in memory.
+    pub fn process_row(&self, work: RowWork) -> RowWave {
+        RowWave { row: work.row, wave: self.wave(work.row, work.tasks) }
+    }
+
+    /// List a processed row's grids in the buckets they touch, queue its patches for later
+    /// rows, and put its buckets' lists in emission order: its buckets can then be read.
+    ///
+    /// Errors as [`Dicer::dice_row`].
+    pub fn finish_row(&mut self, wave: RowWave) -> Result<(), DiceError> {
+        let RowWave { row, wave } = wave;
         if self.over_budget.load(Ordering::Relaxed) {
             let limit = self.max_alive;
             let mb = limit.saturating_mul(MICROPOLYGON_BYTES) >> 20;

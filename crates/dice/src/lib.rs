@@ -117,7 +117,7 @@ pub use bucket::screen_bound;
 pub use camera::{CameraSetup, Viewer};
 pub use csg::CsgSetup;
 pub use hook::{DiceOptions, VertexContext, VertexShader};
-pub use lazy::{Dicer, MICROPOLYGON_BYTES};
+pub use lazy::{Dicer, MICROPOLYGON_BYTES, RowWave, RowWork};
 pub use lookdev::{Lookdev, Looked};
 
 impl From<TextureError> for DiceError {

@@ -17,6 +17,7 @@ use exr::prelude::*;
 use reyes_scene::{Compression as Comp, Outputs, PixelType, PngView, Scene};
 
 use crate::atomic::{WriteOptions, write_atomic};
+use crate::early::EarlyBlocks;
 use crate::output::{exr_error, format_of, io_error, png_bytes, read_all_parts};
 use crate::{AovFilm, Film, FilmError};
 
@@ -129,6 +130,10 @@ pub struct Picture<'a> {
     /// Where the films' pixels lie in the whole frame, when they are a crop window's
     /// (None: they are the whole frame).
     pub placement: Option<Placement>,
+    /// The beauty's blocks compressed while the frame rendered, if any: the write stores
+    /// those it finds ready instead of compressing them again (whole frames only; the file
+    /// is the same either way, see [`crate::early`]).
+    pub early: Option<&'a EarlyBlocks>,
 }
 
 /// Where a crop window's pixels lie: the EXR's display window is the whole frame and its
@@ -172,7 +177,7 @@ fn compression(c: Comp) -> Compression {
     }
 }
 
-fn encoding(c: Comp) -> Encoding {
+pub(crate) fn encoding(c: Comp) -> Encoding {
     Encoding {
         compression: compression(c),
         blocks: Blocks::ScanLines,
@@ -222,16 +227,21 @@ fn encode_picture(
     let o = p.outputs;
     let zbg = o.zbackground.value();
     let rgba = film.rgba();
-    let plane = |k: usize| rgba.iter().map(move |px| px[k]);
-    let z = film.z().iter().map(|&z| if z == f32::INFINITY { zbg } else { z });
-    let ty = o.pixel_type;
-    let channels = vec![
-        AnyChannel::new("R", samples(plane(0), ty)),
-        AnyChannel::new("G", samples(plane(1), ty)),
-        AnyChannel::new("B", samples(plane(2), ty)),
-        AnyChannel::new("A", samples(plane(3), ty)),
-        AnyChannel::new("Z", samples(z, PixelType::Float)),
-    ];
+    // Without pixels (`all == false`) when every block of the beauty is taken from `early`.
+    let beauty = |all: bool| {
+        let n = if all { rgba.len() } else { 0 };
+        let plane = |k: usize| rgba[..n].iter().map(move |px| px[k]);
+        let z = film.z()[..n].iter().map(|&z| if z == f32::INFINITY { zbg } else { z });
+        let ty = o.pixel_type;
+        vec![
+            AnyChannel::new("R", samples(plane(0), ty)),
+            AnyChannel::new("G", samples(plane(1), ty)),
+            AnyChannel::new("B", samples(plane(2), ty)),
+            AnyChannel::new("A", samples(plane(3), ty)),
+            AnyChannel::new("Z", samples(z, PixelType::Float)),
+        ]
+    };
+    let early = p.early.filter(|_| p.placement.is_none());
     let named = p.aovs.is_some();
     let mut top = attributes(named.then_some("rgba"), p.metadata);
     let m = p.metadata;
@@ -259,7 +269,7 @@ fn encode_picture(
         size,
         placed(top),
         encoding(o.compression),
-        AnyChannels::sort(SmallVec::from_vec(channels)),
+        AnyChannels::sort(SmallVec::from_vec(beauty(early.is_none()))),
     )];
     if let Some((aov, list)) = p.aovs {
         for layer in list {
@@ -288,15 +298,62 @@ fn encode_picture(
         }
     }
     let bounds = IntegerBounds::new((0, 0), full);
-    let image = Image::from_layers(ImageAttributes::new(bounds), layers);
+    let mut image = Image::from_layers(ImageAttributes::new(bounds), layers);
     let mut bytes = std::io::Cursor::new(Vec::new());
-    image.write().to_buffered(&mut bytes).map_err(|e| exr_error(path, e))?;
+    let headers = image.write().infer_meta_data();
+    let written = match early.filter(|e| headers.first().is_some_and(|h| e.fits(h))) {
+        Some(e) => write_early(&image, headers, film, e, &mut bytes),
+        None => {
+            if early.is_some() {
+                // Chunks made for another header: the beauty's pixels after all.
+                let all = AnyChannels::sort(SmallVec::from_vec(beauty(true)));
+                image.layer_data[0].channel_data = all;
+            }
+            image.write().to_buffered(&mut bytes)
+        }
+    };
+    written.map_err(|e| exr_error(path, e))?;
     let mut bytes = bytes.into_inner();
     sort_header_attributes(&mut bytes).map_err(|reason| FilmError::BadExr {
         path: path.to_path_buf(),
         reason: format!("cannot order the header: {reason}"),
     })?;
     w.write_all(&bytes).map_err(|e| io_error(path, e))
+}
+
+/// Write `image` as its own writer would, with `headers` (its inferred ones), but with the
+/// beauty's blocks (layer 0) from `early` (made from `film`), and every block still to be
+/// compressed compressed in parallel in the current rayon pool. The blocks are stored in the
+/// encoder's order (header by header, increasing y), so the bytes are the encoder's.
+fn write_early(
+    image: &Image<Layers<AnyChannels<FlatSamples>>>,
+    headers: exr::meta::Headers,
+    film: &Film,
+    early: &EarlyBlocks,
+    out: &mut std::io::Cursor<Vec<u8>>,
+) -> exr::error::UnitResult {
+    use exr::block::writer::ChunksWriter;
+    use exr::image::write::layers::{LayersWriter, WritableLayers};
+    use rayon::prelude::*;
+    let layers = image.layer_data.create_writer(&headers);
+    exr::block::write(out, headers, true, |meta, chunks| {
+        let blocks: Vec<(usize, exr::block::BlockIndex)> =
+            exr::block::enumerate_ordered_header_block_indices(&meta.headers).collect();
+        let made: Vec<exr::error::Result<exr::block::chunk::Chunk>> = blocks
+            .par_iter()
+            .map(|&(i, index)| match index.layer {
+                0 => early.chunk(film, i),
+                _ => {
+                    let data = layers.extract_uncompressed_block(&meta.headers, index);
+                    exr::block::UncompressedBlock { index, data }.compress_to_chunk(&meta.headers)
+                }
+            })
+            .collect();
+        for (&(i, _), chunk) in blocks.iter().zip(made) {
+            chunks.write_chunk(i, chunk?)?;
+        }
+        Ok(())
+    })
 }
 
 /// Put every attribute of every header of the OpenEXR file `bytes` in name order, in place.

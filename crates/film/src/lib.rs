@@ -15,6 +15,7 @@
 
 pub mod aov;
 pub mod atomic;
+pub mod early;
 pub mod error;
 pub mod image;
 pub mod layers;
@@ -31,6 +32,7 @@ pub use reyes_scene::filter::{kernel, renderman};
 pub use self::image::Film;
 pub use aov::{AovChannels, AovFilm, AovSamples, AovWindow, splat_aovs};
 pub use atomic::{WriteOptions, remove_stale_temporaries};
+pub use early::EarlyBlocks;
 pub use error::FilmError;
 pub use kernel::{bessel_j1, weight};
 pub use layers::{

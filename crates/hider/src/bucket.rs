@@ -37,12 +37,14 @@ use crate::{Hider, LensSetup, Scratch};
 
 mod adaptive;
 mod lanes;
+mod occlusion;
 pub(crate) use adaptive::RefineScratch;
 pub use adaptive::{Adaptive, RefinedSample, disagree};
 use lanes::{
     Batch, Candidate, LANES, MovingSample, PinholeSample, Place, PlaceLens, PlaceMoving,
     PlacePinhole, inside_mask,
 };
+pub(crate) use occlusion::Occlusion;
 
 /// Port of `bound`: the x, y, z bounding box of four points. (The original's two-compare
 /// sorting network is an optimisation of exactly this.)
@@ -121,19 +123,34 @@ struct Surface<'a> {
     zmin: f32,
     zmax: f32,
     crossing: bool,
+    /// Its position in the bucket's list (the order its points take in the sample lists).
+    order: u32,
+    /// Occlusion culling: its candidate samples may be skipped where an occluder is nearer
+    /// than `zmin`, and its points are occluders (`bucket/occlusion.rs`).
+    cull: bool,
+    occluder: bool,
 }
 
 impl<'a> Surface<'a> {
-    /// Micropolygon `mp` (number `index` in the bucket's list) with the depth range of the
-    /// bound `lo..hi`.
+    /// Micropolygon `mp` (its index in `mpolys` and its position in the bucket's list) with
+    /// the depth range of the bound `lo..hi`; with `occlusion`, culled and culling.
     #[inline]
-    fn new(mp: &'a Micropolygon, index: u32, lo: &[f32; 3], hi: &[f32; 3]) -> Surface<'a> {
+    fn new(
+        mp: &'a Micropolygon,
+        (index, order): (u32, u32),
+        lo: &[f32; 3],
+        hi: &[f32; 3],
+        occlusion: bool,
+    ) -> Surface<'a> {
         Surface {
             mp,
             index,
             zmin: lo[2],
             zmax: hi[2],
             crossing: mp.has(flags::HITHER_YON_CROSSING),
+            order,
+            cull: occlusion && occlusion::cullable(mp),
+            occluder: occlusion && occlusion::occluder(mp),
         }
     }
 }
@@ -274,7 +291,15 @@ impl Hider {
             glass_opacity: mp.glass_opacity,
             next: scratch.heads[nsample],
         });
-        scratch.heads[nsample] = index;
+        if scratch.occlusion.on {
+            let occ = &mut scratch.occlusion;
+            occ.link(&mut scratch.points, &mut scratch.heads, nsample, index, s.order);
+            if s.occluder {
+                occ.record(nsample, maxz);
+            }
+        } else {
+            scratch.heads[nsample] = index;
+        }
         if scratch.keep_mp {
             scratch.point_mp.push(s.index);
         }
@@ -321,9 +346,17 @@ impl Hider {
         let mut slices = std::mem::take(&mut scratch.slices);
         slices.build(&samples, self.config.lens, (needs.time, static_lens), ns, p_count);
         let t_sample = std::time::Instant::now();
+        // Occlusion culling samples front to back (`bucket/occlusion.rs`); without it, in
+        // the list's order.
+        let cull = self.config.occlusion_cull;
+        scratch.occlusion.begin(cull, (p_count, ns), mpolys, list);
+        let order = std::mem::take(&mut scratch.occlusion.order);
         let mut b =
             Bucket { hider: self, smp: &samples, slices: &slices, ns, bw, bh, p_count, scratch };
-        for &m in list {
+        let reach = b.reach();
+        for k in 0..list.len() {
+            let pos = if cull { order[k].1 } else { k as u32 };
+            let m = list[pos as usize];
             let mp = &mpolys[m as usize];
             b.scratch.stats.micropolygons += 1;
             let mut vertex = mp.v;
@@ -332,16 +365,23 @@ impl Hider {
                 p[1] -= top as f32;
             }
             let (lo, hi) = bound(&vertex);
+            if cull && b.occluded(mp, lo, hi, reach) {
+                b.scratch.stats.occlusion_culled += 1;
+                continue;
+            }
 
-            let surface_z = |lo: [f32; 3], hi: [f32; 3]| Surface::new(mp, m, &lo, &hi);
+            let surface_z = |lo: [f32; 3], hi: [f32; 3]| Surface::new(mp, (m, pos), &lo, &hi, cull);
             if mp.has(flags::MOVING) || !mp.whole_shutter() {
-                b.path_moving(mp, m, &vertex, lo, hi);
+                b.path_moving(mp, (m, pos), &vertex, lo, hi);
             } else if self.config.lens.is_some() {
                 b.path_lens(&surface_z(lo, hi), &vertex, lo, hi);
             } else {
                 b.path_pinhole(&surface_z(lo, hi), &vertex, lo, hi);
             }
         }
+        scratch.occlusion.order = order;
+        // Adaptive refinement samples in list order, without culling.
+        scratch.occlusion.on = false;
         scratch.stats.peak_points = scratch.stats.peak_points.max(scratch.points.len() as u64);
         scratch.stats.points += scratch.points.len() as u64;
         let t_resolve = std::time::Instant::now();
@@ -413,6 +453,74 @@ impl Hider {
 }
 
 impl Bucket<'_> {
+    /// Where any sample of the bucket can lie: the union of every slice's reach (offsets
+    /// from the pixel corner), and the largest lens offset along x and y (0 for a pinhole).
+    fn reach(&self) -> ([f32; 4], [f32; 2]) {
+        let mut r = [f32::INFINITY, f32::NEG_INFINITY, f32::INFINITY, f32::NEG_INFINITY];
+        for s in &self.smp.reach_space[..self.ns] {
+            r = [r[0].min(s[0]), r[1].max(s[1]), r[2].min(s[2]), r[3].max(s[3])];
+        }
+        let mut l = [0.0f32; 2];
+        if self.hider.config.lens.is_some() {
+            for s in &self.smp.lens_range[..self.ns] {
+                l = [l[0].max(s[0].abs()).max(s[1].abs()), l[1].max(s[2].abs()).max(s[3].abs())];
+            }
+        }
+        (r, l)
+    }
+
+    /// Occlusion culling of a whole micropolygon (bucket-local bound `lo..hi` at shutter
+    /// open): true if every sample it could touch, over its shutter segment and the lens,
+    /// already has an opaque surface strictly nearer than the nearest depth it can have
+    /// there. The box is the union of the boxes every path scans: path M's slice boxes lie
+    /// within the bound plus the motion's range (the warp keeps its parameter in [0, 1]),
+    /// and the lens shifts by at most the largest lens offset times the circle of confusion
+    /// at an end of the clamped depth range (as `bounddof`).
+    fn occluded(
+        &self,
+        mp: &Micropolygon,
+        mut lo: [f32; 3],
+        mut hi: [f32; 3],
+        (reach, lens_max): ([f32; 4], [f32; 2]),
+    ) -> bool {
+        if !occlusion::cullable(mp) {
+            return false;
+        }
+        if mp.has(flags::MOVING) || !mp.whole_shutter() {
+            let (slo, shi) = bound(&mp.speed);
+            for a in 0..3 {
+                lo[a] += slo[a].min(0.0);
+                hi[a] += shi[a].max(0.0);
+            }
+        }
+        let zmin = lo[2];
+        let config = &self.hider.config;
+        if let Some(l) = &config.lens {
+            let z0 = lo[2].max(config.hither);
+            let z1 = hi[2].min(config.yon).max(z0);
+            let (x0, y0) = l.coc(z0);
+            let (x1, y1) = l.coc(z1);
+            let bx = x0.abs().max(x1.abs()) * lens_max[0];
+            let by = y0.abs().max(y1.abs()) * lens_max[1];
+            lo[0] -= bx;
+            hi[0] += bx;
+            lo[1] -= by;
+            hi[1] += by;
+        }
+        let (xs, ys) = if config.scan_all {
+            ((0, self.bw as i32 - 1), (0, self.bh as i32 - 1))
+        } else {
+            (
+                pixel_range(lo[0], hi[0], reach[0], reach[1], self.bw),
+                pixel_range(lo[1], hi[1], reach[2], reach[3], self.bh),
+            )
+        };
+        if xs.0 > xs.1 || ys.0 > ys.1 {
+            return false;
+        }
+        self.scratch.occlusion.covered(xs, ys, self.bw, zmin)
+    }
+
     /// The loop of `VisEndBucket` every path runs for one micropolygon (Appendix A 2.5). For
     /// each slice `k` of the path (sample index `s`, lens stratum `lambda` or time slice `tau`):
     /// the micropolygon's box over the slice, `slice_box(k)` = `[x lo, x hi, y lo, y hi]`
@@ -440,6 +548,7 @@ impl Bucket<'_> {
             if scan_all { (0, n as i32 - 1) } else { pixel_range(lo, hi, rmin, rmax, n) }
         };
         let mut b = Batch::new();
+        let mut skipped = 0;
         for (k, r) in reach[..ns].iter().enumerate() {
             let Some([bx0, bx1, by0, by1]) = slice_box(k) else { continue };
             let (x0, x1) = pixels(bx0, bx1, r[0], r[1], bw);
@@ -455,6 +564,11 @@ impl Bucket<'_> {
                 }
                 let row_start = y * bw as usize;
                 for c in row(row_start + x0 as usize, row_start + x1 as usize) {
+                    // Behind an opaque surface at this sample: it cannot be seen there.
+                    if surf.cull && surf.zmin > self.scratch.occlusion.depth[c.n()] {
+                        skipped += 1;
+                        continue;
+                    }
                     c.append(&mut b);
                     if b.full() {
                         self.drain(&mut b, place, surf, false);
@@ -465,6 +579,7 @@ impl Bucket<'_> {
         self.drain(&mut b, place, surf, true);
         self.scratch.stats.hits += b.hits;
         self.scratch.stats.misses += b.tests - b.hits;
+        self.scratch.stats.occluded_tests += skipped;
     }
 
     /// Test the batch's entries against the micropolygon, [`LANES`] at a time, and push a
@@ -587,7 +702,7 @@ impl Bucket<'_> {
     fn path_moving(
         &mut self,
         mp: &Micropolygon,
-        index: u32,
+        index: (u32, u32),
         vertex: &[[f32; 3]; 4],
         mut lo: [f32; 3],
         mut hi: [f32; 3],
@@ -597,7 +712,7 @@ impl Bucket<'_> {
         // z range over the whole segment: the visible points' depth range.
         lo[2] += slo[2].min(0.0);
         hi[2] += shi[2].max(0.0);
-        let surf = Surface::new(mp, index, &lo, &hi);
+        let surf = Surface::new(mp, index, &lo, &hi, hider.config.occlusion_cull);
         let lens = hider.config.lens;
         if let Some(l) = &lens {
             l.grow(&mut lo, &mut hi, hider.config.hither, hider.config.yon);

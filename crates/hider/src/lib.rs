@@ -73,6 +73,10 @@ pub struct HiderConfig {
     /// Test every sample of the bucket against every micropolygon, with no bound culling.
     /// For tests and study: the image must not change, only the sample-test count.
     pub scan_all: bool,
+    /// Occlusion culling (`hider.occlusion_cull`): sample each bucket's micropolygons front
+    /// to back and skip what lies behind opaque surfaces at every sample it could touch.
+    /// The image does not change, bit for bit; only the work counts do.
+    pub occlusion_cull: bool,
 }
 
 impl Default for HiderConfig {
@@ -97,6 +101,7 @@ impl Default for HiderConfig {
             original_linear_motion: false,
             adaptive: None,
             scan_all: false,
+            occlusion_cull: true,
         }
     }
 }
@@ -142,6 +147,11 @@ pub struct Stats {
     pub refined_pixels: u64,
     /// Samples added by adaptive sampling (beyond NS per pixel).
     pub extra_samples: u64,
+    /// Micropolygon-in-bucket visits skipped whole by occlusion culling (behind opaque
+    /// surfaces at every sample they could touch).
+    pub occlusion_culled: u64,
+    /// Candidate samples not tested because an opaque surface is nearer there.
+    pub occluded_tests: u64,
 }
 
 impl Stats {
@@ -158,6 +168,8 @@ impl Stats {
         self.resolve_ns += o.resolve_ns;
         self.refined_pixels += o.refined_pixels;
         self.extra_samples += o.extra_samples;
+        self.occlusion_culled += o.occlusion_culled;
+        self.occluded_tests += o.occluded_tests;
     }
 }
 
@@ -179,6 +191,7 @@ pub struct Scratch {
     front_z: Vec<f32>,
     steps: aov::Steps,
     refine: bucket::RefineScratch,
+    occlusion: bucket::Occlusion,
     /// Statistics accumulated by every bucket this scratch has rendered.
     pub stats: Stats,
 }

@@ -40,6 +40,10 @@ use reyes_scene::{HiderMethod, Scene};
 /// What [`RenderOptions::on_result`] calls: with a bucket's index and its result.
 pub type OnResult<'a> = dyn Fn(usize, &BucketResult) + Sync + 'a;
 
+/// What [`RenderOptions::on_film_lines`] calls: with the film and the lines of it that have
+/// just become final.
+pub type OnFilmLines<'a> = dyn Fn(&Film, std::ops::Range<u32>) + Sync + 'a;
+
 /// Options that are not part of the scene.
 #[derive(Default)]
 pub struct RenderOptions<'a> {
@@ -62,6 +66,13 @@ pub struct RenderOptions<'a> {
     pub on_result: Option<&'a OnResult<'a>>,
     /// Keep every bucket's result in [`Rendered::buckets`] (for a tile file).
     pub keep_buckets: bool,
+    /// Called, by the stochastic hider, with the film and a range of its lines that no bucket
+    /// still to come adds to, in order down the frame and each line once, from a worker
+    /// while the next rows' buckets render (e.g. to compress them,
+    /// [`reyes_film::EarlyBlocks`]); the last range ends at the film's last line. A range
+    /// starting at line 0 after others means the frame started again (the lines before are
+    /// to be forgotten).
+    pub on_film_lines: Option<&'a OnFilmLines<'a>>,
 }
 
 /// A rendered frame.

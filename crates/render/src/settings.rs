@@ -61,6 +61,7 @@ pub fn hider_config(scene: &Scene, camera: &CameraSetup) -> HiderConfig {
             threshold: h.adaptive.threshold,
         }),
         scan_all: false,
+        occlusion_cull: h.occlusion_cull,
     }
 }
 

@@ -219,6 +219,13 @@ impl RenderStats {
             h.micropolygons,
             h.micropolygons as f64 / self.micropolygons.max(1) as f64
         );
+        let _ = writeln!(
+            s,
+            " Occlusion culling: {} micropolygons occlusion-culled ({:5.2}% of those in buckets), {} sample tests skipped behind opaque samples",
+            h.occlusion_culled,
+            pct(h.occlusion_culled, h.micropolygons),
+            h.occluded_tests
+        );
         let tests = h.hits + h.misses;
         let _ = writeln!(
             s,

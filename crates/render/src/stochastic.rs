@@ -137,8 +137,11 @@ struct Buffers {
     aov_window: AovWindow,
 }
 
-/// The bucket loop: per row of buckets, dice what it needs, render its buckets in parallel,
-/// add their windows to the film in raster order, release what no later row needs.
+/// The bucket loop: per row of buckets, render its buckets in parallel while the next row is
+/// diced, add their windows to the film in raster order, release what no later row needs.
+///
+/// Time: `t_hide` is the wall time of the rows' bucket loops with the next rows' dicing
+/// overlapped; `t_dice` the dicing outside them (the first row, listing each row's grids).
 fn render_rows(
     scene: &Scene,
     opts: &RenderOptions,
@@ -181,13 +184,29 @@ fn render_rows(
     // Rows after the last selected bucket's are neither diced nor rendered.
     let rows = selected.last().map_or(0, |&b| (b / across + 1) as u32).min(dicer.rows());
     let mut next = 0;
+    // Row 0 is diced alone; from then on row `row + 1` is diced while row `row` renders
+    // (rayon::join: a worker with no bucket left takes dicing work and the other way round),
+    // so a row's slowest bucket no longer leaves the other workers idle.
+    if rows > 0 {
+        let t = Instant::now();
+        dicer.dice_row(0)?;
+        t_dice += t.elapsed();
+    }
+    // The film's lines that no later row adds to: those above the next row's windows.
+    // Buckets tile the extended screen (raster -border on), and a window reaches a border
+    // further: row r + 1's windows start at raster (r + 1) bh - 2 border.
+    let height = scene.image.height;
+    let final_after = |row: u32| match row + 1 < frame.buckets_y {
+        true => ((row + 1) * frame.bucket_h).saturating_sub(2 * frame.border).min(height),
+        false => height,
+    };
+    // Lines handed to `on_film_lines` so far.
+    let mut lines_done = 0;
     for row in 0..rows {
         if cancel::requested() {
             return Err(RenderError::Cancelled);
         }
-        let t = Instant::now();
-        dicer.dice_row(row)?;
-        t_dice += t.elapsed();
+        let ahead = (row + 1 < rows).then(|| dicer.take_row(row + 1));
 
         let t = Instant::now();
         let end = (row as usize + 1) * across;
@@ -195,26 +214,45 @@ fn render_rows(
         let row_buckets = &selected[next..next + count];
         next += count;
         let diced = &dicer;
-        let results = row_buckets
-            .par_iter()
-            .map_init(Buffers::default, |buf, &b| {
-                if cancel::requested() {
-                    // Skipped: the row is discarded below.
-                    return Default::default();
-                }
-                if let Some(r) = opts.done.and_then(|d| d.get(&b)) {
-                    return (r.clone(), Default::default());
-                }
-                let result = render_bucket(diced, &hider, &table, &frame, aov.as_ref(), b, buf);
-                if let Some(cb) = opts.on_result {
-                    cb(b, &result.0);
-                }
-                if let Some(cb) = opts.on_bucket {
-                    cb();
-                }
-                result
-            })
-            .collect::<Vec<_>>();
+        // The lines the rows added so far made final, handed on beside this row's buckets.
+        let lines = lines_done..row.checked_sub(1).map_or(0, final_after);
+        let film_now = &film;
+        let (results, wave) = rayon::join(
+            || {
+                row_buckets
+                    .par_iter()
+                    .map_init(Buffers::default, |buf, &b| {
+                        if cancel::requested() {
+                            // Skipped: the row is discarded below.
+                            return Default::default();
+                        }
+                        if let Some(r) = opts.done.and_then(|d| d.get(&b)) {
+                            return (r.clone(), Default::default());
+                        }
+                        let result =
+                            render_bucket(diced, &hider, &table, &frame, aov.as_ref(), b, buf);
+                        if let Some(cb) = opts.on_result {
+                            cb(b, &result.0);
+                        }
+                        if let Some(cb) = opts.on_bucket {
+                            cb();
+                        }
+                        result
+                    })
+                    .collect::<Vec<_>>()
+            },
+            || {
+                rayon::join(
+                    || ahead.map(|work| diced.process_row(work)),
+                    || match opts.on_film_lines {
+                        Some(cb) if !lines.is_empty() => cb(film_now, lines.clone()),
+                        _ => {}
+                    },
+                )
+                .0
+            },
+        );
+        lines_done = lines_done.max(lines.end);
         t_hide += t.elapsed();
         if cancel::requested() {
             return Err(RenderError::Cancelled);
@@ -234,7 +272,20 @@ fn render_rows(
         if let (Some(limit), true) = (max_points, hider_stats.dropped_points > 0) {
             return Err(RenderError::VisiblePointBudget { limit });
         }
+        // The next row's grids are listed before this row's are dropped: both were in
+        // memory while they overlapped, and the peak says so.
+        if let Some(wave) = wave {
+            let t = Instant::now();
+            dicer.finish_row(wave)?;
+            t_dice += t.elapsed();
+        }
         dicer.release_row(row);
+    }
+    // The rest of the frame, once every row is in.
+    if let Some(cb) = opts.on_film_lines.filter(|_| lines_done < height) {
+        let t = Instant::now();
+        cb(&film, lines_done..height);
+        t_film += t.elapsed();
     }
     let dice_stats = dicer.stats();
     let stats = RenderStats {

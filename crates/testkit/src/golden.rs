@@ -305,6 +305,7 @@ pub fn bless(root: &Path, case: &Case) -> Result<PathBuf, GoldenError> {
                 outputs: &scene.outputs,
                 metadata: &metadata,
                 placement: None,
+                early: None,
             };
             reyes_film::write_picture(&reference, &picture, &Default::default()).map_err(err)?;
         }

@@ -259,7 +259,7 @@ impl Hider {
                 hi[a] = hi[a].max(ehi[a]);
             }
         }
-        let surf = Surface::new(mp, index, &lo, &hi);
+        let surf = Surface::new(mp, (index, index), &lo, &hi, false);
         let lens = self.config.lens;
         if let Some(l) = &lens {
             l.grow(&mut lo, &mut hi, self.config.hither, self.config.yon);

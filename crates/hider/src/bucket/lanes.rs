@@ -270,6 +270,8 @@ pub(super) fn inside_mask(x: &[[f32; LANES]; 4], y: &[[f32; LANES]; 4]) -> u32 {
 pub(super) trait Candidate {
     /// Append to the batch (`fill < BUF`), with every field the path's [`Place`] reads.
     fn append(self, b: &mut Batch);
+    /// Its list index `pixel*NS + s`.
+    fn n(&self) -> usize;
 }
 
 /// Path P: position and list index `pixel*NS + s`, read from
@@ -285,6 +287,10 @@ impl Candidate for PinholeSample {
     fn append(self, b: &mut Batch) {
         b.push(self.x, self.y, self.n);
     }
+    #[inline(always)]
+    fn n(&self) -> usize {
+        self.n
+    }
 }
 
 /// Path D: a lens-slice sample as recorded.
@@ -292,6 +298,10 @@ impl Candidate for &SliceSample {
     #[inline(always)]
     fn append(self, b: &mut Batch) {
         b.push_sample(self);
+    }
+    #[inline(always)]
+    fn n(&self) -> usize {
+        self.n as usize
     }
 }
 
@@ -306,5 +316,9 @@ impl Candidate for MovingSample<'_> {
     fn append(self, b: &mut Batch) {
         let l = b.push_sample(self.r);
         b.alpha[l] = self.alpha;
+    }
+    #[inline(always)]
+    fn n(&self) -> usize {
+        self.r.n as usize
     }
 }

@@ -132,3 +132,82 @@ fn every_scene_has_a_golden_case() {
         }
     }
 }
+
+/// `on_film_lines` hands on every line of the film once, in order, and only once no later
+/// bucket adds to it: the lines as they were when handed on are the final film's, bit for
+/// bit, for any thread count, bucket size and filter border (a wide filter's windows reach
+/// further into the rows above). The EXR written with the blocks compressed from them
+/// ([`reyes_film::EarlyBlocks`]) is the EXR written without, byte for byte.
+#[test]
+fn film_lines_are_handed_on_once_final_and_their_blocks_make_the_same_file() {
+    use std::sync::Mutex;
+    let root = golden::workspace_root();
+    for (bucket, filter) in [(16, None), (8, Some(6.0)), (4, Some(10.0))] {
+        let mut scene = reyes_scene::load(&root.join("scenes/transparency.ron")).unwrap();
+        scene.image.width = 120;
+        scene.image.height = 90;
+        scene.hider.bucket_size = (bucket, bucket);
+        if let Some(width) = filter {
+            scene.hider.filter.width = width;
+            scene.hider.filter.height = None;
+        }
+        let mut files = Vec::new();
+        for threads in [1, 2, 8] {
+            let what = format!("bucket {bucket}, filter {filter:?}, {threads} threads");
+            let seen: Mutex<Vec<(std::ops::Range<u32>, Vec<u32>)>> = Mutex::new(Vec::new());
+            let early = reyes_film::EarlyBlocks::new(120, 90, &scene.outputs, false).unwrap();
+            let on_lines = |film: &reyes_film::Film, lines: std::ops::Range<u32>| {
+                let w = film.width() as usize;
+                let (a, b) = (lines.start as usize * w, lines.end as usize * w);
+                let bits = film.rgba()[a..b].iter().flatten().chain(&film.z()[a..b]);
+                seen.lock().unwrap().push((lines.clone(), bits.map(|v| v.to_bits()).collect()));
+                early.encode(film, lines);
+            };
+            let opts = RenderOptions {
+                threads: Some(threads),
+                on_film_lines: Some(&on_lines),
+                ..Default::default()
+            };
+            let film = render(&scene, &opts).unwrap().film;
+            let seen = seen.into_inner().unwrap();
+            let mut next = 0;
+            for (lines, bits) in &seen {
+                assert_eq!(lines.start, next, "{what}: {seen:?}");
+                assert!(lines.end > lines.start, "{what}");
+                let w = film.width() as usize;
+                let (a, b) = (lines.start as usize * w, lines.end as usize * w);
+                let now = film.rgba()[a..b].iter().flatten().chain(&film.z()[a..b]);
+                let now: Vec<u32> = now.map(|v| v.to_bits()).collect();
+                let ranges: Vec<_> = seen.iter().map(|s| s.0.clone()).collect();
+                assert!(
+                    &now == bits,
+                    "{what}: lines {lines:?} changed after they were handed on {ranges:?}"
+                );
+                next = lines.end;
+            }
+            assert_eq!(next, 90, "{what}: every line");
+            // Not all at the end: lines came early, row by row.
+            assert!(seen.len() > 2, "{what}: {} ranges", seen.len());
+
+            let metadata = reyes_film::Metadata::for_scene(&scene, "t.ron");
+            let dir = tempfile::tempdir().unwrap();
+            let write = |name: &str, e: Option<&reyes_film::EarlyBlocks>| {
+                let picture = reyes_film::Picture {
+                    film: &film,
+                    aovs: None,
+                    outputs: &scene.outputs,
+                    metadata: &metadata,
+                    placement: None,
+                    early: e,
+                };
+                let path = dir.path().join(name);
+                reyes_film::write_picture(&path, &picture, &Default::default()).unwrap();
+                std::fs::read(&path).unwrap()
+            };
+            let plain = write("plain.exr", None);
+            assert!(write("early.exr", Some(&early)) == plain, "{what}: the files differ");
+            files.push(plain);
+        }
+        assert!(files.windows(2).all(|p| p[0] == p[1]), "bucket {bucket}: thread counts differ");
+    }
+}

@@ -58,6 +58,12 @@ pub struct Hider {
     /// points (docs/geometry.md, "Crack-free dicing"), so no sample falls between them. On
     /// by default; off reproduces the dicer before it (each grid's boundary on the surface).
     pub crack_free: bool,
+    /// Occlusion culling in the stochastic hider: each bucket's micropolygons are sampled
+    /// front to back, and one that lies behind opaque surfaces at every sample it could
+    /// touch (over the shutter and the lens) is skipped, as is each sample where it does.
+    /// The image is the same bit for bit either way (docs/architecture.md, "Occlusion
+    /// culling"); `false` is for comparison.
+    pub occlusion_cull: bool,
     /// Adaptive sampling (the patent's reduced-scale repetition of the pattern): off unless
     /// `max_level` > 0.
     pub adaptive: Adaptive,
@@ -102,8 +108,9 @@ impl Default for Hider {
             relative_flatness: 1.0 / 512.0,
             motion_factor: 0.0,
             focus_factor: 0.0,
-                        cull_back_faces: true,
+            cull_back_faces: true,
             crack_free: true,
+            occlusion_cull: true,
             adaptive: Adaptive::default(),
             original: Original::default(),
         }

@@ -67,6 +67,8 @@ pub(crate) const CASES: &[Case] = &[
     Case { name: "adaptive with the ray-tracing hider", from: "(4, 4),", to: "(4, 4), method: RayTrace, adaptive: (max_level: 1),", field: "hider.adaptive.max_level", at: Some((4, 74)) },
     Case { name: "unknown adaptive field", from: "(4, 4),", to: "(4, 4), adaptive: (levels: 2),", field: "hider.adaptive.levels", at: Some((4, 45)) },
     Case { name: "filter missed by the original stratum pairing", from: "(4, 4), filter: (kind: Gaussian, width: 2.0)", to: "(3, 4), filter: (kind: RiDisk, width: 0.2), original: (permute: true)", field: "hider.filter", at: Some((4, 42)) },
+    // Added with occlusion culling (#13).
+    Case { name: "occlusion cull not a bool", from: "(4, 4),", to: "(4, 4), occlusion_cull: 0,", field: "hider.occlusion_cull", at: Some((4, 50)) },
 ];
 
 #[test]
