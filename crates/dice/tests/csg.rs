@@ -153,22 +153,22 @@ struct Found {
 }
 
 /// Every micropolygon labelled `label` lies on one of `pieces` (all four vertices within
-/// `eps`) with its vector area pointing out of the solid (into it for a piece of winding
-/// -1).
+/// [`on_surface_eps`] of it) with its vector area pointing out of the solid (into it for a
+/// piece of winding -1).
 fn check_closed(
     scene: &Scene,
     diced: &Diced,
     object_index: usize,
     label: (u16, u16),
     pieces: &[Piece],
-    eps: f32,
 ) -> Found {
     let un = Unproject::new(scene);
+    let eps = on_surface_eps(scene, &un);
     let to_object = object_to_world(&scene.objects[object_index].transform).inverse();
     let mut out = Found { pieces: vec![(0, 0.0); pieces.len()], net: 0.0, total: 0.0 };
     for mp in diced.mpolys.iter().filter(|m| (m.csg_tree, m.csg_node) == label) {
         let p = mp.v.map(|v| to_object.transform_point3(un.world(v)));
-        let on = |piece: &Piece| p.iter().all(|&q| (piece.off)(q) < eps);
+        let on = |piece: &Piece| p.iter().zip(&mp.v).all(|(&q, v)| (piece.off)(q) < eps(v[2]));
         let Some(k) = pieces.iter().position(on) else {
             panic!("a micropolygon on no piece of the solid: {p:?}");
         };
@@ -189,6 +189,25 @@ fn check_closed(
     }
     assert!(out.net.abs() < 0.01 * out.total, "closed: net {} of {}", out.net, out.total);
     out
+}
+
+/// How far from its surface a diced vertex may lie, in object units, at camera depth `z`.
+///
+/// Interior vertices are on the surface. Boundary vertices are on their side's shared
+/// polyline (crack-free dicing, crates/dice/src/split/edge.rs): between polyline vertices,
+/// on a chord that strays from the surface by at most the edge tolerance `tol` raster
+/// pixels, which the dicer checks both across the screen and in camera-space depth (as
+/// pixels at the point's depth, `k / z` pixels per unit). The pieces here are arcs of
+/// circles and parabolas, whose chord strays most at its middle, one of the points tested,
+/// so a vertex is within `tol * z / k` camera units of the surface, the same in object
+/// units (the operands are only rotated and moved). `tol` is at most the flatness bound
+/// (`hider.flatness`, 0.05 pixel here; the relative bound only lowers it). Plus rounding:
+/// unprojecting a raster point at depth ~13 in `f32` costs a few ulps of 13 (1e-6 each);
+/// 1e-4 is about a hundred of them.
+fn on_surface_eps(scene: &Scene, un: &Unproject) -> impl Fn(f32) -> f32 {
+    let tol = scene.hider.flatness;
+    let k = un.setup.pixels_per_unit();
+    move |z: f32| tol * z / k + 1e-4
 }
 
 /// An oblique view of `operand` (object 0) in a difference with a small sphere, placed by
@@ -231,7 +250,7 @@ fn cylinder_operand_is_closed_by_caps_facing_out() {
             winding: 1.0,
         },
     ];
-    let found = check_closed(&s, &diced, 0, label, &pieces, 1e-3).pieces;
+    let found = check_closed(&s, &diced, 0, label, &pieces).pieces;
     let disk = f64::from(std::f32::consts::PI * r * r);
     for (k, name) in ["bottom", "top"].into_iter().enumerate() {
         let (count, area) = found[k];
@@ -262,7 +281,7 @@ fn cone_and_paraboloid_operands_are_closed_by_caps_facing_out() {
                 winding: height.signum(),
             },
         ];
-        let found = check_closed(&s, &diced, 0, label, &pieces, 1e-3).pieces;
+        let found = check_closed(&s, &diced, 0, label, &pieces).pieces;
         assert!(found[0].0 > 20, "h {height}: base cap {found:?}");
         let disk = f64::from(std::f32::consts::PI * radius * radius);
         assert!((found[0].1 - disk).abs() < 0.03 * disk, "h {height}: {found:?}");
@@ -277,12 +296,16 @@ fn cone_and_paraboloid_operands_are_closed_by_caps_facing_out() {
             plane("top", zmax, true),
             Piece {
                 name: "paraboloid",
-                off: Box::new(move |p| (p.x * p.x + p.y * p.y - k * p.z).abs()),
+                // |f| / |grad f| of f = x^2 + y^2 - k z: the distance to first order.
+                off: Box::new(move |p| {
+                    let f = p.x * p.x + p.y * p.y - k * p.z;
+                    f.abs() / Vec3::new(2.0 * p.x, 2.0 * p.y, -k).length()
+                }),
                 outward: Box::new(move |p| Vec3::new(2.0 * p.x, 2.0 * p.y, -k)),
                 winding: 1.0,
             },
         ];
-        let found = check_closed(&s, &diced, 0, label, &pieces, 1e-3).pieces;
+        let found = check_closed(&s, &diced, 0, label, &pieces).pieces;
         let top = f64::from(std::f32::consts::PI * rmax * rmax);
         assert!(found[1].0 > 20 && (found[1].1 - top).abs() < 0.03 * top, "{found:?}");
         if zmin > 0.0 {

@@ -45,11 +45,6 @@ pub(crate) const EDGE_LIMIT: u32 = 16;
 /// the three inside ones see a piece that bends one way, or both ways, and a full circle
 /// (a closed sweep's seam seen end on, whose ends coincide).
 const EDGE_TEST: usize = 5;
-/// A piece no longer than this many micropolygon sides (`sqrt(shading_rate)` pixels, along
-/// its test points, at its longest over the breakpoints) is not halved, however it strays:
-/// a grid's own micropolygons are straight over a side each, so a finer polyline would only
-/// force finer grids along it without making the surface truer than its grids are.
-const EDGE_SHORT: f32 = 2.0;
 /// Raster pixels by which a grid's boundary vertices are pushed out of the grid, so that
 /// two grids along a shared edge overlap by a sliver rather than leave one of rounding
 /// width (about 1e-4 pixel at raster coordinates of a thousand pixels, where `f32` steps
@@ -111,12 +106,6 @@ impl Edge {
             p.push(e[1]);
         }
         Edge { t, points: per_pose.concat() }
-    }
-
-    /// Vertices of the polyline.
-    #[cfg(test)]
-    pub fn len(&self) -> usize {
-        self.t.len()
     }
 
     /// The point of the polyline at parameter `t` at breakpoint `b`: a vertex's point
@@ -190,15 +179,13 @@ impl Piece<'_, '_> {
     }
 
     /// True if the piece strays from its chord by more than `tol` in raster at one of its
-    /// `EDGE_TEST` points at some breakpoint (points not in front of the eye skipped) and is
-    /// longer than [`EDGE_SHORT`] micropolygon sides, unless
+    /// `EDGE_TEST` points at some breakpoint (points not in front of the eye skipped), unless
     /// it is in a pinhole camera's view and its raster bound, grown by its own size, is off
     /// the screen at every breakpoint (it is never seen, so its shape does not matter).
     fn strays(&self, range: [f32; 2], a: &[Vec3], b: &[Vec3]) -> bool {
         let sp = self.splitter;
         let (mut lo, mut hi) = (Vec2::INFINITY, Vec2::NEG_INFINITY);
         let mut stray = 0.0_f32;
-        let mut longest = 0.0_f32;
         let mut all_seen = true;
         // Camera-space point and its raster position, for a point in front of the eye.
         let seen = |pose: &Pose<'_>, p: Vec3| {
@@ -226,20 +213,13 @@ impl Piece<'_, '_> {
                     None => all_seen = false,
                 }
             }
-            let mut length = 0.0;
-            let mut prev = ea.map(|e| e.1);
             for i in 1..EDGE_TEST - 1 {
                 let f = i as f32 / (EDGE_TEST - 1) as f32;
                 let (u, v) = self.line.uv(range[0] + (range[1] - range[0]) * f);
                 let Some((c, r)) = seen(pose, pose.surface.position(u, v)) else {
                     all_seen = false;
-                    prev = None;
                     continue;
                 };
-                if let Some(q) = prev {
-                    length += r.distance(q);
-                }
-                prev = Some(r);
                 lo = lo.min(r);
                 hi = hi.max(r);
                 // How far the chord is from the curve: across the screen, and in depth
@@ -252,12 +232,11 @@ impl Piece<'_, '_> {
                     stray = stray.max(distance_to_segment(c, ca, cb) * px(c.z));
                 }
             }
-            if let (Some(q), Some((_, rb))) = (prev, eb) {
-                length += rb.distance(q);
-            }
-            longest = longest.max(length);
         }
-        if stray <= self.tol || longest <= EDGE_SHORT * sp.step {
+        // No exemption for short pieces: the grids along the edge are diced to the same
+        // flatness bound (flat.rs), so a piece that strays more than it would leave the grids'
+        // boundary coarser than their insides (a small sphere at 1/512 of its extent).
+        if stray <= self.tol {
             return false;
         }
         if all_seen && sp.lens.is_none() {
