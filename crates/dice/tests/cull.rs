@@ -131,6 +131,16 @@ fn only_closed_opaque_plain_objects_under_a_pinhole_are_culled() {
         0,
         "open (cut) sphere"
     );
+    // Cylinders, cones and paraboloids are closed only by a solid's end caps: alone, their
+    // insides show through their open ends.
+    for shape in [
+        reyes_scene::Shape::Cylinder { radius: 1.0, zmin: -1.0, zmax: 1.0, thetamax: 360.0 },
+        reyes_scene::Shape::Cone { height: 1.0, radius: 1.0, thetamax: 360.0 },
+        reyes_scene::Shape::Paraboloid { rmax: 1.0, zmin: 0.0, zmax: 1.0, thetamax: 360.0 },
+    ] {
+        let name = shape.name();
+        assert_eq!(count(&|s| s.objects[0].shape = shape.clone()), 0, "open {name}");
+    }
     assert_eq!(
         count(&|s| s.camera.lens =
             Some(reyes_scene::Lens { focal_length: 1.0, f_stop: 2.8, focal_distance: 5.0 })),
