@@ -371,11 +371,11 @@ impl<'b> Emitter<'b> {
                         // survives only in the vertex winding.
                         let mut sp = pose.surface.eval(u, v);
                         let vertex = j * (nu + 1) + i;
-                        // Crack-free dicing: a boundary vertex on its side's polyline (the
-                        // shading still sees the surface there).
-                        if let Some(p) = boundary(0, u, v, i, j) {
-                            sp.p = p;
-                        }
+                        // Crack-free dicing: a boundary vertex lies on its side's polyline,
+                        // up to the edge tolerance off the surface; it is shaded (and its
+                        // AOVs taken) at the surface point, so that rays it spawns leave from
+                        // the surface, not from under it.
+                        let on_polyline = boundary(0, u, v, i, j);
                         let looked = object.look.as_ref().map_or(Looked::NONE, |l| {
                             l.object.looked(&l.system, &At { uv: [u, v], duv, p_object: sp.p })
                         });
@@ -383,7 +383,11 @@ impl<'b> Emitter<'b> {
                             sp.p = d.position(0, vertex).unwrap_or(sp.p);
                             sp.n = d.normal(vertex);
                         }
-                        let (p_world, p_camera) = pose.moment.world_and_camera(sp.p);
+                        let (p_world, p_shaded) = pose.moment.world_and_camera(sp.p);
+                        let p_camera = match on_polyline {
+                            Some(p) => pose.moment.world_and_camera(p).1,
+                            None => p_shaded,
+                        };
                         let n_world = object.normal_to_world * sp.n;
                         let (mut color, trans) = match &hook {
                             None => object.shader.shade_looked(p_world, n_world, sp.tint, &looked),
@@ -426,7 +430,7 @@ impl<'b> Emitter<'b> {
                             let n_camera =
                                 world_to_camera.transform_vector3(n_world).normalize_or_zero();
                             g.aov.extend_from_slice(&n_camera.to_array());
-                            g.aov.extend_from_slice(&p_camera.to_array());
+                            g.aov.extend_from_slice(&p_shaded.to_array());
                             g.aov.extend_from_slice(&[u, v, ids[0], ids[1]]);
                             for group in &layout.groups {
                                 // Local illumination's terms; the ray-traced shader's are not
