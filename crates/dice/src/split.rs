@@ -343,6 +343,15 @@ impl Splitter {
     /// The root patch of a surface seen in `poses`, with its four sides for crack-free
     /// dicing ([`edge`]), its corners on the surface.
     pub fn root_with_sides(&self, poses: &[Pose<'_>]) -> Patch {
+        self.root_sharing(poses, SharedSides::default())
+    }
+
+    /// [`Splitter::root_with_sides`], taking the sides a neighbouring surface of the same
+    /// object has already made (`given`) and making the others. Two sub-patches of a patch
+    /// mesh meet along a curve each evaluates from its own control points, to rounding; each
+    /// halving its own copy could halve it differently, so the first one to reach a shared
+    /// boundary makes its edge and the other reads it ([`SharedSides`]).
+    pub fn root_sharing(&self, poses: &[Pose<'_>], given: SharedSides) -> Patch {
         let corner = |u: f32, v: f32| -> Vec<Vec3> {
             poses.iter().map(|pose| pose.surface.position(u, v)).collect()
         };
@@ -356,10 +365,10 @@ impl Splitter {
             Arc::new(Edge::new(self, poses, line, [0.0, 1.0], &ends(a, b), tol))
         };
         let sides = Sides {
-            bottom: edge(Line::AlongU(0.0), &c00, &c10),
-            top: edge(Line::AlongU(1.0), &c01, &c11),
-            left: edge(Line::AlongV(0.0), &c00, &c01),
-            right: edge(Line::AlongV(1.0), &c10, &c11),
+            bottom: given.bottom.unwrap_or_else(|| edge(Line::AlongU(0.0), &c00, &c10)),
+            top: given.top.unwrap_or_else(|| edge(Line::AlongU(1.0), &c01, &c11)),
+            left: given.left.unwrap_or_else(|| edge(Line::AlongV(0.0), &c00, &c01)),
+            right: given.right.unwrap_or_else(|| edge(Line::AlongV(1.0), &c10, &c11)),
         };
         Patch { sides: Some(Arc::new(sides)), ..Patch::root() }
     }
@@ -721,6 +730,15 @@ impl Splitter {
         let extra = (u64::from(nu) * u64::from(nv)).saturating_sub(u64::from(su) * u64::from(sv));
         Decision::Dice { nu, nv, limited: true, extra: extra as u32 }
     }
+}
+
+/// Root sides already made by a neighbouring surface ([`Splitter::root_sharing`]).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct SharedSides {
+    pub bottom: Option<Arc<Edge>>,
+    pub top: Option<Arc<Edge>>,
+    pub left: Option<Arc<Edge>>,
+    pub right: Option<Arc<Edge>>,
 }
 
 /// True if a patch that would be diced into `count` micropolygons, split from a parent that
