@@ -268,7 +268,7 @@ fn closed_shape() -> impl proptest::strategy::Strategy<Value = Closed> {
     use proptest::prelude::*;
     prop_oneof![
         (0.6_f32..1.2).prop_map(Closed::Sphere),
-        (0.6_f32..0.9, 0.15_f32..0.4).prop_map(|(a, b)| Closed::Torus(a, b)),
+        (0.6_f32..0.9, 0.25_f32..0.4).prop_map(|(a, b)| Closed::Torus(a, b)),
         proptest::collection::vec(0.6_f32..1.4, 48).prop_map(Closed::Patches),
         proptest::collection::vec(0.6_f32..1.3, 6).prop_map(Closed::Mesh),
     ]
