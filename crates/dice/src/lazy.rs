@@ -320,8 +320,10 @@ impl<'a> Dicer<'a> {
                 }
                 _ => (false, false),
             };
-            let mut shared: std::collections::HashMap<(bool, usize, usize), std::sync::Arc<crate::split::Edge>> =
-                std::collections::HashMap::new();
+            let mut shared: std::collections::HashMap<
+                (bool, usize, usize),
+                std::sync::Arc<crate::split::Edge>,
+            > = std::collections::HashMap::new();
             for surface in 0..motion.surface_count() {
                 dicer.stats.primitives += 1;
                 let poses = motion.poses(surface);
@@ -338,7 +340,12 @@ impl<'a> Dicer<'a> {
                         let keys = [(false, c, r), (false, c, top), (true, c, r), (true, right, r)];
                         let [bottom, top_edge, left, right_edge] =
                             keys.map(|k| shared.get(&k).cloned());
-                        let given = crate::split::SharedSides { bottom, top: top_edge, left, right: right_edge };
+                        let given = crate::split::SharedSides {
+                            bottom,
+                            top: top_edge,
+                            left,
+                            right: right_edge,
+                        };
                         let root = decide.root_sharing(&poses, given);
                         if let Some(sides) = &root.sides {
                             let made = [&sides.bottom, &sides.top, &sides.left, &sides.right];

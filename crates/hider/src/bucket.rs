@@ -354,6 +354,8 @@ impl Hider {
         let mut b =
             Bucket { hider: self, smp: &samples, slices: &slices, ns, bw, bh, p_count, scratch };
         let reach = b.reach();
+        // `order` is filled only when culling: the list's own order otherwise.
+        #[allow(clippy::needless_range_loop)]
         for k in 0..list.len() {
             let pos = if cull { order[k].1 } else { k as u32 };
             let m = list[pos as usize];

@@ -126,8 +126,8 @@ impl Occlusion {
         for y in y0..=y1 {
             let row = y as usize * bw as usize;
             let pixels = &self.pixel_max[row + x0 as usize..=row + x1 as usize];
-            // `!(a < b)` rather than `a >= b`: a NaN `zmin` is never covered.
-            if pixels.iter().any(|&d| !(d < zmin)) {
+            // Not `d >= zmin`: a NaN `zmin` is never covered.
+            if pixels.iter().any(|&d| d.partial_cmp(&zmin) != Some(std::cmp::Ordering::Less)) {
                 return false;
             }
         }
@@ -172,7 +172,8 @@ impl Occlusion {
     pub(crate) fn record(&mut self, n: usize, maxz: f32) {
         let d = maxz * MARGIN;
         let old = self.depth[n];
-        if !(d < old) {
+        // Not `d >= old`: a NaN depth records nothing.
+        if d.partial_cmp(&old) != Some(std::cmp::Ordering::Less) {
             return;
         }
         self.depth[n] = d;
