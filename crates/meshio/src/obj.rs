@@ -147,7 +147,18 @@ fn split_keyword(line: &str) -> (&str, &str) {
 /// The first line of `bytes` that breaks a rule of [`MeshData`] or that `tobj` refuses, and
 /// what is wrong with it.
 pub(crate) fn locate(bytes: &[u8]) -> Option<(usize, String)> {
-    // How many positions, uvs and normals the lines above define.
+    // How many positions, uvs and normals the file defines (positive indices may refer
+    // forward, as tobj allows), and how many the lines above define (negative indices count
+    // back from there).
+    let mut total = [0usize; 3];
+    for raw in bytes.split(|&b| b == b'\n') {
+        match raw.split(u8::is_ascii_whitespace).find(|w| !w.is_empty()) {
+            Some(b"v") => total[0] += 1,
+            Some(b"vt") => total[1] += 1,
+            Some(b"vn") => total[2] += 1,
+            _ => {}
+        }
+    }
     let (mut nv, mut nvt, mut nvn) = (0usize, 0usize, 0usize);
     for (i, raw) in bytes.split(|&b| b == b'\n').enumerate() {
         let line = i + 1;
@@ -178,7 +189,7 @@ pub(crate) fn locate(bytes: &[u8]) -> Option<(usize, String)> {
                 nvn += 1;
                 numbers(rest, 3, "normal")
             }
-            "f" => face(rest, nv, nvt, nvn),
+            "f" => face(rest, [nv, nvt, nvn], total),
             "l" => Some("line elements ('l') are not supported".into()),
             "usemtl" if rest.is_empty() => Some("usemtl without a material name".into()),
             "o" | "g" if rest.is_empty() => None,
@@ -205,14 +216,14 @@ fn numbers(rest: &str, n: usize, what: &str) -> Option<String> {
     None
 }
 
-/// Checks one face's `v`, `v/vt`, `v//vn` or `v/vt/vn` corners against the counts so far.
-fn face(rest: &str, nv: usize, nvt: usize, nvn: usize) -> Option<String> {
+/// Checks one face's `v`, `v/vt`, `v//vn` or `v/vt/vn` corners: a positive index against the
+/// file's `total` count, a negative one against the count `above` the face.
+fn face(rest: &str, above: [usize; 3], total: [usize; 3]) -> Option<String> {
     let mut corners = 0;
     for word in rest.split_ascii_whitespace() {
         corners += 1;
         let mut parts = word.split('/');
-        let lists = [(nv, "position"), (nvt, "texture coordinate"), (nvn, "normal")];
-        for (k, (count, name)) in lists.into_iter().enumerate() {
+        for (k, name) in ["position", "texture coordinate", "normal"].into_iter().enumerate() {
             let Some(part) = parts.next() else { break };
             if part.is_empty() && k > 0 {
                 continue;
@@ -221,9 +232,14 @@ fn face(rest: &str, nv: usize, nvt: usize, nvn: usize) -> Option<String> {
                 return Some(format!("face corner '{word}': '{part}' is not an index"));
             };
             // OBJ indices are 1-based; negative ones count back from the last defined.
-            let ok = if index > 0 { index as usize <= count } else { index < 0 && index.unsigned_abs() as usize <= count };
+            let (ok, count) = if index > 0 {
+                (index as usize <= total[k], total[k])
+            } else {
+                (index < 0 && index.unsigned_abs() as usize <= above[k], above[k])
+            };
             if !ok {
-                return Some(format!("face {name} index {index} out of range ({count} defined above)"));
+                let whence = if index > 0 { "in the file" } else { "above this line" };
+                return Some(format!("face {name} index {index} out of range ({count} {whence})"));
             }
         }
         if parts.next().is_some() {
