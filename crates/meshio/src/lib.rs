@@ -142,6 +142,13 @@ impl Format {
 /// from a PLY file's `ply` magic line).
 pub fn read(path: impl AsRef<Path>) -> Result<MeshData, MeshError> {
     let path = path.as_ref();
+    if Format::from_path(path) == Some(Format::Obj) {
+        // OBJ streams through a buffer, so the text is not held beside what tobj builds
+        // (a third of the peak for a million faces); a faulty file is read again to find
+        // the line.
+        let file = std::fs::File::open(path).map_err(|source| io(path, source))?;
+        return obj::read(path, &mut std::io::BufReader::with_capacity(1 << 16, file), None);
+    }
     let bytes = std::fs::read(path).map_err(|source| io(path, source))?;
     let format = match Format::from_path(path) {
         Some(f) => f,
@@ -160,7 +167,7 @@ pub fn read(path: impl AsRef<Path>) -> Result<MeshData, MeshError> {
 /// libraries are found relative to.
 pub fn read_bytes(path: &Path, bytes: &[u8], format: Format) -> Result<MeshData, MeshError> {
     match format {
-        Format::Obj => obj::read(path, bytes),
+        Format::Obj => obj::read(path, &mut &bytes[..], Some(bytes)),
         Format::Ply => ply::read(path, bytes),
     }
 }

@@ -8,11 +8,14 @@
 //! offending line. Good files pay for one `tobj` pass and a finiteness check only.
 
 use std::cell::RefCell;
+use std::io::BufRead;
 use std::path::{Path, PathBuf};
 
 use crate::{Group, Material, MeshData, MeshError};
 
-pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<MeshData, MeshError> {
+/// Reads OBJ text from `reader`; `bytes` is the same text if it is in memory, else the file
+/// at `path` is read again to locate a fault.
+pub(crate) fn read(path: &Path, reader: &mut impl BufRead, bytes: Option<&[u8]>) -> Result<MeshData, MeshError> {
     let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
     let mtl_failure: RefCell<Option<(PathBuf, std::io::Error)>> = RefCell::new(None);
     let options = tobj::LoadOptions {
@@ -21,7 +24,7 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<MeshData, MeshError> {
         ignore_points: false,
         ignore_lines: false,
     };
-    let loaded = tobj::load_obj_buf(&mut &bytes[..], &options, |mtl| {
+    let loaded = tobj::load_obj_buf(reader, &options, |mtl| {
         let full = dir.join(mtl);
         match std::fs::read(&full) {
             Ok(text) => tobj::load_mtl_buf(&mut &text[..]),
@@ -41,7 +44,8 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<MeshData, MeshError> {
             if let Some((mtl, source)) = mtl_failure.into_inner() {
                 return Err(MeshError::Io { path: mtl, source });
             }
-            let line = find_line(bytes, |kw, _| kw == "mtllib").unwrap_or(0);
+            let text = text_of(path, bytes)?;
+            let line = find_line(&text, |kw, _| kw == "mtllib").unwrap_or(0);
             return Err(MeshError::Line {
                 path: path.to_path_buf(),
                 line,
@@ -120,10 +124,22 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<MeshData, MeshError> {
 
 /// The error for a file `tobj` rejected (or whose result breaks an invariant), at the line
 /// [`locate`] finds, or without a line if it finds none (`fallback` says what `tobj` saw).
-fn fault(path: &Path, bytes: &[u8], fallback: &str) -> MeshError {
-    match locate(bytes) {
+fn fault(path: &Path, bytes: Option<&[u8]>, fallback: &str) -> MeshError {
+    let text = match text_of(path, bytes) {
+        Ok(t) => t,
+        Err(e) => return e,
+    };
+    match locate(&text) {
         Some((line, what)) => MeshError::Line { path: path.to_path_buf(), line, what },
         None => MeshError::File { path: path.to_path_buf(), what: fallback.to_string() },
+    }
+}
+
+/// The text in memory, or read again from `path`.
+fn text_of<'a>(path: &Path, bytes: Option<&'a [u8]>) -> Result<std::borrow::Cow<'a, [u8]>, MeshError> {
+    match bytes {
+        Some(b) => Ok(b.into()),
+        None => std::fs::read(path).map(Into::into).map_err(|source| MeshError::Io { path: path.to_path_buf(), source }),
     }
 }
 

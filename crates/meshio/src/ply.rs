@@ -59,6 +59,8 @@ enum Kind {
 }
 
 struct Element {
+    /// The header line that declares it.
+    line: usize,
     name: String,
     count: usize,
     props: Vec<(String, Kind)>,
@@ -116,7 +118,7 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<MeshData, MeshError> {
             ["comment", ..] | ["obj_info", ..] | [] => {}
             ["element", name, count] => {
                 let count = count.parse().map_err(|_| at(line, format!("element count '{count}' is not a number")))?;
-                elements.push(Element { name: name.to_string(), count, props: Vec::new() });
+                elements.push(Element { line, name: name.to_string(), count, props: Vec::new() });
             }
             ["property", rest @ ..] => {
                 let Some(el) = elements.last_mut() else {
@@ -166,7 +168,7 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<MeshData, MeshError> {
             let nxyz = [find(&["nx"]), find(&["ny"]), find(&["nz"])];
             let uv = [find(&["u", "s", "texture_u"]), find(&["v", "t", "texture_v"])];
             if xyz.iter().any(Option::is_none) {
-                return Err(MeshError::File { path: path.to_path_buf(), what: "the vertex element lacks x, y or z".into() });
+                return Err(at(el.line, "the vertex element lacks x, y or z".into()));
             }
             has_normals = nxyz.iter().all(Option::is_some);
             has_uvs = uv.iter().all(Option::is_some);
@@ -189,13 +191,13 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<MeshData, MeshError> {
             if let Some((name, _)) = el.props.iter().zip(&slots).find_map(|(p, s)| {
                 matches!(s, Slot::P(_) | Slot::N(_) | Slot::T(_)).then_some(p).filter(|p| matches!(p.1, Kind::List(..)))
             }) {
-                return Err(MeshError::File { path: path.to_path_buf(), what: format!("vertex property '{name}' is a list") });
+                return Err(at(el.line, format!("vertex property '{name}' is a list")));
             }
         } else if el.name == "face" {
             list = el.props.iter().position(|(n, _)| n == "vertex_indices" || n == "vertex_index");
             match list.map(|k| el.props[k].1) {
                 Some(Kind::List(..)) => {}
-                _ => return Err(MeshError::File { path: path.to_path_buf(), what: "the face element lacks a vertex_indices list".into() }),
+                _ => return Err(at(el.line, "the face element lacks a vertex_indices list".into())),
             }
             mesh.ends.reserve(el.count);
         }

@@ -258,6 +258,9 @@ fn malformed_files_catalogue() {
         })
     };
     line("missing file", strip(read(dir.path().join("none.obj"))));
+    // A file read from disk streams through tobj and is read again to find the line.
+    std::fs::write(dir.path().join("bad.obj"), format!("{tri}f 1 2 3\nf 3 2 7\n")).unwrap();
+    line("obj file index out of range", strip(read(dir.path().join("bad.obj"))));
     std::fs::write(dir.path().join("m.stl"), "solid x\n").unwrap();
     line("unknown format", strip(read(dir.path().join("m.stl"))));
     insta::assert_snapshot!(out);
