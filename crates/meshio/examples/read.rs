@@ -36,7 +36,11 @@ fn main() -> ExitCode {
             match reyes_meshio::read(file) {
                 Ok(m) => {
                     let s = start.elapsed().as_secs_f64();
-                    println!("{file}: {} points, {} faces in {s:.3} s", m.points.len(), m.face_count());
+                    println!(
+                        "{file}: {} points, {} faces in {s:.3} s",
+                        m.points.len(),
+                        m.face_count()
+                    );
                     ExitCode::SUCCESS
                 }
                 Err(e) => {

@@ -15,7 +15,11 @@ use crate::{Group, Material, MeshData, MeshError};
 
 /// Reads OBJ text from `reader`; `bytes` is the same text if it is in memory, else the file
 /// at `path` is read again to locate a fault.
-pub(crate) fn read(path: &Path, reader: &mut impl BufRead, bytes: Option<&[u8]>) -> Result<MeshData, MeshError> {
+pub(crate) fn read(
+    path: &Path,
+    reader: &mut impl BufRead,
+    bytes: Option<&[u8]>,
+) -> Result<MeshData, MeshError> {
     let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
     let mtl_failure: RefCell<Option<(PathBuf, std::io::Error)>> = RefCell::new(None);
     let options = tobj::LoadOptions {
@@ -93,13 +97,18 @@ pub(crate) fn read(path: &Path, reader: &mut impl BufRead, bytes: Option<&[u8]>)
             mesh.face_materials.extend(std::iter::repeat_n(id, faces.len()));
         }
         match mesh.groups.last_mut() {
-            Some(g) if g.name == model.name && g.faces.end == faces.start => g.faces.end = faces.end,
+            Some(g) if g.name == model.name && g.faces.end == faces.start => {
+                g.faces.end = faces.end
+            }
             _ if faces.is_empty() => {}
             _ => mesh.groups.push(Group { name: model.name.clone(), faces }),
         }
     }
     let finite = |v: &[f32]| v.iter().all(|x| x.is_finite());
-    if !models.iter().all(|m| finite(&m.mesh.positions) && finite(&m.mesh.normals) && finite(&m.mesh.texcoords)) {
+    if !models
+        .iter()
+        .all(|m| finite(&m.mesh.positions) && finite(&m.mesh.normals) && finite(&m.mesh.texcoords))
+    {
         return Err(fault(path, bytes, "a number is not finite"));
     }
     if has_normals {
@@ -116,7 +125,9 @@ pub(crate) fn read(path: &Path, reader: &mut impl BufRead, bytes: Option<&[u8]>)
             specular: m.specular,
             shininess: m.shininess,
             dissolve: m.dissolve,
-            diffuse_texture: m.diffuse_texture.map(|t| path.parent().unwrap_or(Path::new("")).join(t)),
+            diffuse_texture: m
+                .diffuse_texture
+                .map(|t| path.parent().unwrap_or(Path::new("")).join(t)),
         })
         .collect();
     Ok(mesh)
@@ -136,10 +147,15 @@ fn fault(path: &Path, bytes: Option<&[u8]>, fallback: &str) -> MeshError {
 }
 
 /// The text in memory, or read again from `path`.
-fn text_of<'a>(path: &Path, bytes: Option<&'a [u8]>) -> Result<std::borrow::Cow<'a, [u8]>, MeshError> {
+fn text_of<'a>(
+    path: &Path,
+    bytes: Option<&'a [u8]>,
+) -> Result<std::borrow::Cow<'a, [u8]>, MeshError> {
     match bytes {
         Some(b) => Ok(b.into()),
-        None => std::fs::read(path).map(Into::into).map_err(|source| MeshError::Io { path: path.to_path_buf(), source }),
+        None => std::fs::read(path)
+            .map(Into::into)
+            .map_err(|source| MeshError::Io { path: path.to_path_buf(), source }),
     }
 }
 

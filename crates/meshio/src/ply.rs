@@ -96,7 +96,8 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<MeshData, MeshError> {
         };
         let raw = &bytes[pos..pos + nl];
         pos += nl + 1;
-        let text = std::str::from_utf8(raw).map_err(|_| at(line, "header line is not text".into()))?;
+        let text =
+            std::str::from_utf8(raw).map_err(|_| at(line, "header line is not text".into()))?;
         let text = text.trim_end_matches('\r');
         let words: Vec<&str> = text.split_ascii_whitespace().collect();
         if line == 1 {
@@ -114,17 +115,26 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<MeshData, MeshError> {
                     _ => return Err(at(line, format!("unknown PLY format '{f}'"))),
                 })
             }
-            ["format", ..] => return Err(at(line, "expected 'format ascii|binary_little_endian|binary_big_endian 1.0'".into())),
+            ["format", ..] => {
+                return Err(at(
+                    line,
+                    "expected 'format ascii|binary_little_endian|binary_big_endian 1.0'".into(),
+                ));
+            }
             ["comment", ..] | ["obj_info", ..] | [] => {}
             ["element", name, count] => {
-                let count = count.parse().map_err(|_| at(line, format!("element count '{count}' is not a number")))?;
+                let count = count
+                    .parse()
+                    .map_err(|_| at(line, format!("element count '{count}' is not a number")))?;
                 elements.push(Element { line, name: name.to_string(), count, props: Vec::new() });
             }
             ["property", rest @ ..] => {
                 let Some(el) = elements.last_mut() else {
                     return Err(at(line, "property before any element".into()));
                 };
-                let ty = |t: &str| Scalar::parse(t).ok_or_else(|| at(line, format!("unknown property type '{t}'")));
+                let ty = |t: &str| {
+                    Scalar::parse(t).ok_or_else(|| at(line, format!("unknown property type '{t}'")))
+                };
                 let (name, kind) = match rest {
                     ["list", c, i, name] => {
                         let (c, i) = (ty(c)?, ty(i)?);
@@ -134,7 +144,13 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<MeshData, MeshError> {
                         (name, Kind::List(c, i))
                     }
                     [t, name] => (name, Kind::Scalar(ty(t)?)),
-                    _ => return Err(at(line, "expected 'property TYPE NAME' or 'property list CTYPE ITYPE NAME'".into())),
+                    _ => {
+                        return Err(at(
+                            line,
+                            "expected 'property TYPE NAME' or 'property list CTYPE ITYPE NAME'"
+                                .into(),
+                        ));
+                    }
                 };
                 el.props.push((name.to_string(), kind));
             }
@@ -163,7 +179,8 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<MeshData, MeshError> {
         let mut slots = Vec::new();
         let mut list = None;
         if el.name == "vertex" {
-            let find = |names: &[&str]| el.props.iter().position(|(n, _)| names.contains(&n.as_str()));
+            let find =
+                |names: &[&str]| el.props.iter().position(|(n, _)| names.contains(&n.as_str()));
             let xyz = [find(&["x"]), find(&["y"]), find(&["z"])];
             let nxyz = [find(&["nx"]), find(&["ny"]), find(&["nz"])];
             let uv = [find(&["u", "s", "texture_u"]), find(&["v", "t", "texture_v"])];
@@ -189,7 +206,9 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<MeshData, MeshError> {
                 uvs.reserve(el.count);
             }
             if let Some((name, _)) = el.props.iter().zip(&slots).find_map(|(p, s)| {
-                matches!(s, Slot::P(_) | Slot::N(_) | Slot::T(_)).then_some(p).filter(|p| matches!(p.1, Kind::List(..)))
+                matches!(s, Slot::P(_) | Slot::N(_) | Slot::T(_))
+                    .then_some(p)
+                    .filter(|p| matches!(p.1, Kind::List(..)))
             }) {
                 return Err(at(el.line, format!("vertex property '{name}' is a list")));
             }
@@ -197,14 +216,23 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<MeshData, MeshError> {
             list = el.props.iter().position(|(n, _)| n == "vertex_indices" || n == "vertex_index");
             match list.map(|k| el.props[k].1) {
                 Some(Kind::List(..)) => {}
-                _ => return Err(at(el.line, "the face element lacks a vertex_indices list".into())),
+                _ => {
+                    return Err(at(el.line, "the face element lacks a vertex_indices list".into()));
+                }
             }
             mesh.ends.reserve(el.count);
         }
         for index in 0..el.count {
             let fail = |data: &Data, what: String| match encoding {
-                Encoding::Ascii => MeshError::Line { path: path.to_path_buf(), line: data.line, what },
-                _ => MeshError::Element { path: path.to_path_buf(), element: el.name.clone(), index, what },
+                Encoding::Ascii => {
+                    MeshError::Line { path: path.to_path_buf(), line: data.line, what }
+                }
+                _ => MeshError::Element {
+                    path: path.to_path_buf(),
+                    element: el.name.clone(),
+                    index,
+                    what,
+                },
             };
             data.start_record().map_err(|what| fail(&data, what))?;
             if el.name == "vertex" {
@@ -243,7 +271,10 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<MeshData, MeshError> {
                         Kind::List(c, i) if Some(k) == list => {
                             let count = data.count(c).map_err(|what| fail(&data, what))?;
                             if count < 3 {
-                                return Err(fail(&data, format!("face has {count} vertices (at least 3 needed)")));
+                                return Err(fail(
+                                    &data,
+                                    format!("face has {count} vertices (at least 3 needed)"),
+                                ));
                             }
                             if i.is_float() {
                                 return Err(fail(&data, "vertex indices are not integers".into()));
@@ -251,7 +282,12 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<MeshData, MeshError> {
                             for _ in 0..count {
                                 let v = data.scalar(i).map_err(|what| fail(&data, what))?;
                                 if v < 0.0 || v >= n_vertices as f64 || v.fract() != 0.0 {
-                                    return Err(fail(&data, format!("vertex index {v} out of range ({n_vertices} vertices)")));
+                                    return Err(fail(
+                                        &data,
+                                        format!(
+                                            "vertex index {v} out of range ({n_vertices} vertices)"
+                                        ),
+                                    ));
                                 }
                                 mesh.indices.push(v as u32);
                             }
@@ -260,7 +296,9 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<MeshData, MeshError> {
                             }
                             mesh.ends.push(mesh.indices.len() as u32);
                         }
-                        Kind::List(c, i) => data.skip_list(c, i).map_err(|what| fail(&data, what))?,
+                        Kind::List(c, i) => {
+                            data.skip_list(c, i).map_err(|what| fail(&data, what))?
+                        }
                     }
                 }
             }
@@ -304,7 +342,8 @@ impl<'a> Data<'a> {
             let nl = rest.iter().position(|&b| b == b'\n').unwrap_or(rest.len());
             self.pos += nl + 1;
             self.line += 1;
-            let text = std::str::from_utf8(&rest[..nl]).map_err(|_| "the line is not text".to_string())?;
+            let text =
+                std::str::from_utf8(&rest[..nl]).map_err(|_| "the line is not text".to_string())?;
             if !text.trim().is_empty() {
                 self.words = Some(text.split_ascii_whitespace());
                 return Ok(());
@@ -331,7 +370,11 @@ impl<'a> Data<'a> {
 
     fn scalar(&mut self, s: Scalar) -> Result<f64, String> {
         if self.encoding == Encoding::Ascii {
-            let w = self.words.as_mut().and_then(Iterator::next).ok_or("the line ends before the element's last property")?;
+            let w = self
+                .words
+                .as_mut()
+                .and_then(Iterator::next)
+                .ok_or("the line ends before the element's last property")?;
             let x: f64 = w.parse().map_err(|_| format!("'{w}' is not a number"))?;
             if !s.is_float() && x.fract() != 0.0 {
                 return Err(format!("'{w}' is not an integer"));

@@ -80,8 +80,12 @@ pub fn write_ply_binary(mesh: &MeshData, w: &mut impl Write, big_endian: bool) -
         }
     }
     for face in mesh.faces() {
-        let n = u8::try_from(face.len())
-            .map_err(|_| io::Error::new(io::ErrorKind::InvalidInput, "a PLY face list holds at most 255 vertices"))?;
+        let n = u8::try_from(face.len()).map_err(|_| {
+            io::Error::new(
+                io::ErrorKind::InvalidInput,
+                "a PLY face list holds at most 255 vertices",
+            )
+        })?;
         w.write_all(&[n])?;
         for &i in face {
             w.write_all(&if big_endian { i.to_be_bytes() } else { i.to_le_bytes() })?;

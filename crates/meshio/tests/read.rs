@@ -10,7 +10,9 @@
 use std::path::Path;
 
 use proptest::prelude::*;
-use reyes_meshio::{Format, Group, MeshData, MeshError, read, read_bytes, write_obj, write_ply_binary};
+use reyes_meshio::{
+    Format, Group, MeshData, MeshError, read, read_bytes, write_obj, write_ply_binary,
+};
 
 fn obj(text: &str) -> Result<MeshData, MeshError> {
     read_bytes(Path::new("m.obj"), text.as_bytes(), Format::Obj)
@@ -78,7 +80,10 @@ f 1/1/1 2/2/1 3/3/1 4/1/1
     assert_eq!(m.materials[0].diffuse, Some([1.0, 0.0, 0.0]));
     assert_eq!(m.materials[0].specular, Some([0.5, 0.5, 0.5]));
     assert_eq!(m.materials[0].shininess, Some(10.0));
-    assert_eq!(m.materials[0].diffuse_texture.as_deref(), Some(dir.path().join("red.png").as_path()));
+    assert_eq!(
+        m.materials[0].diffuse_texture.as_deref(),
+        Some(dir.path().join("red.png").as_path())
+    );
     assert_eq!(m.materials[1].diffuse, Some([0.0, 0.0, 1.0]));
     assert_eq!(m.face_materials, vec![Some(0), Some(0), Some(1)]);
 }
@@ -120,7 +125,10 @@ end_header
 #[test]
 fn ply_ascii_with_normals_and_uvs() {
     let m = ply(PLY_ASCII.as_bytes()).unwrap();
-    assert_eq!(m.points, vec![[0., 0., 0.], [1., 0., 0.], [1., 1., 0.], [0., 1., 0.], [0.5, 2., 0.25]]);
+    assert_eq!(
+        m.points,
+        vec![[0., 0., 0.], [1., 0., 0.], [1., 1., 0.], [0., 1., 0.], [0.5, 2., 0.25]]
+    );
     assert_eq!(faces(&m), vec![vec![0, 1, 2, 3], vec![3, 2, 4]]);
     assert_eq!(m.normals.as_ref().unwrap()[4], [0.0, 1.0, 0.0]);
     assert_eq!(m.uvs.as_ref().unwrap()[2], [1.0, 1.0]);
@@ -181,7 +189,11 @@ fn ply_binary_both_byte_orders_with_and_without_normals() {
     for big in [false, true] {
         for normals in [false, true] {
             let m = ply(&binary_quad(big, normals)).unwrap();
-            assert_eq!(m.points, vec![[0., 0., 0.], [1., 0., 0.], [1., 1., 0.5], [0., 1., -0.25]], "big {big}");
+            assert_eq!(
+                m.points,
+                vec![[0., 0., 0.], [1., 0., 0.], [1., 1., 0.5], [0., 1., -0.25]],
+                "big {big}"
+            );
             assert_eq!(faces(&m), vec![vec![0, 1, 2, 3]]);
             assert_eq!(m.normals, normals.then(|| vec![[0., 0., 1.]; 4]));
             assert!(m.uvs.is_none());
@@ -246,7 +258,10 @@ fn malformed_files_catalogue() {
     line("ply header no end", ply(b"ply\nformat ascii 1.0\nelement vertex 0\n"));
     line("ply header unknown line", ascii("comment", "colour"));
     line("ply header no xyz", ascii("property float y\n", ""));
-    line("ply header no faces list", ascii("property list uchar int vertex_indices", "property list uchar int corners"));
+    line(
+        "ply header no faces list",
+        ascii("property list uchar int vertex_indices", "property list uchar int corners"),
+    );
     line("ply not ply", ply(b"plx\nformat ascii 1.0\nend_header\n"));
 
     let dir = tempfile::tempdir().unwrap();
@@ -309,8 +324,11 @@ fn mesh_strategy() -> impl Strategy<Value = MeshData> {
     })
 }
 
+/// A face corner's point, normal and uv.
+type Corner = ([f32; 3], Option<[f32; 3]>, Option<[f32; 2]>);
+
 /// Each face corner's (point, normal, uv): what a mesh means independent of its numbering.
-fn corners(m: &MeshData) -> Vec<Vec<([f32; 3], Option<[f32; 3]>, Option<[f32; 2]>)>> {
+fn corners(m: &MeshData) -> Vec<Vec<Corner>> {
     m.faces()
         .map(|f| {
             f.iter()
