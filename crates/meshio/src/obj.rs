@@ -111,7 +111,7 @@ pub(crate) fn read(
     {
         return Err(fault(path, bytes, "a number is not finite"));
     }
-    if has_normals {
+    if has_normals && !normals.is_empty() {
         mesh.normals = Some(normals);
     }
     if has_uvs && !uvs.is_empty() {

@@ -164,18 +164,25 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<MeshData, MeshError> {
     let header_lines = line;
 
     let n_vertices = elements.iter().filter(|e| e.name == "vertex").map(|e| e.count).sum::<usize>();
+    if n_vertices > u32::MAX as usize {
+        return Err(at(header_lines, "more than u32::MAX vertices".into()));
+    }
+    // Capacities from the header are capped by the file's size (every vertex or face takes
+    // at least a byte), so a lying count cannot ask for more memory than the file is big.
+    let cap = |count: usize| count.min(bytes.len());
     let mut mesh = MeshData::default();
-    mesh.points.reserve(n_vertices);
+    mesh.points.reserve(cap(n_vertices));
     let mut normals: Vec<[f32; 3]> = Vec::new();
     let mut uvs: Vec<[f32; 2]> = Vec::new();
     let mut has_normals = false;
     let mut has_uvs = false;
-    if n_vertices > u32::MAX as usize {
-        return Err(at(header_lines, "more than u32::MAX vertices".into()));
-    }
 
     let mut data = Data { bytes, pos, encoding, line: header_lines, words: None };
     for el in &elements {
+        if el.props.is_empty() {
+            // Nothing to read (and a binary file could claim any count of these).
+            continue;
+        }
         let mut slots = Vec::new();
         let mut list = None;
         if el.name == "vertex" {
@@ -197,13 +204,13 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<MeshData, MeshError> {
                 for (k, p) in nxyz.iter().enumerate() {
                     slots[p.unwrap_or(0)] = Slot::N(k);
                 }
-                normals.reserve(el.count);
+                normals.reserve(cap(el.count));
             }
             if has_uvs {
                 for (k, p) in uv.iter().enumerate() {
                     slots[p.unwrap_or(0)] = Slot::T(k);
                 }
-                uvs.reserve(el.count);
+                uvs.reserve(cap(el.count));
             }
             if let Some((name, _)) = el.props.iter().zip(&slots).find_map(|(p, s)| {
                 matches!(s, Slot::P(_) | Slot::N(_) | Slot::T(_))
@@ -220,7 +227,7 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<MeshData, MeshError> {
                     return Err(at(el.line, "the face element lacks a vertex_indices list".into()));
                 }
             }
-            mesh.ends.reserve(el.count);
+            mesh.ends.reserve(cap(el.count));
         }
         for index in 0..el.count {
             let fail = |data: &Data, what: String| match encoding {

@@ -262,6 +262,15 @@ fn malformed_files_catalogue() {
         "ply header no faces list",
         ascii("property list uchar int vertex_indices", "property list uchar int corners"),
     );
+    let lying = |count: &str| {
+        let mut b = format!("ply\nformat binary_little_endian 1.0\nelement vertex {count}\nproperty float x\n\
+             property float y\nproperty float z\nelement nothing 1000000000000\nend_header\n")
+        .into_bytes();
+        b.extend([0u8; 12]);
+        b
+    };
+    line("ply binary huge vertex count", ply(&lying("5000000000")));
+    line("ply binary lying vertex count", ply(&lying("1000000000")));
     line("ply not ply", ply(b"plx\nformat ascii 1.0\nend_header\n"));
 
     let dir = tempfile::tempdir().unwrap();
