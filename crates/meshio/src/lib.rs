@@ -6,6 +6,20 @@
 //! present, hold one entry per point; `ends` is non-decreasing and ends at `indices.len()`;
 //! the groups' face ranges are in order and cover only faces that exist. Errors are one line
 //! naming the file and the line (OBJ, ASCII PLY, any PLY header) or the element (binary PLY).
+//!
+//! ```
+//! use std::path::Path;
+//! use reyes_meshio::{Format, read_bytes};
+//!
+//! let obj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\ng quad\nf 1 2 3 4\n";
+//! let mesh = read_bytes(Path::new("quad.obj"), obj.as_bytes(), Format::Obj).unwrap();
+//! assert_eq!(mesh.face(0), &[0, 1, 2, 3]);
+//! assert_eq!(mesh.groups[0].name, "quad");
+//!
+//! let bad = "v 0 0 0\nv 1 0 0\nf 1 2 3\n";
+//! let e = read_bytes(Path::new("bad.obj"), bad.as_bytes(), Format::Obj).unwrap_err();
+//! assert_eq!(e.to_string(), "bad.obj:3: face position index 3 out of range (2 in the file)");
+//! ```
 
 use std::ops::Range;
 use std::path::{Path, PathBuf};

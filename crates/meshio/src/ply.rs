@@ -6,6 +6,7 @@
 //! `s t` or `texture_u texture_v`); from `face` elements the list `vertex_indices` (or
 //! `vertex_index`). Other properties and elements are read past. Header and ASCII faults name
 //! the line; binary faults name the element (its kind and 0-based index among its kind).
+//! An ASCII file holds one element per non-blank line (as every writer we know of does).
 
 use std::path::Path;
 

@@ -263,8 +263,10 @@ fn malformed_files_catalogue() {
         ascii("property list uchar int vertex_indices", "property list uchar int corners"),
     );
     let lying = |count: &str| {
-        let mut b = format!("ply\nformat binary_little_endian 1.0\nelement vertex {count}\nproperty float x\n\
-             property float y\nproperty float z\nelement nothing 1000000000000\nend_header\n")
+        let mut b = format!(
+            "ply\nformat binary_little_endian 1.0\nelement vertex {count}\nproperty float x\n\
+             property float y\nproperty float z\nelement nothing 1000000000000\nend_header\n"
+        )
         .into_bytes();
         b.extend([0u8; 12]);
         b
@@ -365,5 +367,61 @@ proptest! {
         let back = read_bytes(Path::new("r.obj"), &text, Format::Obj).unwrap();
         prop_assert_eq!(corners(&back), corners(&mesh));
         prop_assert_eq!(back.points.len(), mesh.points.len());
+    }
+}
+
+#[test]
+fn obj_materials_change_within_a_group() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("m.mtl"), "newmtl a\nKd 1 1 1\nnewmtl b\nKd 0.5 0.5 0.5\n")
+        .unwrap();
+    let text = "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\ng only\nusemtl a\nf 1 2 3\nusemtl b\nf 3 2 1\nf 1 3 2\nusemtl nonesuch\nf 2 1 3\n";
+    let path = dir.path().join("m.obj");
+    std::fs::write(&path, text).unwrap();
+    let m = read(&path).unwrap();
+    assert_eq!(m.groups, vec![Group { name: "only".into(), faces: 0..4 }]);
+    assert_eq!(m.face_materials, vec![Some(0), Some(1), Some(1), None]);
+    assert_eq!(m.materials[1].diffuse, Some([0.5, 0.5, 0.5]));
+}
+
+/// Samples to mutate: each valid, in each format.
+fn samples() -> Vec<(Format, Vec<u8>)> {
+    vec![
+        (Format::Obj, b"v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\ng a\nf 1/1/1 2/1/1 -1/1/1\no b\nf 1 2 3\n".to_vec()),
+        (Format::Ply, PLY_ASCII.as_bytes().to_vec()),
+        (Format::Ply, binary_quad(false, true)),
+        (Format::Ply, binary_quad(true, false)),
+    ]
+}
+
+proptest! {
+    /// No input makes a reader panic: valid samples with bytes overwritten, cut short, or
+    /// spliced with random bytes give a mesh meeting the invariants, or a one-line error.
+    #[test]
+    fn mutated_files_never_panic(
+        which in 0usize..4,
+        edits in proptest::collection::vec((any::<prop::sample::Index>(), any::<u8>()), 0..6),
+        cut in any::<prop::sample::Index>(),
+        cut_it in any::<bool>(),
+    ) {
+        let (format, mut bytes) = samples().swap_remove(which);
+        for (at, b) in edits {
+            let i = at.index(bytes.len());
+            bytes[i] = b;
+        }
+        if cut_it {
+            bytes.truncate(cut.index(bytes.len()));
+        }
+        match read_bytes(Path::new("f"), &bytes, format) {
+            Ok(m) => {
+                prop_assert!(m.indices.iter().all(|&i| (i as usize) < m.points.len()));
+                prop_assert!(m.faces().all(|f| f.len() >= 3));
+                prop_assert!(m.points.iter().flatten().all(|x| x.is_finite()));
+                prop_assert_eq!(m.ends.last().map_or(0, |&e| e as usize), m.indices.len());
+                prop_assert!(m.normals.as_ref().is_none_or(|n| n.len() == m.points.len()));
+                prop_assert!(m.uvs.as_ref().is_none_or(|t| t.len() == m.points.len()));
+            }
+            Err(e) => prop_assert!(!e.to_string().contains('\n')),
+        }
     }
 }
