@@ -5,6 +5,10 @@
 //!
 //! Run with `cargo bench -p reyes-meshio --bench read`; peak memory is measured separately
 //! with `/usr/bin/time -v` on `examples/read.rs` (see its doc).
+//!
+//! Measured 2026-12-03 on the project's 2-core machine (other builds running beside it):
+//! OBJ (124 MB) 1.45 s (690k faces/s), peak RSS 309 MB; binary PLY (49 MB) 0.225 s
+//! (4.45M faces/s), peak RSS 101 MB.
 
 use std::hint::black_box;
 use std::io::BufWriter;
