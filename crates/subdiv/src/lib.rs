@@ -229,7 +229,8 @@ fn rule(m: &Local, t: &Topo, v: usize, th: f64) -> Rule {
         .copied()
         .filter(|&e| t.sharp(m, e) > th)
         .collect();
-    if m.corner[v] > th || sharp.len() > 2 || (sharp.len() == 1 && t.vert_faces[v].len() < 2) {
+    let lone = t.vert_faces[v].len() == 1 && sharp.len() == 2;
+    if m.corner[v] > th || sharp.len() > 2 || lone {
         Rule::Corner
     } else if sharp.len() == 2 {
         Rule::Crease(t.other(sharp[0], v), t.other(sharp[1], v))
@@ -454,7 +455,7 @@ fn grid(m: &Local, t: &Topo) -> Option<[DVec3; 16]> {
     let (a, b) = across(m, t, p3, p0)?;
     s(&mut g, 0, 2, a);
     s(&mut g, 0, 1, b);
-    let (_, b) = across(m, t, p0, g[4])?;
+    let (_, b) = across(m, t, p0, g[1])?;
     s(&mut g, 0, 0, b);
     let (a, _) = across(m, t, g[2], p1)?;
     s(&mut g, 3, 0, a);
