@@ -224,11 +224,8 @@ enum Rule {
 
 /// The vertex rule at sharpness threshold `th` (0 for this level, 1 for the next).
 fn rule(m: &Local, t: &Topo, v: usize, th: f64) -> Rule {
-    let sharp: Vec<usize> = t.vert_edges[v]
-        .iter()
-        .copied()
-        .filter(|&e| t.sharp(m, e) > th)
-        .collect();
+    let sharp: Vec<usize> =
+        t.vert_edges[v].iter().copied().filter(|&e| t.sharp(m, e) > th).collect();
     let lone = t.vert_faces[v].len() == 1 && sharp.len() == 2;
     if m.corner[v] > th || sharp.len() > 2 || lone {
         Rule::Corner
@@ -260,6 +257,7 @@ fn refine(m: &Local) -> (Local, Vec<usize>) {
             smooth.lerp(mid, s.max(0.0))
         };
     }
+    #[allow(clippy::needless_range_loop)] // v indexes points, topology and sharpness alike
     for v in 0..nv {
         let p = m.pts[v];
         let n = t.vert_edges[v].len();
@@ -289,11 +287,8 @@ fn refine(m: &Local) -> (Local, Vec<usize>) {
             at(r0)
         } else {
             // Transition: blend by the mean sharpness of what made this level sharp.
-            let mut ss: Vec<f64> = t.vert_edges[v]
-                .iter()
-                .map(|&e| t.sharp(m, e))
-                .filter(|&s| s > 0.0)
-                .collect();
+            let mut ss: Vec<f64> =
+                t.vert_edges[v].iter().map(|&e| t.sharp(m, e)).filter(|&s| s > 0.0).collect();
             if m.corner[v] > 0.0 {
                 ss.push(m.corner[v]);
             }
@@ -339,8 +334,8 @@ fn refine(m: &Local) -> (Local, Vec<usize>) {
         }
     }
     let mut corner = vec![0.0; pts.len()];
-    for v in 0..nv {
-        corner[v] = (m.corner[v] - 1.0).max(0.0);
+    for (c, s) in corner.iter_mut().zip(&m.corner) {
+        *c = (s - 1.0).max(0.0);
     }
     (Local { pts, faces, crease, corner }, offset)
 }
@@ -537,14 +532,8 @@ fn eval_local(m0: &Local, mut u: f64, mut v: f64) -> [DVec3; 3] {
         };
         // a[k] = d(u', v')/d(parent k); compose with jac.
         jac = [
-            [
-                a[0][0] * jac[0][0] + a[1][0] * jac[0][1],
-                a[0][1] * jac[0][0] + a[1][1] * jac[0][1],
-            ],
-            [
-                a[0][0] * jac[1][0] + a[1][0] * jac[1][1],
-                a[0][1] * jac[1][0] + a[1][1] * jac[1][1],
-            ],
+            [a[0][0] * jac[0][0] + a[1][0] * jac[0][1], a[0][1] * jac[0][0] + a[1][1] * jac[0][1]],
+            [a[0][0] * jac[1][0] + a[1][0] * jac[1][1], a[0][1] * jac[1][0] + a[1][1] * jac[1][1]],
         ];
         let (child, off) = refine(&m);
         let ct = Topo::new(&child);
@@ -581,9 +570,8 @@ fn on_edge(k: usize, t: f64) -> (f64, f64) {
 impl LimitPatch {
     fn eval_full(&self, u: f64, v: f64) -> [DVec3; 3] {
         let mut r = eval_local(&self.local, u, v);
-        let corner = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)]
-            .iter()
-            .position(|&c| c == (u, v));
+        let corner =
+            [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].iter().position(|&c| c == (u, v));
         if let Some(c) = corner {
             r[0] = self.corner_pos[c].as_dvec3();
             return r;
@@ -599,8 +587,10 @@ impl LimitPatch {
         } else {
             None
         };
-        if let Some((k, t)) = edge {
-            if let Some((owner, ok)) = &self.edge_owner[k] {
+        if let Some((k, t)) = edge
+            && let Some((owner, ok)) = &self.edge_owner[k]
+        {
+            {
                 let (a, b) = (self.corners[k], self.corners[(k + 1) % 4]);
                 let tc = if a < b { t } else { 1.0 - t };
                 // The owner runs lo -> hi, so its own edge parameter is tc.
@@ -615,8 +605,20 @@ impl LimitPatch {
     pub fn eval(&self, u: f32, v: f32) -> (Vec3, Vec3, Vec3) {
         let [u0, u1, v0, v1] = self.rect;
         let (su, sv) = (u1 - u0, v1 - v0);
-        let pu = if u == 0.0 { u0 } else if u == 1.0 { u1 } else { u0 + su * u as f64 };
-        let pv = if v == 0.0 { v0 } else if v == 1.0 { v1 } else { v0 + sv * v as f64 };
+        let pu = if u == 0.0 {
+            u0
+        } else if u == 1.0 {
+            u1
+        } else {
+            u0 + su * u as f64
+        };
+        let pv = if v == 0.0 {
+            v0
+        } else if v == 1.0 {
+            v1
+        } else {
+            v0 + sv * v as f64
+        };
         let [p, du, dv] = self.eval_full(pu.clamp(0.0, 1.0), pv.clamp(0.0, 1.0));
         (p.as_vec3(), (du * su).as_vec3(), (dv * sv).as_vec3())
     }
@@ -793,7 +795,8 @@ pub fn limit_patches(mesh: &Mesh) -> Result<Vec<LimitPatch>, SubdivError> {
             drawn.push((f0, q));
         }
     }
-    let locals: Vec<Arc<Local>> = drawn.iter().map(|&(_, q)| Arc::new(ring(&m1, &t1, q, 0))).collect();
+    let locals: Vec<Arc<Local>> =
+        drawn.iter().map(|&(_, q)| Arc::new(ring(&m1, &t1, q, 0))).collect();
     let mut owner_of = HashMap::new();
     let mut corner_owner: HashMap<usize, usize> = HashMap::new();
     for (pi, &(_, q)) in drawn.iter().enumerate() {

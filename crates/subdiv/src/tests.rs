@@ -90,7 +90,11 @@ fn cube_limit_between_sphere_and_cube() {
         for j in 0..=8 {
             for i in 0..=8 {
                 let (q, _, _) = p.eval(i as f32 / 8.0, j as f32 / 8.0);
-                assert!(q.length() > 0.8 && q.abs().max_element() < 1.0, "{q} {i} {j} {:?}", p.corners);
+                assert!(
+                    q.length() > 0.8 && q.abs().max_element() < 1.0,
+                    "{q} {i} {j} {:?}",
+                    p.corners
+                );
             }
         }
     }
