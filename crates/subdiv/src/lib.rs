@@ -66,6 +66,11 @@ pub struct Mesh {
     pub faces: Vec<usize>,
     /// Tags.
     pub tags: Vec<Tag>,
+    /// Floats per face-vertex of facevarying data (e.g. 2 for `st`); 0 for none.
+    pub facevarying_width: usize,
+    /// Facevarying data, `facevarying_width` floats per entry of `faces`. Interpolated
+    /// bilinearly per face (RenderMan's default facevarying interpolation; our choice here).
+    pub facevarying: Vec<f32>,
 }
 
 /// Invalid input, naming the face, vertex or tag index.
@@ -91,6 +96,13 @@ pub enum SubdivError {
         face: usize,
         /// The bad index.
         index: usize,
+    },
+    /// Facevarying data of the wrong length.
+    FacevaryingLength {
+        /// `faces.len() * facevarying_width`.
+        expected: usize,
+        /// What was given.
+        got: usize,
     },
     /// A face uses a vertex twice.
     RepeatedVertex {
@@ -136,6 +148,9 @@ impl fmt::Display for SubdivError {
             }
             Self::RepeatedVertex { face, vertex } => {
                 write!(f, "face {face}: vertex {vertex} used twice")
+            }
+            Self::FacevaryingLength { expected, got } => {
+                write!(f, "facevarying: {got} floats, expected {expected}")
             }
             Self::NonFinitePoint { vertex } => write!(f, "vertex {vertex}: non-finite point"),
             Self::NonManifoldEdge { face, a, b } => {
@@ -555,6 +570,7 @@ pub struct LimitPatch {
     edge_owner: [Option<(Arc<Local>, usize)>; 4],
     corner_pos: [Vec3; 4],
     rect: [f64; 4],
+    fv: Arc<[Vec<f64>; 4]>,
 }
 
 /// Patch `(u, v)` on its edge `k` (0: v=0, 1: u=1, 2: v=1, 3: u=0) at edge parameter t.
@@ -621,6 +637,17 @@ impl LimitPatch {
         };
         let [p, du, dv] = self.eval_full(pu.clamp(0.0, 1.0), pv.clamp(0.0, 1.0));
         (p.as_vec3(), (du * su).as_vec3(), (dv * sv).as_vec3())
+    }
+
+    /// Facevarying data at `(u, v)`: bilinear in the level-1 quad, whose corners carry the
+    /// level-0 face's bilinear values (corner, edge midpoint, face centre, edge midpoint).
+    pub fn eval_facevarying(&self, u: f32, v: f32) -> Vec<f32> {
+        let [u0, u1, v0, v1] = self.rect;
+        let (u, v) = (u0 + (u1 - u0) * u as f64, v0 + (v1 - v0) * v as f64);
+        let w = [(1.0 - u) * (1.0 - v), u * (1.0 - v), u * v, (1.0 - u) * v];
+        (0..self.fv[0].len())
+            .map(|i| (0..4).map(|k| w[k] * self.fv[k][i]).sum::<f64>() as f32)
+            .collect()
     }
 
     /// The 16 bicubic B-spline control points (index `4 j + i`, `i` along u) when the whole
@@ -698,10 +725,18 @@ pub fn limit_patches(mesh: &Mesh) -> Result<Vec<LimitPatch>, SubdivError> {
     if sum != mesh.faces.len() {
         return Err(SubdivError::FaceCountSum { expected: sum, got: mesh.faces.len() });
     }
+    let fw = mesh.facevarying_width;
+    if mesh.facevarying.len() != mesh.faces.len() * fw {
+        return Err(SubdivError::FacevaryingLength {
+            expected: mesh.faces.len() * fw,
+            got: mesh.facevarying.len(),
+        });
+    }
     if let Some(vertex) = mesh.points.iter().position(|p| !p.is_finite()) {
         return Err(SubdivError::NonFinitePoint { vertex });
     }
     let mut faces = Vec::new();
+    let mut starts = Vec::new();
     let mut directed = HashMap::new();
     let mut at = 0;
     for (fi, &c) in mesh.face_counts.iter().enumerate() {
@@ -709,6 +744,7 @@ pub fn limit_patches(mesh: &Mesh) -> Result<Vec<LimitPatch>, SubdivError> {
             return Err(SubdivError::FaceTooSmall { face: fi, count: c });
         }
         let f = &mesh.faces[at..at + c];
+        starts.push(at);
         at += c;
         for (i, &v) in f.iter().enumerate() {
             if v >= np {
@@ -826,7 +862,18 @@ pub fn limit_patches(mesh: &Mesh) -> Result<Vec<LimitPatch>, SubdivError> {
             let (u, v) = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)][kc];
             corner_pos[k] = eval_local(&locals[po], u, v)[0].as_vec3();
         }
+        // Facevarying corners: level-0 face f0, child at its corner i = q - off[f0].
+        let (start, n) = (starts[f0], mesh.face_counts[f0]);
+        let i = q - off[f0];
+        let val = |c: usize, k: usize| mesh.facevarying[(start + c % n) * fw + k] as f64;
+        let fv: [Vec<f64>; 4] = [
+            (0..fw).map(|k| val(i, k)).collect(),
+            (0..fw).map(|k| 0.5 * (val(i, k) + val(i + 1, k))).collect(),
+            (0..fw).map(|k| (0..n).map(|c| val(c, k)).sum::<f64>() / n as f64).collect(),
+            (0..fw).map(|k| 0.5 * (val(i + n - 1, k) + val(i, k))).collect(),
+        ];
         out.push(LimitPatch {
+            fv: Arc::new(fv),
             local: locals[pi].clone(),
             face: f0,
             corners,

@@ -211,3 +211,27 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn facevarying_bilinear_and_derivatives() {
+    let mut m = grid_mesh(4, |i, j| ((i * 3 + j) % 4) as f32 * 0.2);
+    m.facevarying_width = 1;
+    m.facevarying = (0..m.faces.len()).map(|k| (k % 4) as f32).collect();
+    let ps = limit_patches(&m).unwrap();
+    // Level-0 face corners carry 0,1,2,3; child 0 has 0 at (0,0), (0+1)/2 at (1,0),
+    // 1.5 at the centre (1,1) and (3+0)/2 at (0,1); bilinear in between.
+    let p = ps.iter().find(|p| p.face == 5 && p.corners[0] == m.faces[20]).unwrap();
+    assert_eq!(p.eval_facevarying(1.0, 1.0), vec![1.5]);
+    assert!((p.eval_facevarying(0.5, 0.0)[0] - 0.25).abs() < 1e-6);
+    // Derivatives against central differences of the positions: h = 1e-3, error O(h^2)
+    // times the third derivative (~1) plus f32 rounding 1e-7/h: 1e-3 tolerance.
+    for p in &ps {
+        let (u, v, h) = (0.4f32, 0.6f32, 1e-3f32);
+        let (_, du, dv) = p.eval(u, v);
+        let fu = (p.eval(u + h, v).0 - p.eval(u - h, v).0) / (2.0 * h);
+        let fv = (p.eval(u, v + h).0 - p.eval(u, v - h).0) / (2.0 * h);
+        assert!((du - fu).length() < 1e-3 && (dv - fv).length() < 1e-3, "{du} {fu} {dv} {fv}");
+    }
+    m.facevarying.pop();
+    assert!(matches!(limit_patches(&m), Err(SubdivError::FacevaryingLength { .. })));
+}
