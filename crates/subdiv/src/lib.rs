@@ -104,6 +104,13 @@ pub enum SubdivError {
         /// What was given.
         got: usize,
     },
+    /// Vertex varying data of the wrong length.
+    VaryingLength {
+        /// `points.len() * width`.
+        expected: usize,
+        /// What was given.
+        got: usize,
+    },
     /// A face uses a vertex twice.
     RepeatedVertex {
         /// Face index.
@@ -151,6 +158,9 @@ impl fmt::Display for SubdivError {
             }
             Self::FacevaryingLength { expected, got } => {
                 write!(f, "facevarying: {got} floats, expected {expected}")
+            }
+            Self::VaryingLength { expected, got } => {
+                write!(f, "vertex varying: {got} floats, expected {expected}")
             }
             Self::NonFinitePoint { vertex } => write!(f, "vertex {vertex}: non-finite point"),
             Self::NonManifoldEdge { face, a, b } => {
@@ -359,7 +369,6 @@ fn refine(m: &Local) -> (Local, Vec<usize>) {
 /// touching one of its vertices, renumbered.
 fn ring(m: &Local, t: &Topo, f: usize, start: usize) -> Local {
     let face = &m.faces[f];
-    let l = face.len();
     let mut fs = vec![f];
     for &v in face {
         for &g in &t.vert_faces[v] {
@@ -388,7 +397,6 @@ fn ring(m: &Local, t: &Topo, f: usize, start: usize) -> Local {
             .collect();
         faces.push(nf);
     }
-    let _ = l;
     let crease = m
         .crease
         .iter()
@@ -814,10 +822,6 @@ pub fn limit_patches(mesh: &Mesh) -> Result<Vec<LimitPatch>, SubdivError> {
     let boundary: Vec<bool> = (0..m1.pts.len())
         .map(|v| t1.vert_edges[v].iter().any(|&e| t1.edge_faces[e].len() != 2))
         .collect();
-    if !interp {
-        // Without interpolateboundary the boundary is not sharp; it only matters for the
-        // dropped boundary quads, so the level-0 refinement above is unaffected for drawn ones.
-    }
     let mut drawn = Vec::new();
     for (f0, &o) in off.iter().enumerate() {
         if hole[f0] {
@@ -883,6 +887,36 @@ pub fn limit_patches(mesh: &Mesh) -> Result<Vec<LimitPatch>, SubdivError> {
         });
     }
     Ok(out)
+}
+
+/// Vertex varyings (`Cs`, `N`, ...), `width` floats per control point, subdivide exactly like
+/// the points (every rule is linear in the data and chosen by topology and sharpness only).
+/// Returns one patch list per group of 3 floats (the last group zero-padded); patch `k` of
+/// each group matches patch `k` of [`limit_patches`], and its `eval(u, v).0` holds the group's
+/// values (`.1`, `.2` their derivatives).
+pub fn varying_patches(
+    mesh: &Mesh,
+    width: usize,
+    data: &[f32],
+) -> Result<Vec<Vec<LimitPatch>>, SubdivError> {
+    if data.len() != mesh.points.len() * width {
+        return Err(SubdivError::VaryingLength {
+            expected: mesh.points.len() * width,
+            got: data.len(),
+        });
+    }
+    (0..width.div_ceil(3))
+        .map(|g| {
+            let mut m = mesh.clone();
+            for (i, p) in m.points.iter_mut().enumerate() {
+                let at = |c: usize| {
+                    if 3 * g + c < width { data[i * width + 3 * g + c] } else { 0.0 }
+                };
+                *p = Vec3::new(at(0), at(1), at(2));
+            }
+            limit_patches(&m)
+        })
+        .collect()
 }
 
 #[cfg(test)]

@@ -235,3 +235,19 @@ fn facevarying_bilinear_and_derivatives() {
     m.facevarying.pop();
     assert!(matches!(limit_patches(&m), Err(SubdivError::FacevaryingLength { .. })));
 }
+
+#[test]
+fn vertex_varyings_follow_points() {
+    // Varying = the points' own x and y (width 2): it must evaluate to the same x, y (exactly
+    // the same arithmetic, so bit-identical).
+    let m = cube();
+    let data: Vec<f32> = m.points.iter().flat_map(|p| [p.x, p.y]).collect();
+    let vs = varying_patches(&m, 2, &data).unwrap();
+    let ps = limit_patches(&m).unwrap();
+    assert_eq!(vs.len(), 1);
+    for (p, q) in ps.iter().zip(&vs[0]) {
+        let (a, b) = (p.eval(0.3, 0.8).0, q.eval(0.3, 0.8).0);
+        assert_eq!((a.x, a.y, b.z), (b.x, b.y, 0.0));
+    }
+    assert!(varying_patches(&m, 2, &data[1..]).is_err());
+}
