@@ -103,9 +103,11 @@ impl EarlyBlocks {
             && a.own_attributes.layer_position == b.own_attributes.layer_position
     }
 
-    /// Block `k`'s chunk: the one made early, or made now from `film`.
+    /// Block `k`'s chunk: the one made early, moved out (a write holds every chunk at once
+    /// as it is, and a copy kept here would double that), or made now from `film`. A second
+    /// write of the same frame recompresses: same bytes, more time.
     pub(crate) fn chunk(&self, film: &Film, k: usize) -> exr::error::Result<Chunk> {
-        let ready = self.chunks.lock().ok().and_then(|c| c.get(k).cloned().flatten());
+        let ready = self.chunks.lock().ok().and_then(|mut c| c.get_mut(k).and_then(Option::take));
         match ready {
             Some(c) => Ok(c),
             None => self.compress(film, k),
@@ -275,7 +277,9 @@ mod tests {
                     let lines = early.lines;
                     assert_eq!(early.ready(), 13 / lines, "{what}");
                     assert_eq!(bytes(&picture, Some(&early)), want, "{what}: some ready");
-                    early.encode(&f, 13..h);
+                    // The write took the chunks it used: none are left to it.
+                    assert_eq!(early.ready(), 0, "{what}: taken");
+                    early.encode(&f, 0..h);
                     assert_eq!(early.ready(), (h as usize).div_ceil(lines), "{what}");
                     assert_eq!(bytes(&picture, Some(&early)), want, "{what}: all ready");
                 }
