@@ -18,30 +18,8 @@ const FOV: f32 = 40.0;
 /// its own axis over the shutter, diced at `rate` into grids of at most `grid`.
 #[allow(clippy::too_many_arguments)]
 fn scene(r: f32, d: f32, tilt: f32, spin: f32, rate: f32, grid: u32, crack_free: bool) -> String {
-    let place = |angle: f32| {
-        format!(
-            "[Rotate(angle: {angle}, axis: (0.0, 0.0, 1.0)), Rotate(angle: {tilt}, axis: (1.0, 1.0, 0.0)), Translate((0.0, 0.0, {d}))]"
-        )
-    };
-    let motion = if spin != 0.0 {
-        format!(
-            "motion: [(time: 0.0, transform: {}), (time: 1.0, transform: {})],",
-            place(0.0),
-            place(spin)
-        )
-    } else {
-        format!("transform: {},", place(0.0))
-    };
-    format!(
-        "Scene(image: (width: {W}, height: {H}),
-           camera: (eye: (0.0, 0.0, 0.0), look_at: (0.0, 0.0, 1.0), up: (0.0, 1.0, 0.0), fov: {FOV},
-                    hither: 0.1, yon: 100.0, shutter: (open: 0.0, close: 1.0)),
-           hider: (pixel_samples: (6, 6), filter: (kind: Box, width: 1.0), seed: 5,
-                   shading_rate: {rate}, max_grid_size: {grid}, crack_free: {crack_free},
-                   cull_back_faces: true),
-           lights: [Ambient(intensity: 1.0)],
-           objects: [(shape: Sphere(radius: {r}), {motion} material: Matte(color: (0.5, 0.5, 0.5)))])"
-    )
+    let sphere = Closed::Sphere(r);
+    closed_scene(&sphere, d, tilt, [1.0, 1.0, 0.0], spin, (rate, grid, crack_free), "Stochastic")
 }
 
 /// Pixels well inside the disc (every corner at least `MARGIN` inside) whose alpha is not 1.
@@ -225,16 +203,15 @@ impl Closed {
 }
 
 /// `shape` at depth `d`, tilted by `tilt` degrees about `axis` and spinning by `spin` about z
-/// over the shutter, diced at `rate` into grids of at most `grid`, by `method`.
-#[allow(clippy::too_many_arguments)]
+/// over the shutter, diced at `rate` into grids of at most `grid` (crack-free or not), with
+/// back faces culled, by `method`.
 fn closed_scene(
     shape: &Closed,
     d: f32,
     tilt: f32,
     axis: [f32; 3],
     spin: f32,
-    rate: f32,
-    grid: u32,
+    (rate, grid, crack_free): (f32, u32, bool),
     method: &str,
 ) -> String {
     let place = |angle: f32| {
@@ -257,7 +234,8 @@ fn closed_scene(
            camera: (eye: (0.0, 0.0, 0.0), look_at: (0.0, 0.0, 1.0), up: (0.0, 1.0, 0.0), fov: {FOV},
                     hither: 0.1, yon: 100.0, shutter: (open: 0.0, close: 1.0)),
            hider: (method: {method}, pixel_samples: (6, 6), filter: (kind: Box, width: 1.0),
-                   seed: 5, shading_rate: {rate:?}, max_grid_size: {grid}, cull_back_faces: true),
+                   seed: 5, shading_rate: {rate:?}, max_grid_size: {grid}, crack_free: {crack_free},
+                   cull_back_faces: true),
            lights: [Ambient(intensity: 1.0)],
            objects: [({} , {motion} material: Matte(color: (0.5, 0.5, 0.5)))])",
         shape.ron()
@@ -299,7 +277,7 @@ proptest::proptest! {
     ) {
         let axis = [axis.0, axis.1, axis.2];
         let film = |method: &str| {
-            let text = closed_scene(&shape, d, tilt, axis, spin, rate, grid, method);
+            let text = closed_scene(&shape, d, tilt, axis, spin, (rate, grid, true), method);
             render(&parse(&text), &RenderOptions::default()).unwrap().film
         };
         let (diced, traced) = (film("Stochastic"), film("RayTrace"));
