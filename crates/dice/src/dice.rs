@@ -758,7 +758,6 @@ pub(crate) fn cull_back_faces(
     csg_operand: bool,
     pinhole: bool,
 ) -> bool {
-    use reyes_scene::{Closure, closure};
     let f = labels.flags;
     let affine = |list: &[reyes_scene::Transform]| {
         let m = reyes_scene::object_to_world(list);
@@ -769,19 +768,9 @@ pub(crate) fn cull_back_faces(
     } else {
         object.motion.iter().all(|k| affine(&k.transform))
     };
-    // `closure` counts cylinders, cones and paraboloids as closed because a solid gives them
-    // end caps; outside a solid (and CSG operands are never culled) they are open tubes,
-    // whose insides show through their ends.
-    let capped_in_solids_only = matches!(
-        object.shape,
-        reyes_scene::Shape::Cylinder { .. }
-            | reyes_scene::Shape::Cone { .. }
-            | reyes_scene::Shape::Paraboloid { .. }
-    );
     let hidden = f & flags::OPAQUE != 0
         && f & (flags::MATTE | flags::GLASS) == 0
-        && !capped_in_solids_only
-        && closure(&object.shape) == Closure::Closed;
+        && reyes_scene::closed_alone(&object.shape);
     pinhole && !csg_operand && (hidden || object.one_sided) && placements_affine
 }
 

@@ -64,6 +64,14 @@ pub fn closure(shape: &Shape) -> Closure {
     }
 }
 
+/// Whether a (valid) shape bounds a solid on its own, outside any CSG solid: as [`closure`],
+/// but cylinders, cones and paraboloids, which only a solid's end caps close, are open tubes
+/// whose insides show through their ends (what back-face culling needs to know).
+pub fn closed_alone(shape: &Shape) -> bool {
+    !matches!(shape, Shape::Cylinder { .. } | Shape::Cone { .. } | Shape::Paraboloid { .. })
+        && closure(shape) == Closure::Closed
+}
+
 /// The faces along one undirected mesh edge.
 #[derive(Debug, Default)]
 struct EdgeUse {

@@ -20,7 +20,7 @@ pub mod xform;
 
 use std::path::Path;
 
-pub use closure::{Closure, closure};
+pub use closure::{Closure, closed_alone, closure};
 pub use error::{LoadError, SceneError};
 pub use model::*;
 pub use validate::Issue;
