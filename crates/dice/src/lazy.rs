@@ -310,52 +310,13 @@ impl<'a> Dicer<'a> {
             let crack_free = scene.hider.crack_free && reach == 0.0;
             // The back of a closed object shows through where hither cuts it open.
             let mut beyond_hither = true;
-            // The sub-patches of a bicubic patch mesh (or the spans of a NURBS) share the
-            // edges between them (split.rs, `root_sharing`).
-            let layout = reyes_scene::patches::bezier_grid(&object.shape)
-                .filter(|&(c, r)| crack_free && c * r == motion.surface_count());
-            let (uwrap, vwrap) = match &object.shape {
-                reyes_scene::Shape::PatchMesh { uwrap, vwrap, .. } => {
-                    (*uwrap == reyes_scene::Wrap::Periodic, *vwrap == reyes_scene::Wrap::Periodic)
-                }
-                _ => (false, false),
-            };
-            let mut shared: std::collections::HashMap<
-                (bool, usize, usize),
-                std::sync::Arc<crate::split::Edge>,
-            > = std::collections::HashMap::new();
+            // Neighbouring surfaces of one object share their common sides (roots.rs).
+            let mut roots = crate::roots::Roots::new(object, crack_free, motion.surface_count());
             for surface in 0..motion.surface_count() {
                 dicer.stats.primitives += 1;
                 let poses = motion.poses(surface);
                 beyond_hither &= decide.beyond_hither(&poses);
-                let root = match (crack_free, layout) {
-                    (false, _) => Patch::root(),
-                    (true, None) => decide.root_with_sides(&poses),
-                    (true, Some((cols, rows))) => {
-                        let (c, r) = (surface % cols, surface / cols);
-                        // Keys: (along v, column boundary, row) and (along u, column, row
-                        // boundary); a wrapped mesh's last boundary is its first.
-                        let right = if uwrap { (c + 1) % cols } else { c + 1 };
-                        let top = if vwrap { (r + 1) % rows } else { r + 1 };
-                        let keys = [(false, c, r), (false, c, top), (true, c, r), (true, right, r)];
-                        let [bottom, top_edge, left, right_edge] =
-                            keys.map(|k| shared.get(&k).cloned());
-                        let given = crate::split::SharedSides {
-                            bottom,
-                            top: top_edge,
-                            left,
-                            right: right_edge,
-                        };
-                        let root = decide.root_sharing(&poses, given);
-                        if let Some(sides) = &root.sides {
-                            let made = [&sides.bottom, &sides.top, &sides.left, &sides.right];
-                            for (k, e) in keys.into_iter().zip(made) {
-                                shared.entry(k).or_insert_with(|| e.clone());
-                            }
-                        }
-                        root
-                    }
-                };
+                let root = roots.root(decide, surface, &poses);
                 let extent = decide.extent(&poses, &root);
                 let patch = root.with_extent(extent);
                 let (decision, top) = decide.decide_bound(&poses, &patch);

@@ -107,6 +107,7 @@ mod hook;
 mod lazy;
 mod lookdev;
 mod motion;
+mod roots;
 mod shade;
 mod shapes;
 mod split;

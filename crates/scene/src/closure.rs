@@ -5,7 +5,7 @@
 
 use std::collections::HashMap;
 
-use crate::model::{Faces, Shape};
+use crate::model::{Faces, Shape, SubdivTag};
 
 /// Whether a (valid) shape bounds a solid.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -61,6 +61,14 @@ pub fn closure(shape: &Shape) -> Closure {
         Shape::PatchMesh { .. } => Closure::Open("PatchMesh".into()),
         Shape::NuPatch { .. } => Closure::Open("NuPatch".into()),
         Shape::Mesh { faces, .. } => mesh_closure(faces),
+        // The limit surface of a closed control mesh is closed; a hole opens it.
+        Shape::SubdivisionMesh { faces, tags, .. } => {
+            if tags.iter().any(|t| matches!(t, SubdivTag::Hole { faces } if !faces.is_empty())) {
+                Closure::Open("SubdivisionMesh with a hole".into())
+            } else {
+                mesh_closure(faces)
+            }
+        }
     }
 }
 

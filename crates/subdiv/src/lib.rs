@@ -709,6 +709,23 @@ impl LimitPatch {
         LimitPatch { rect: r, edge_owner: Default::default(), ..self.clone() }
     }
 
+    /// The part `[u0, u1] x [v0, v1]` of this patch (parameters of this patch), as a patch of
+    /// its own, for [`LimitPatch::bound`]; like the halves of [`LimitPatch::split_u`], it
+    /// evaluates its own points, without edge routing.
+    pub fn part(&self, u: [f64; 2], v: [f64; 2]) -> LimitPatch {
+        let [u0, u1, v0, v1] = self.rect;
+        let (su, sv) = (u1 - u0, v1 - v0);
+        self.sub([u0 + su * u[0], u0 + su * u[1], v0 + sv * v[0], v0 + sv * v[1]])
+    }
+
+    /// Whether two handles are of the same patch of the same mesh (shared refinement data,
+    /// same face, same parameter rectangle).
+    pub fn same(&self, other: &LimitPatch) -> bool {
+        Arc::ptr_eq(&self.local, &other.local)
+            && self.corners == other.corners
+            && self.rect == other.rect
+    }
+
     /// Split at u = 1/2 of this patch's rectangle. Sub-patches evaluate their own points
     /// (no edge routing), so the dicer must keep shared edges on the unsplit patches' grids.
     pub fn split_u(&self) -> (LimitPatch, LimitPatch) {

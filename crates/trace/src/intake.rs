@@ -304,6 +304,8 @@ impl Builder {
             }
             // Tessellated above.
             Shape::PatchMesh { .. } | Shape::NuPatch { .. } => {}
+            // TODO(#15, helper B): tessellate the limit surface, as the Bezier shapes are.
+            Shape::SubdivisionMesh { .. } => {}
             Shape::Mesh { points, faces, .. } => {
                 let mut surface = 0u32;
                 for (f, face) in faces.iter().enumerate() {

@@ -151,7 +151,8 @@ impl Quadric {
             Shape::BilinearPatch { .. }
             | Shape::Mesh { .. }
             | Shape::PatchMesh { .. }
-            | Shape::NuPatch { .. } => return None,
+            | Shape::NuPatch { .. }
+            | Shape::SubdivisionMesh { .. } => return None,
         })
     }
 

@@ -28,6 +28,7 @@
 
 mod patches;
 mod quadrics;
+mod subdivision;
 
 use glam::{DVec3, Vec3};
 use reyes_scene::patches::{self as rp, BezierPatch};
@@ -35,6 +36,7 @@ use reyes_scene::{Object, PatchType, Shape};
 
 use patches::{Bilinear, bezier_normal, bezier_position, lerp4};
 use quadrics::{hyperboloid_normal, hyperboloid_position};
+pub(crate) use subdivision::SubdivPatch;
 
 /// One evaluated surface point, in object space.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -70,6 +72,8 @@ pub(crate) enum Surface {
     Hyperboloid { p1: Vec3, p2: Vec3, theta_max: f32 },
     /// A rational Bezier patch: a bicubic patch-mesh sub-patch or a NURBS span.
     Bezier(Box<BezierPatch>),
+    /// A patch of a Catmull-Clark subdivision surface.
+    Subdiv(Box<SubdivPatch>),
 }
 
 /// `(sin, cos)` of the sweep angle `u * theta_max`, exactly `(0, 1)` where a full turn
@@ -138,6 +142,7 @@ impl Surface {
                 hyperboloid_position(*p1, *p2, *theta_max, u, v)
             }
             Surface::Bezier(b) => bezier_position(b, u, v),
+            Surface::Subdiv(s) => s.position(u, v),
         }
     }
 
@@ -188,6 +193,7 @@ impl Surface {
                 (hyperboloid_normal(*p1, *p2, *theta_max, u, v), white)
             }
             Surface::Bezier(b) => (bezier_normal(b, u, v), white),
+            Surface::Subdiv(s) => (s.normal(u, v), s.tint(u, v)),
         };
         SurfacePoint { p, n, tint }
     }
@@ -205,6 +211,7 @@ impl Surface {
                     if u == [0.0, 1.0] && v == [0.0, 1.0] { (**b).clone() } else { b.sub(u, v) };
                 Some(sub.hull().map(|p| p.as_vec3()).collect())
             }
+            Surface::Subdiv(s) => Some(s.hull(u, v)),
             _ => None,
         }
     }
@@ -215,7 +222,9 @@ impl Surface {
 pub(crate) fn control_points(shape: &Shape) -> Option<Vec<Vec3>> {
     match shape {
         Shape::BilinearPatch { points } => Some(points.iter().map(|p| Vec3::from(*p)).collect()),
-        Shape::Mesh { points, .. } => Some(points.iter().map(|p| Vec3::from(*p)).collect()),
+        Shape::Mesh { points, .. } | Shape::SubdivisionMesh { points, .. } => {
+            Some(points.iter().map(|p| Vec3::from(*p)).collect())
+        }
         Shape::PatchMesh { .. } | Shape::NuPatch { .. } => {
             rp::control_positions(shape).map(|p| p.iter().map(|q| q.as_vec3()).collect())
         }
@@ -344,6 +353,10 @@ pub(crate) fn shape_surfaces(shape: &Shape, points_object: Option<&[Vec3]>) -> V
                 .map(|b| Surface::Bezier(Box::new(b)))
                 .collect()
         }
+        Shape::SubdivisionMesh { .. } => subdivision::patches(shape, points_object)
+            .into_iter()
+            .map(|p| Surface::Subdiv(Box::new(p)))
+            .collect(),
     }
 }
 
@@ -382,7 +395,8 @@ pub(crate) fn end_caps(shape: &Shape) -> Vec<Surface> {
         | Shape::Mesh { .. }
         | Shape::Hyperboloid { .. }
         | Shape::PatchMesh { .. }
-        | Shape::NuPatch { .. } => Vec::new(),
+        | Shape::NuPatch { .. }
+        | Shape::SubdivisionMesh { .. } => Vec::new(),
     }
 }
 

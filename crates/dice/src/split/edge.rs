@@ -108,6 +108,17 @@ impl Edge {
         Edge { t, points: per_pose.concat() }
     }
 
+    /// The same polyline run the other way, for a patch whose side goes along the edge of
+    /// `[0, 1]` in the opposite direction (neighbouring faces of a mesh wind opposite ways
+    /// along the edge they share): parameter `t` becomes `1 - t`, exact for the dyadic
+    /// parameters of a root edge, so the vertices and [`Edge::floor`]s are the same ones.
+    pub fn reversed(&self) -> Edge {
+        let n = self.t.len();
+        let t = self.t.iter().rev().map(|&t| 1.0 - t).collect();
+        let points = self.points.chunks(n.max(1)).flat_map(|c| c.iter().rev().copied()).collect();
+        Edge { t, points }
+    }
+
     /// The point of the polyline at parameter `t` at breakpoint `b`: a vertex's point
     /// exactly at its parameter, linear in between, the nearer end outside the range.
     pub fn at(&self, b: usize, t: f32) -> Vec3 {
@@ -345,6 +356,20 @@ mod tests {
         assert_eq!(e.at(0, 0.75), Vec3::new(0.75, 0.625, 0.0));
         assert_eq!(e.at(0, -1.0), Vec3::ZERO);
         assert_eq!(e.at(0, 2.0), Vec3::new(1.0, 1.0, 0.0));
+    }
+
+    #[test]
+    fn a_reversed_edge_has_the_same_points_the_other_way() {
+        let e = edge(vec![0.0, 0.125, 0.25, 0.5, 1.0]);
+        let r = e.reversed();
+        for t in [0.0, 0.125, 0.25, 0.5, 1.0] {
+            assert_eq!(r.at(0, 1.0 - t), e.at(0, t), "t = {t}");
+        }
+        // Between vertices, the same chord (to the rounding of the interpolation).
+        assert!((r.at(0, 0.7) - e.at(0, 0.3)).length() < 1e-6);
+        assert_eq!(r.floor([0.0, 1.0]), 3);
+        assert_eq!(r.floor([0.5, 1.0]), 2);
+        assert_eq!(r.reversed(), e);
     }
 
     #[test]

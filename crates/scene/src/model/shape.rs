@@ -180,6 +180,56 @@ pub enum Shape {
         #[serde(default)]
         colors: Option<Vec<Rgb>>,
     },
+    /// Catmull-Clark subdivision surface (`RiSubdivisionMesh "catmull-clark"`): the limit
+    /// surface of a control mesh of polygons of any size, with RenderMan's tags.
+    SubdivisionMesh {
+        /// Control points (RenderMan's vertex `P`).
+        points: Vec<V3>,
+        /// Faces: 3 or more indices into `points`, in order around the face, consistently
+        /// oriented (`[[0, 1, 2, 3], [3, 2, 4]]`).
+        faces: Faces,
+        /// Tags (`interpolateboundary`, `crease`, `corner`, `hole`).
+        #[serde(default)]
+        tags: Vec<SubdivTag>,
+        /// Optional per-point colours (vertex `Cs`), subdivided with the points.
+        #[serde(default)]
+        colors: Option<Vec<Rgb>>,
+        /// Optional texture coordinates, facevarying: one per face corner, face after face
+        /// (as many as the face indices), interpolated bilinearly over each face.
+        #[serde(default)]
+        st: Option<Vec<[f32; 2]>>,
+    },
+}
+
+/// A tag of a [`Shape::SubdivisionMesh`] (the tags of `RiSubdivisionMesh`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum SubdivTag {
+    /// The boundary is interpolated: boundary edges are infinitely sharp creases and
+    /// boundary points of one face are corners. Without it, the faces along the boundary
+    /// only shape their neighbours and are not drawn.
+    InterpolateBoundary,
+    /// A crease along the chain of edges `vertices[i] - vertices[i + 1]`, of `sharpness`
+    /// (DeRose, Kass and Truong 1998: sharp for that many subdivision steps, then smooth;
+    /// `inf` or any value of 20 and more is infinitely sharp).
+    Crease {
+        /// The chain of points, each edge an edge of the mesh.
+        vertices: Vec<u32>,
+        /// Sharpness, >= 0.
+        sharpness: f32,
+    },
+    /// Corners: each listed point is kept sharp for `sharpness` steps.
+    Corner {
+        /// The points.
+        vertices: Vec<u32>,
+        /// Sharpness, >= 0.
+        sharpness: f32,
+    },
+    /// Faces that are not drawn (they still shape their neighbours).
+    Hole {
+        /// The faces.
+        faces: Vec<u32>,
+    },
 }
 
 impl Shape {
@@ -197,6 +247,7 @@ impl Shape {
             Shape::Hyperboloid { .. } => "Hyperboloid",
             Shape::PatchMesh { .. } => "PatchMesh",
             Shape::NuPatch { .. } => "NuPatch",
+            Shape::SubdivisionMesh { .. } => "SubdivisionMesh",
         }
     }
 }

@@ -40,6 +40,7 @@ mod primitives;
 mod raytrace;
 mod shape;
 mod solid;
+mod subdivision;
 
 use crate::model::Scene;
 use primitives::Check;

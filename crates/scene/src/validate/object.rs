@@ -86,7 +86,8 @@ fn motion(at: &str, object: &Object, shutter: &Shutter) -> Check {
     )
 }
 
-/// Deformation motion: only of a `Mesh`, `BilinearPatch`, `PatchMesh` or `NuPatch`; key
+/// Deformation motion: only of a `Mesh`, `BilinearPatch`, `PatchMesh`, `NuPatch` or
+/// `SubdivisionMesh`; key
 /// times, then each key's points (as many as the shape has control points, all finite; a
 /// NURBS key gives positions `(x/w, y/w, z/w)` and keeps the shape's weights).
 fn deform(at: &str, object: &Object, shutter: &Shutter) -> Check {
@@ -98,12 +99,13 @@ fn deform(at: &str, object: &Object, shutter: &Shutter) -> Check {
         Shape::Mesh { points, .. } => points.len(),
         Shape::PatchMesh { points, .. } => points.len(),
         Shape::NuPatch { points, .. } => points.len(),
+        Shape::SubdivisionMesh { points, .. } => points.len(),
         other => {
             return fail(
                 at,
                 format!(
-                    "deformation keys need a Mesh, BilinearPatch, PatchMesh or NuPatch shape, \
-                     got {}",
+                    "deformation keys need a Mesh, BilinearPatch, PatchMesh, NuPatch or \
+                     SubdivisionMesh shape, got {}",
                     other.name()
                 ),
             );

@@ -85,6 +85,16 @@ pub(super) fn shape(at: &str, shape: &Shape) -> Check {
             sweep(&field("thetamax"), *thetamax)
         }
         Shape::BilinearPatch { points } => finite_each(&field("points"), points),
+        Shape::SubdivisionMesh { points, faces, tags, colors, st } => {
+            super::subdivision::subdivision_mesh(
+                at,
+                points,
+                faces,
+                tags,
+                colors.as_deref(),
+                st.as_deref(),
+            )
+        }
         Shape::Mesh { points, faces, colors } => {
             finite_each(&field("points"), points)?;
             if faces.is_empty() {
