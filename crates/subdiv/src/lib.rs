@@ -9,9 +9,12 @@
 //! bicubic B-spline patch of the 16 points around it. Points that never become regular
 //! (the extraordinary corner itself, points on a sharp crease) stop at depth [`MAX_DEPTH`] and
 //! use the limit-position masks of the four sub-patch corners (Halstead et al. 1993 for smooth
-//! vertices, 1-4-1 for creases, the point for corners), bilinearly; at depth 20 the sub-patch
-//! is 2^-20 wide, so the interpolation error is far below f32 rounding for positions, and the
-//! derivatives there are finite differences of limit positions (relative error about 2^-20).
+//! vertices, 1-4-1 for creases, the point for corners), bilinearly; at depth 12 the sub-patch
+//! is 2^-12 wide, so the interpolation error, of the order of the square of that width times
+//! the curvature (6e-8 of the patch's size), is at f32 rounding for positions, and the
+//! derivatives there are finite differences of limit positions (relative error about 2^-12,
+//! a normal off by 0.014 degrees at most). Every level costs a refinement of the 1-ring, and
+//! points on an infinitely sharp crease descend all the way, so the depth is no deeper.
 //!
 //! Shared edges: a point with `u` or `v` exactly 0 or 1 is evaluated by the *owner* of that edge
 //! (the adjacent patch whose edge runs from the lower to the higher level-1 vertex id), at the
@@ -26,7 +29,7 @@ use std::fmt;
 use std::sync::Arc;
 
 /// Depth at which adaptive evaluation stops and falls back to limit masks.
-pub const MAX_DEPTH: usize = 20;
+pub const MAX_DEPTH: usize = 12;
 
 /// A RenderMan subdivision tag.
 #[derive(Clone, Debug, PartialEq)]
@@ -518,11 +521,16 @@ fn bspline_eval(g: &[DVec3; 16], u: f64, v: f64) -> [DVec3; 3] {
 }
 
 /// Adaptive evaluation of face 0 of `m` at (u, v) in [0,1]^2: (P, dP/du, dP/dv).
-fn eval_local(m0: &Local, mut u: f64, mut v: f64) -> [DVec3; 3] {
+fn eval_local(m0: &Local, u: f64, v: f64) -> [DVec3; 3] {
+    eval_local_from(m0, u, v, 0)
+}
+
+/// [`eval_local`] of a quad that is already `start` levels down.
+fn eval_local_from(m0: &Local, mut u: f64, mut v: f64, start: usize) -> [DVec3; 3] {
     let mut m = m0.clone();
     // d(u', v') / d(u, v), columns: jac[0] = (du'/du, dv'/du), jac[1] = (du'/dv, dv'/dv).
     let mut jac = [[1.0, 0.0], [0.0, 1.0]];
-    for depth in 0..=MAX_DEPTH {
+    for depth in start..=MAX_DEPTH {
         let t = Topo::new(&m);
         let r = if let Some(g) = grid(&m, &t) {
             Some(bspline_eval(&g, u, v))
@@ -544,20 +552,7 @@ fn eval_local(m0: &Local, mut u: f64, mut v: f64) -> [DVec3; 3] {
             let pv = du * jac[1][0] + dv * jac[1][1];
             return [p, pu, pv];
         }
-        let (c, nu, nv, a) = if u < 0.5 && v < 0.5 {
-            (0, 2.0 * u, 2.0 * v, [[2.0, 0.0], [0.0, 2.0]])
-        } else if v < 0.5 {
-            (1, 2.0 * v, 2.0 * (1.0 - u), [[0.0, -2.0], [2.0, 0.0]])
-        } else if u >= 0.5 {
-            (2, 2.0 * (1.0 - u), 2.0 * (1.0 - v), [[-2.0, 0.0], [0.0, -2.0]])
-        } else {
-            (3, 2.0 * (1.0 - v), 2.0 * u, [[0.0, 2.0], [-2.0, 0.0]])
-        };
-        // a[k] = d(u', v')/d(parent k); compose with jac.
-        jac = [
-            [a[0][0] * jac[0][0] + a[1][0] * jac[0][1], a[0][1] * jac[0][0] + a[1][1] * jac[0][1]],
-            [a[0][0] * jac[1][0] + a[1][0] * jac[1][1], a[0][1] * jac[1][0] + a[1][1] * jac[1][1]],
-        ];
+        let (c, nu, nv) = descend(u, v, &mut jac);
         let (child, off) = refine(&m);
         let ct = Topo::new(&child);
         m = ring(&child, &ct, off[0] + c, 0);
@@ -567,15 +562,117 @@ fn eval_local(m0: &Local, mut u: f64, mut v: f64) -> [DVec3; 3] {
     [DVec3::ZERO; 3]
 }
 
+/// The child quad holding `(u, v)` and the point in its own parameters (children are
+/// numbered and turned as `refine` makes them), composing `jac` with the step.
+#[inline]
+fn descend(u: f64, v: f64, jac: &mut [[f64; 2]; 2]) -> (usize, f64, f64) {
+    let (c, nu, nv, a) = if u < 0.5 && v < 0.5 {
+        (0, 2.0 * u, 2.0 * v, [[2.0, 0.0], [0.0, 2.0]])
+    } else if v < 0.5 {
+        (1, 2.0 * v, 2.0 * (1.0 - u), [[0.0, -2.0], [2.0, 0.0]])
+    } else if u >= 0.5 {
+        (2, 2.0 * (1.0 - u), 2.0 * (1.0 - v), [[-2.0, 0.0], [0.0, -2.0]])
+    } else {
+        (3, 2.0 * (1.0 - v), 2.0 * u, [[0.0, 2.0], [-2.0, 0.0]])
+    };
+    // a[k] = d(u', v')/d(parent k); compose with jac.
+    let j = *jac;
+    *jac = [
+        [a[0][0] * j[0][0] + a[1][0] * j[0][1], a[0][1] * j[0][0] + a[1][1] * j[0][1]],
+        [a[0][0] * j[1][0] + a[1][0] * j[1][1], a[0][1] * j[1][0] + a[1][1] * j[1][1]],
+    ];
+    (c, nu, nv)
+}
+
+/// `(P, dP/du, dP/dv)` from derivatives in a child's parameters and the chain's `jac`.
+#[inline]
+fn compose([p, du, dv]: [DVec3; 3], jac: &[[f64; 2]; 2]) -> [DVec3; 3] {
+    [p, du * jac[0][0] + dv * jac[0][1], du * jac[1][0] + dv * jac[1][1]]
+}
+
+/// Levels of [`eval_local`]'s descent a patch keeps once made ([`Shared`]): below them a
+/// point is within `2^-EAGER` of an irregular point (the extraordinary corner, a crease) and
+/// is evaluated adaptively from the deepest kept quad.
+const EAGER: usize = 8;
+/// Most irregular quads kept per patch (a crease makes two per level along its edge).
+const EAGER_NODES: usize = 256;
+
+/// [`eval_local`]'s descent of one quad, made once: the regular quads as their B-spline
+/// points, the irregular ones split to [`EAGER`] levels, then kept for adaptive evaluation.
+#[derive(Debug)]
+enum Node {
+    /// A regular quad: its 16 B-spline points.
+    Regular(Box<[DVec3; 16]>),
+    /// An irregular quad, `depth` levels down, evaluated adaptively.
+    Deep(Box<Local>, usize),
+    /// An irregular quad's four children.
+    Split(Box<[Node; 4]>),
+}
+
+impl Node {
+    fn build(m: Local, depth: usize, budget: &mut usize) -> Node {
+        let t = Topo::new(&m);
+        if let Some(g) = grid(&m, &t) {
+            return Node::Regular(Box::new(g));
+        }
+        if depth >= EAGER || *budget == 0 {
+            return Node::Deep(Box::new(m), depth);
+        }
+        *budget -= 1;
+        let (child, off) = refine(&m);
+        let ct = Topo::new(&child);
+        let kids: [Local; 4] = std::array::from_fn(|c| ring(&child, &ct, off[0] + c, 0));
+        Node::Split(Box::new(kids.map(|k| Node::build(k, depth + 1, budget))))
+    }
+
+    /// What [`eval_local`] gives at `(u, v)`, bit for bit (the same arithmetic in the same
+    /// order, only the refinements are not redone).
+    fn eval(&self, mut u: f64, mut v: f64) -> [DVec3; 3] {
+        let mut node = self;
+        let mut jac = [[1.0, 0.0], [0.0, 1.0]];
+        loop {
+            match node {
+                Node::Regular(g) => return compose(bspline_eval(g, u, v), &jac),
+                Node::Deep(m, depth) => return compose(eval_local_from(m, u, v, *depth), &jac),
+                Node::Split(kids) => {
+                    let (c, nu, nv) = descend(u, v, &mut jac);
+                    node = &kids[c];
+                    (u, v) = (nu, nv);
+                }
+            }
+        }
+    }
+}
+
+/// A patch's 1-ring with its descent, made on first use and shared by the patch, its parts
+/// and the neighbours it owns edges for.
+#[derive(Debug)]
+struct Shared {
+    local: Local,
+    tree: std::sync::OnceLock<Node>,
+}
+
+impl Shared {
+    fn new(local: Local) -> Shared {
+        Shared { local, tree: std::sync::OnceLock::new() }
+    }
+
+    fn eval(&self, u: f64, v: f64) -> [DVec3; 3] {
+        self.tree
+            .get_or_init(|| Node::build(self.local.clone(), 0, &mut EAGER_NODES.clone()))
+            .eval(u, v)
+    }
+}
+
 /// One quad of the once-subdivided mesh as a parametric patch on a sub-rectangle of [0,1]^2.
 #[derive(Clone, Debug)]
 pub struct LimitPatch {
-    local: Arc<Local>,
+    local: Arc<Shared>,
     /// Level-0 face this quad came from.
     pub face: usize,
     /// Level-1 vertex ids of the quad's corners (canonical keys for shared edges).
     pub corners: [usize; 4],
-    edge_owner: [Option<(Arc<Local>, usize)>; 4],
+    edge_owner: [Option<(Arc<Shared>, usize)>; 4],
     corner_pos: [Vec3; 4],
     rect: [f64; 4],
     fv: Arc<[Vec<f64>; 4]>,
@@ -593,7 +690,7 @@ fn on_edge(k: usize, t: f64) -> (f64, f64) {
 
 impl LimitPatch {
     fn eval_full(&self, u: f64, v: f64) -> [DVec3; 3] {
-        let mut r = eval_local(&self.local, u, v);
+        let mut r = self.local.eval(u, v);
         let corner =
             [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].iter().position(|&c| c == (u, v));
         if let Some(c) = corner {
@@ -619,7 +716,7 @@ impl LimitPatch {
                 let tc = if a < b { t } else { 1.0 - t };
                 // The owner runs lo -> hi, so its own edge parameter is tc.
                 let (ou, ov) = on_edge(*ok, tc);
-                r[0] = eval_local(owner, ou, ov)[0];
+                r[0] = owner.eval(ou, ov)[0];
             }
         }
         r
@@ -664,14 +761,14 @@ impl LimitPatch {
         if self.rect != [0.0, 1.0, 0.0, 1.0] {
             return None;
         }
-        let t = Topo::new(&self.local);
-        grid(&self.local, &t).map(|g| g.map(|p| p.as_vec3()))
+        let t = Topo::new(&self.local.local);
+        grid(&self.local.local, &t).map(|g| g.map(|p| p.as_vec3()))
     }
 
     /// A conservative box: the hull of the 1-ring control points at the deepest level whose
     /// child quad contains the whole parameter rectangle (every rule is a convex combination).
     pub fn bound(&self) -> (Vec3, Vec3) {
-        let mut m = (*self.local).clone();
+        let mut m = self.local.local.clone();
         let [mut u0, mut u1, mut v0, mut v1] = self.rect;
         for _ in 0..MAX_DEPTH {
             let c = if u1 <= 0.5 && v1 <= 0.5 {
@@ -852,8 +949,8 @@ pub fn limit_patches(mesh: &Mesh) -> Result<Vec<LimitPatch>, SubdivError> {
             drawn.push((f0, q));
         }
     }
-    let locals: Vec<Arc<Local>> =
-        drawn.iter().map(|&(_, q)| Arc::new(ring(&m1, &t1, q, 0))).collect();
+    let locals: Vec<Arc<Shared>> =
+        drawn.iter().map(|&(_, q)| Arc::new(Shared::new(ring(&m1, &t1, q, 0)))).collect();
     let mut owner_of = HashMap::new();
     let mut corner_owner: HashMap<usize, usize> = HashMap::new();
     for (pi, &(_, q)) in drawn.iter().enumerate() {
@@ -870,7 +967,7 @@ pub fn limit_patches(mesh: &Mesh) -> Result<Vec<LimitPatch>, SubdivError> {
     for (pi, &(f0, q)) in drawn.iter().enumerate() {
         let f = &m1.faces[q];
         let corners = [f[0], f[1], f[2], f[3]];
-        let mut edge_owner: [Option<(Arc<Local>, usize)>; 4] = Default::default();
+        let mut edge_owner: [Option<(Arc<Shared>, usize)>; 4] = Default::default();
         for k in 0..4 {
             if let Some(&(po, ko)) = owner_of.get(&key(f[k], f[(k + 1) % 4])) {
                 edge_owner[k] = Some((locals[po].clone(), ko));
@@ -881,7 +978,7 @@ pub fn limit_patches(mesh: &Mesh) -> Result<Vec<LimitPatch>, SubdivError> {
             let po = corner_owner[&f[k]];
             let kc = m1.faces[drawn[po].1].iter().position(|&x| x == f[k]).unwrap_or(0);
             let (u, v) = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)][kc];
-            corner_pos[k] = eval_local(&locals[po], u, v)[0].as_vec3();
+            corner_pos[k] = eval_local(&locals[po].local, u, v)[0].as_vec3();
         }
         // Facevarying corners: level-0 face f0, child at its corner i = q - off[f0].
         let (start, n) = (starts[f0], mesh.face_counts[f0]);

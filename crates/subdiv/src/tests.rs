@@ -251,3 +251,24 @@ fn vertex_varyings_follow_points() {
     }
     assert!(varying_patches(&m, 2, &data[1..]).is_err());
 }
+
+#[test]
+fn the_kept_descent_evaluates_as_the_adaptive_one_bit_for_bit() {
+    // The cube's patches each have a valence-3 corner; one with a crease has irregular quads
+    // along an edge too, beyond the kept levels' budget.
+    let mut creased = cube();
+    creased.tags.push(Tag::Crease { vertices: vec![0, 1, 3, 2, 0], sharpness: 2.5 });
+    for mesh in [cube(), creased] {
+        for p in limit_patches(&mesh).unwrap() {
+            for j in 0..=16 {
+                for i in 0..=16 {
+                    let (u, v) = (f64::from(i) / 16.0, f64::from(j) / 16.0);
+                    // Off the grid too, and close to the corners (below the kept levels).
+                    for (u, v) in [(u, v), (u * 0.013 + 1e-4, v * 0.007), (0.999 - u * 1e-3, v)] {
+                        assert_eq!(p.local.eval(u, v), eval_local(&p.local.local, u, v));
+                    }
+                }
+            }
+        }
+    }
+}

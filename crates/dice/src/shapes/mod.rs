@@ -148,6 +148,11 @@ impl Surface {
 
     /// Position, unit outward normal and tint at `(u, v)`.
     pub fn eval(&self, u: f32, v: f32) -> SurfacePoint {
+        if let Surface::Subdiv(s) = self {
+            // Position and normal from one evaluation of the limit surface.
+            let (p, n) = s.point(u, v);
+            return SurfacePoint { p, n, tint: s.tint(u, v) };
+        }
         let p = self.position(u, v);
         let white = Vec3::ONE;
         let (n, tint) = match self {
@@ -193,7 +198,7 @@ impl Surface {
                 (hyperboloid_normal(*p1, *p2, *theta_max, u, v), white)
             }
             Surface::Bezier(b) => (bezier_normal(b, u, v), white),
-            Surface::Subdiv(s) => (s.normal(u, v), s.tint(u, v)),
+            Surface::Subdiv(s) => (s.point(u, v).1, s.tint(u, v)),
         };
         SurfacePoint { p, n, tint }
     }

@@ -113,24 +113,35 @@ impl SubdivPatch {
 
     /// Unit normal `dP/du x dP/dv` at `(u, v)`. Where it vanishes (a degenerate control
     /// mesh), the normal a little way into the patch, then that of the corners' diagonals.
+    #[cfg(test)]
     pub fn normal(&self, u: f32, v: f32) -> Vec3 {
-        let at = |u: f32, v: f32| -> Option<Vec3> {
+        self.point(u, v).1
+    }
+
+    /// Position and unit normal at `(u, v)`, from one evaluation (see [`SubdivPatch::normal`]).
+    pub fn point(&self, u: f32, v: f32) -> (Vec3, Vec3) {
+        let at = |u: f32, v: f32| -> (Vec3, Option<Vec3>) {
             match &self.points.bezier {
-                Some(b) => b.normal(f64::from(u), f64::from(v)).as_vec3().try_normalize(),
+                Some(b) => {
+                    let n = b.normal(f64::from(u), f64::from(v)).as_vec3().try_normalize();
+                    (self.points.position(u, v), n)
+                }
                 None => {
-                    let (_, du, dv) = self.points.limit.eval(u, v);
-                    du.cross(dv).try_normalize()
+                    let (p, du, dv) = self.points.limit.eval(u, v);
+                    (p, du.cross(dv).try_normalize())
                 }
             }
         };
+        let (p, n) = at(u, v);
         let nudge = |t: f32| if t < 0.5 { t + 1e-3 } else { t - 1e-3 };
-        at(u, v).or_else(|| at(nudge(u), nudge(v))).unwrap_or_else(|| {
+        let n = n.or_else(|| at(nudge(u), nudge(v)).1).unwrap_or_else(|| {
             let c = |u, v| self.points.limit.eval(u, v).0;
             (c(1.0, 1.0) - c(0.0, 0.0))
                 .cross(c(0.0, 1.0) - c(1.0, 0.0))
                 .try_normalize()
                 .unwrap_or(Vec3::Z)
-        })
+        });
+        (p, n)
     }
 
     /// The colour multiplying the material's at `(u, v)` (white without vertex colours).
