@@ -511,7 +511,9 @@ fn fit_points(keys: &[(f32, Vec<[f32; 3]>)], open: f32, close: f32) -> PointKeys
 /// Replaces the control points of a shape that has them.
 fn set_points(shape: &mut Shape, new: Vec<[f32; 3]>) {
     match shape {
-        Shape::Mesh { points, .. } | Shape::PatchMesh { points, .. } => *points = new,
+        Shape::Mesh { points, .. }
+        | Shape::PatchMesh { points, .. }
+        | Shape::SubdivisionMesh { points, .. } => *points = new,
         Shape::BilinearPatch { points } if new.len() == 4 => {
             *points = [new[0], new[1], new[2], new[3]];
         }

@@ -36,7 +36,7 @@ fn expected(class: Class, counts: Counts) -> usize {
 
 /// The values of a float-typed parameter in groups of `n`, checked against the counts of its
 /// class; None if the primitive does not have it.
-fn groups<'a>(
+pub(crate) fn groups<'a>(
     r: &Request,
     p: &'a Param,
     n: usize,

@@ -19,6 +19,7 @@ mod options;
 mod primitives;
 mod shaders;
 pub(crate) mod state;
+mod subdivision;
 mod triangulate;
 pub(crate) mod xform;
 

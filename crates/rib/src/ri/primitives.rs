@@ -76,7 +76,9 @@ impl Machine {
         }
         let a = self.attributes.clone();
         let (cs, colors_constant) = match &shape {
-            Shape::Mesh { .. } => (a.color, self.constant_color(r)?),
+            Shape::Mesh { .. } | Shape::SubdivisionMesh { .. } => {
+                (a.color, self.constant_color(r)?)
+            }
             _ => (a.color, None),
         };
         let cs = colors_constant.unwrap_or(cs);
@@ -285,12 +287,10 @@ impl Machine {
                     thetamax: r.float(2).unwrap_or(360.0),
                 }
             }
-            K::SubdivisionMesh => {
-                return self.unsupported(
-                    r,
-                    "subdivision surfaces are not supported yet (the production-geometry issue adds them)",
-                );
-            }
+            K::SubdivisionMesh => match super::subdivision::shape(r, &mut self.warnings)? {
+                Some(shape) => shape,
+                None => return Ok(None),
+            },
             _ => return self.unsupported(r, "this primitive is not supported"),
         };
         Ok(Some(shape))
@@ -403,7 +403,9 @@ fn wrap(r: &Request, i: usize) -> Result<Wrap, RibError> {
 /// divided out; the shape keeps its weights).
 fn control_points(shape: &Option<Shape>) -> Option<Vec<[f32; 3]>> {
     match shape.as_ref()? {
-        Shape::Mesh { points, .. } | Shape::PatchMesh { points, .. } => Some(points.clone()),
+        Shape::Mesh { points, .. }
+        | Shape::PatchMesh { points, .. }
+        | Shape::SubdivisionMesh { points, .. } => Some(points.clone()),
         Shape::BilinearPatch { points } => Some(points.to_vec()),
         Shape::NuPatch { points, .. } => {
             Some(points.iter().map(|p| [p[0] / p[3], p[1] / p[3], p[2] / p[3]]).collect())
@@ -422,6 +424,10 @@ fn same_topology(a: &Option<Shape>, b: &Option<Shape>) -> bool {
                 *colors = None;
             }
             Shape::PatchMesh { points, .. } => points.clear(),
+            Shape::SubdivisionMesh { points, colors, .. } => {
+                points.clear();
+                *colors = None;
+            }
             Shape::BilinearPatch { points } => *points = [[0.0; 3]; 4],
             Shape::NuPatch { points, .. } => {
                 for p in points.iter_mut() {

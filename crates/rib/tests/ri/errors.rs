@@ -71,6 +71,16 @@ fn cases() -> Vec<(&'static str, String)> {
         ("an orthographic screen window too small for single precision", "Projection \"orthographic\"\nScreenWindow 0 1e-40 0 1e-40\nWorldBegin Sphere 1 -1 1 360 WorldEnd".into()),
         ("a lens too large for single precision", "DepthOfField 1e-38 3e38 5\nProjection \"perspective\"\nWorldBegin Sphere 1 -1 1 360 WorldEnd".into()),
         ("a shutter too long for single precision", "Shutter -3e38 3e38\nProjection \"perspective\"\nWorldBegin Sphere 1 -1 1 360 WorldEnd".into()),
+        ("subdivision nargs of the wrong length", w("SubdivisionMesh \"catmull-clark\" [4] [0 1 2 3] [\"crease\"] [2] [0 1] [] \"P\" [0 0 0 1 0 0 1 1 0 0 1 0]")),
+        ("subdivision crease of one point", w("SubdivisionMesh \"catmull-clark\" [4] [0 1 2 3] [\"crease\"] [1 1] [0] [2] \"P\" [0 0 0 1 0 0 1 1 0 0 1 0]")),
+        ("subdivision crease asking past intargs", w("SubdivisionMesh \"catmull-clark\" [4] [0 1 2 3] [\"crease\"] [3 1] [0 1] [2] \"P\" [0 0 0 1 0 0 1 1 0 0 1 0]")),
+        ("subdivision negative sharpness", w("SubdivisionMesh \"catmull-clark\" [4] [0 1 2 3] [\"crease\"] [2 1] [0 1] [-2] \"P\" [0 0 0 1 0 0 1 1 0 0 1 0]")),
+        ("subdivision crease not along an edge", w("SubdivisionMesh \"catmull-clark\" [4] [0 1 2 3] [\"crease\"] [2 1] [0 2] [2] \"P\" [0 0 0 1 0 0 1 1 0 0 1 0]")),
+        ("subdivision hole of a missing face", w("SubdivisionMesh \"catmull-clark\" [4] [0 1 2 3] [\"hole\"] [1 0] [4] [] \"P\" [0 0 0 1 0 0 1 1 0 0 1 0]")),
+        ("subdivision negative corner point", w("SubdivisionMesh \"catmull-clark\" [4] [0 1 2 3] [\"corner\"] [1 1] [-1] [3] \"P\" [0 0 0 1 0 0 1 1 0 0 1 0]")),
+        ("subdivision interpolateboundary 3", w("SubdivisionMesh \"catmull-clark\" [4] [0 1 2 3] [\"interpolateboundary\"] [1 0] [3] [] \"P\" [0 0 0 1 0 0 1 1 0 0 1 0]")),
+        ("subdivision face used backwards", w("SubdivisionMesh \"catmull-clark\" [3 3] [0 1 2 0 1 2] \"P\" [0 0 0 1 0 0 1 1 0]")),
+        ("subdivision facevarying st of the wrong count", w("SubdivisionMesh \"catmull-clark\" [4] [0 1 2 3] \"P\" [0 0 0 1 0 0 1 1 0 0 1 0] \"facevarying float[2] st\" [0 0 1 0]")),
         ("an object that instances itself", w("ObjectBegin \"a\" Sphere 1 -1 1 360 ObjectEnd ObjectBegin \"a\" ObjectInstance \"a\" ObjectEnd ObjectInstance \"a\"")),
     ]
 }

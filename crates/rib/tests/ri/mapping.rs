@@ -524,3 +524,114 @@ fn display_lines_with_output_variables_become_aov_layers() {
         frame.displays.iter().filter(|d| d.extra).map(|d| d.name.as_str()).collect();
     assert_eq!(extras, ["copy.png"]);
 }
+
+/// The cube of side 2 as RIB's `nvertices vertices P` of a `SubdivisionMesh`.
+const CUBE: &str = "[4 4 4 4 4 4] [0 2 3 1 4 5 7 6 0 1 5 4 2 6 7 3 0 4 6 2 1 3 7 5]
+    \"P\" [-1 -1 -1 1 -1 -1 -1 1 -1 1 1 -1 -1 -1 1 1 -1 1 -1 1 1 1 1 1]";
+
+#[test]
+fn a_subdivision_mesh_keeps_its_faces_tags_and_primitive_variables() {
+    use reyes_scene::SubdivTag;
+    let cube = CUBE.split_once(" \"P\"").unwrap();
+    let text = world(&format!(
+        "Translate 0 0 6
+         SubdivisionMesh \"catmull-clark\" {}
+           [\"crease\" \"crease\" \"corner\" \"hole\" \"interpolateboundary\" \"creasemethod\"]
+           [3 1  3 2  2 2  1 0  0 0  0 0]
+           [0 1 3  4 5 7  6 2  5]
+           [2.5  1 4  0.5 3]
+           \"P\" {}
+           \"vertex color Cs\" [0 0 0 1 0 0 0 1 0 1 1 0 0 0 1 1 0 1 0 1 1 1 1 1]
+           \"facevarying float[2] st\" [{}]",
+        cube.0,
+        cube.1,
+        (0..24).map(|i| format!("{} 0", i)).collect::<Vec<_>>().join(" ")
+    ));
+    let loaded = rib(&text).unwrap();
+    let w: Vec<String> = loaded.warnings.iter().map(ToString::to_string).collect();
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert!(w[0].contains("SubdivisionMesh: tag \"creasemethod\" is not supported"), "{w:?}");
+    let s = &loaded.frames[0].scene;
+    let Shape::SubdivisionMesh { points, faces, tags, colors, st } = &s.objects[0].shape else {
+        panic!("{:?}", s.objects[0].shape)
+    };
+    assert_eq!(points.len(), 8);
+    assert_eq!(points[7], [1.0, 1.0, 1.0]);
+    assert_eq!(faces.get(1), Some(&[4, 5, 7, 6][..]));
+    assert_eq!(
+        tags,
+        &vec![
+            // One sharpness for the chain.
+            SubdivTag::Crease { vertices: vec![0, 1, 3], sharpness: 2.5 },
+            // One sharpness per edge: one crease per edge of its own sharpness.
+            SubdivTag::Crease { vertices: vec![4, 5], sharpness: 1.0 },
+            SubdivTag::Crease { vertices: vec![5, 7], sharpness: 4.0 },
+            // One sharpness per corner point.
+            SubdivTag::Corner { vertices: vec![6], sharpness: 0.5 },
+            SubdivTag::Corner { vertices: vec![2], sharpness: 3.0 },
+            SubdivTag::Hole { faces: vec![5] },
+            SubdivTag::InterpolateBoundary,
+        ]
+    );
+    assert_eq!(colors.as_ref().map(|c| c[3]), Some([1.0, 1.0, 0.0]));
+    let st = st.as_ref().unwrap();
+    assert_eq!((st.len(), st[23]), (24, [23.0, 0.0]));
+}
+
+#[test]
+fn subdivision_mesh_st_and_cs_of_other_classes() {
+    // Vertex st is gathered to the face corners; per-face Cs is ignored with a warning; a
+    // constant Cs is the material colour.
+    let cube = CUBE.split_once(" \"P\"").unwrap();
+    let text = world(&format!(
+        "SubdivisionMesh \"catmull-clark\" {} \"P\" {} \"vertex float[2] st\" [{}] \"uniform color Cs\" [{}]
+         SubdivisionMesh \"catmull-clark\" {} \"P\" {} \"constant color Cs\" [0.25 0.5 1]",
+        cube.0,
+        cube.1,
+        (0..8).map(|i| format!("{i} {}", 10 * i)).collect::<Vec<_>>().join(" "),
+        ["1 0 0"; 6].join(" "),
+        cube.0,
+        cube.1,
+    ));
+    let loaded = rib(&text).unwrap();
+    let w: Vec<String> = loaded.warnings.iter().map(ToString::to_string).collect();
+    assert_eq!(w.len(), 2, "{w:?}");
+    assert!(w.iter().any(|m| m.contains("\"st\" of class vertex: interpolated bilinearly")), "{w:?}");
+    assert!(w.iter().any(|m| m.contains("\"Cs\" of class uniform is not supported")), "{w:?}");
+    let s = &loaded.frames[0].scene;
+    let Shape::SubdivisionMesh { st: Some(st), colors: None, .. } = &s.objects[0].shape else {
+        panic!("{:?}", s.objects[0].shape)
+    };
+    // Face 1 is [4 5 7 6]: its corners take those points' st.
+    assert_eq!(&st[4..8], &[[4.0, 40.0], [5.0, 50.0], [7.0, 70.0], [6.0, 60.0]]);
+    match &s.objects[1].material {
+        Material::DefaultSurface { color, .. } => assert_eq!(*color, [0.25, 0.5, 1.0]),
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn a_subdivision_mesh_in_a_motion_block_deforms_and_other_schemes_are_skipped() {
+    let cube = CUBE.split_once(" \"P\"").unwrap();
+    let moved: String = cube.1.replace("1 1 1]", "1 1 3]");
+    let text = format!(
+        "Shutter 0 1\n{}",
+        world(&format!(
+            "MotionBegin [0 1]
+               SubdivisionMesh \"catmull-clark\" {0} \"P\" {1}
+               SubdivisionMesh \"catmull-clark\" {0} \"P\" {2}
+             MotionEnd
+             SubdivisionMesh \"loop\" [3] [0 1 2] \"P\" [0 0 0 1 0 0 0 1 0]",
+            cube.0, cube.1, moved
+        ))
+    );
+    let loaded = rib(&text).unwrap();
+    let w: Vec<String> = loaded.warnings.iter().map(ToString::to_string).collect();
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert!(w[0].contains("SubdivisionMesh: scheme \"loop\" is not supported"), "{w:?}");
+    let s = &loaded.frames[0].scene;
+    assert_eq!(s.objects.len(), 1);
+    let d = &s.objects[0].deform;
+    assert_eq!(d.len(), 2);
+    assert_eq!((d[0].points[7], d[1].points[7]), ([1.0, 1.0, 1.0], [1.0, 1.0, 3.0]));
+}
