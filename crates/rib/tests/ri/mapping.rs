@@ -596,7 +596,10 @@ fn subdivision_mesh_st_and_cs_of_other_classes() {
     let loaded = rib(&text).unwrap();
     let w: Vec<String> = loaded.warnings.iter().map(ToString::to_string).collect();
     assert_eq!(w.len(), 2, "{w:?}");
-    assert!(w.iter().any(|m| m.contains("\"st\" of class vertex: interpolated bilinearly")), "{w:?}");
+    assert!(
+        w.iter().any(|m| m.contains("\"st\" of class vertex: interpolated bilinearly")),
+        "{w:?}"
+    );
     assert!(w.iter().any(|m| m.contains("\"Cs\" of class uniform is not supported")), "{w:?}");
     let s = &loaded.frames[0].scene;
     let Shape::SubdivisionMesh { st: Some(st), colors: None, .. } = &s.objects[0].shape else {
