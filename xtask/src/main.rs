@@ -18,7 +18,7 @@ use reyes_testkit::golden::{self, Outcome};
 
 fn usage() -> ExitCode {
     eprintln!(
-        "usage: cargo xtask <golden | bless [SCENE...] | bench [--runs N] [--threads T] [--baseline BIN] [SCENE...] | scaling [--threads T] [N...] | study [--quick] | geometry [--quick] | compare A.exr B.exr [--diff OUT.png] | fuzz [--execs N] [--renders N] [--targets ron,rib,render] [--seed S] [--save] [--time-limit SECS] | fuzz cmin | models>"
+        "usage: cargo xtask <golden | bless [SCENE...] | bench [--runs N] [--threads T] [--baseline BIN] [SCENE...] | scaling [--threads T] [N...] | study [--quick] | geometry [--quick] | compare A.exr B.exr [--diff OUT.png] | fuzz [--execs N] [--renders N] [--targets ron,rib,render] [--seed S] [--save] [--time-limit SECS] | fuzz cmin | models [--bench]>"
     );
     ExitCode::from(2)
 }
@@ -82,7 +82,7 @@ fn main() -> ExitCode {
         };
     }
     if args.first().map(String::as_str) == Some("models") {
-        return match models::run(&root.join("scenes/models")) {
+        return match models::run(&root, args.get(1).map(String::as_str) == Some("--bench")) {
             Ok(()) => ExitCode::SUCCESS,
             Err(e) => {
                 eprintln!("xtask models: {e}");
