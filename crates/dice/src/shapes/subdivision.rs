@@ -24,8 +24,8 @@ use std::sync::Arc;
 
 use glam::{DVec3, Vec2, Vec3};
 use reyes_scene::patches::{self as rp, BezierPatch};
-use reyes_scene::{Basis, Faces, PatchType, Shape, SubdivTag, Wrap};
-use reyes_subdiv::{LimitPatch, Mesh, Tag};
+use reyes_scene::{Basis, PatchType, Shape, Wrap};
+use reyes_subdiv::{LimitPatch, Mesh};
 
 /// One limit surface patch (of the points, or of the colours), with its Bezier form when
 /// the quad is regular.
@@ -182,47 +182,17 @@ impl SubdivPatch {
     }
 }
 
-/// The control mesh of a subdivision shape for `reyes_subdiv`, with `points` (a deformation
-/// key's, missing points keeping the shape's own) in place of the shape's.
-fn control_mesh(
-    points: &[[f32; 3]],
-    faces: &Faces,
-    tags: &[SubdivTag],
-    st: Option<&[[f32; 2]]>,
-    moved: impl Fn(usize, Vec3) -> Vec3,
-) -> Mesh {
-    let to_usize = |list: &[u32]| list.iter().map(|&i| i as usize).collect::<Vec<_>>();
-    Mesh {
-        points: points.iter().enumerate().map(|(i, p)| moved(i, Vec3::from(*p))).collect(),
-        face_counts: faces.iter().map(<[u32]>::len).collect(),
-        faces: to_usize(faces.indices()),
-        tags: tags
-            .iter()
-            .map(|t| match t {
-                SubdivTag::InterpolateBoundary => Tag::InterpolateBoundary,
-                SubdivTag::Crease { vertices, sharpness } => {
-                    Tag::Crease { vertices: to_usize(vertices), sharpness: *sharpness }
-                }
-                SubdivTag::Corner { vertices, sharpness } => {
-                    Tag::Corner { vertices: to_usize(vertices), sharpness: *sharpness }
-                }
-                SubdivTag::Hole { faces } => Tag::Hole { faces: to_usize(faces) },
-            })
-            .collect(),
-        facevarying_width: if st.is_some() { 2 } else { 0 },
-        facevarying: st.map_or_else(Vec::new, |st| st.iter().flatten().copied().collect()),
-    }
-}
-
 /// The patches of a (valid) subdivision shape, with its points replaced by `points_object`
 /// where given; empty for other shapes, or for a mesh the crate rejects (validation rejects
 /// such a scene first).
 pub(crate) fn patches(shape: &Shape, points_object: Option<&[Vec3]>) -> Vec<SubdivPatch> {
-    let Shape::SubdivisionMesh { points, faces, tags, colors, st } = shape else {
+    let Shape::SubdivisionMesh { colors, .. } = shape else {
         return Vec::new();
     };
     let moved = |i: usize, own: Vec3| points_object.and_then(|p| p.get(i).copied()).unwrap_or(own);
-    let mesh = control_mesh(points, faces, tags, st.as_deref(), moved);
+    let Some(mesh) = reyes_scene::subdiv::control_mesh(shape, moved) else {
+        return Vec::new();
+    };
     let Ok(limits) = reyes_subdiv::limit_patches(&mesh) else {
         return Vec::new();
     };
