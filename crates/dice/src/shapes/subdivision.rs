@@ -22,9 +22,9 @@
 
 use std::sync::Arc;
 
-use glam::{DVec3, Vec2, Vec3};
-use reyes_scene::patches::{self as rp, BezierPatch};
-use reyes_scene::{Basis, PatchType, Shape, Wrap};
+use glam::{Vec2, Vec3};
+use reyes_scene::Shape;
+use reyes_scene::patches::BezierPatch;
 use reyes_subdiv::{LimitPatch, Mesh};
 
 /// One limit surface patch (of the points, or of the colours), with its Bezier form when
@@ -37,7 +37,7 @@ struct Limit {
 
 impl Limit {
     fn new(limit: LimitPatch) -> Limit {
-        let bezier = limit.bspline().map(|g| bspline_to_bezier(&g));
+        let bezier = limit.bspline().map(|g| reyes_scene::subdiv::bspline_to_bezier(&g));
         Limit { limit, bezier }
     }
 
@@ -55,27 +55,6 @@ impl Limit {
 #[inline]
 fn on_boundary(u: f32, v: f32) -> bool {
     u == 0.0 || u == 1.0 || v == 0.0 || v == 1.0
-}
-
-/// The 16 control points of a uniform bicubic B-spline patch (index `4 j + i`, `i` along u)
-/// as the Bezier patch of the same surface over the same `(u, v)`.
-fn bspline_to_bezier(g: &[Vec3; 16]) -> BezierPatch {
-    let shape = Shape::PatchMesh {
-        kind: PatchType::Bicubic,
-        nu: 4,
-        nv: 4,
-        uwrap: Wrap::default(),
-        vwrap: Wrap::default(),
-        points: g.iter().map(|p| p.to_array()).collect(),
-        ubasis: Basis::BSpline,
-        ustep: None,
-        vbasis: Basis::BSpline,
-        vstep: None,
-    };
-    let positions: Vec<DVec3> = g.iter().map(|p| p.as_dvec3()).collect();
-    rp::bezier_patches(&shape, Some(&positions))
-        .pop()
-        .unwrap_or_else(|| BezierPatch::new(1, 1, vec![DVec3::ZERO.extend(1.0); 4]))
 }
 
 /// One patch of a subdivision surface (see the module documentation).
