@@ -64,7 +64,7 @@ impl Quadric {
     }
 }
 
-/// The closed quadric of a shape, `Ok(None)` for a mesh, or why the shape bounds no volume.
+/// The closed quadric of a shape, `Ok(None)` for a mesh or subdivision mesh, or why the shape bounds no volume.
 /// Whether it is closed is the scene's own rule ([`reyes_scene::closure`], the one CSG
 /// operands obey); a mesh's face orientation does not matter to the parity test.
 pub(crate) fn closed_quadric(shape: &Shape) -> Result<Option<Quadric>, String> {
@@ -90,14 +90,10 @@ pub(crate) fn closed_quadric(shape: &Shape) -> Result<Option<Quadric>, String> {
         Shape::Torus { major_radius, minor_radius, .. } => {
             Quadric::Torus { major: f64::from(major_radius), minor: f64::from(minor_radius) }
         }
-        Shape::Mesh { .. } => return Ok(None),
-        // Closed, but its limit surface is not given to the parity test (a deliberate gap:
-        // measure the control mesh, or a Mesh of the limit surface, instead).
-        Shape::SubdivisionMesh { .. } => {
-            return Err("SubdivisionMesh (mass properties are measured on quadrics and \
-                        meshes; give the limit surface as a Mesh)"
-                .into());
-        }
+        // Ray parity on the ray engine's primitives: a subdivision mesh's are the
+        // triangles of its limit surface's tessellation (within 1/1000 of each patch's
+        // size of the surface), so its volume is that of the tessellation.
+        Shape::Mesh { .. } | Shape::SubdivisionMesh { .. } => return Ok(None),
         // `closure` calls these open.
         Shape::Disk { .. }
         | Shape::BilinearPatch { .. }
@@ -301,7 +297,11 @@ pub(crate) fn member(
             Ok((Member::Quadric { shape, to_object }, bounds))
         }
         None => {
-            let Shape::Mesh { points, .. } = &object.shape else {
+            // A subdivision mesh's limit surface lies in the hull of its control points
+            // (every Catmull-Clark rule, creases included, is a convex combination).
+            let (Shape::Mesh { points, .. } | Shape::SubdivisionMesh { points, .. }) =
+                &object.shape
+            else {
                 return Err(degenerate("it is not a mesh".into()));
             };
             // The first deformation key holds at shutter open; a point it lacks is the shape's.

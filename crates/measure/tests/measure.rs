@@ -70,6 +70,72 @@ fn box_mesh_scaled_and_moved() {
     check(&run(&scene, "tilted", 1_000_000, 2), 24.0, DVec3::new(4.0, -2.0, 1.0));
 }
 
+/// The Catmull-Clark cube (half-side 1), moved: its volume is that of the ray engine's
+/// tessellation of the limit surface, whose vertices are on the surface and which is within
+/// `1e-3` of each patch's box diagonal of it, so within `area x that` of the limit surface's
+/// volume; the reference is the divergence theorem on the limit patches, `V = 1/3 sum of
+/// the integral of p . (p_u x p_v)`, by 4-point Gauss-Legendre on 8 x 8 cells per patch (a
+/// smooth integrand: far below the tolerances here). The centre is the translation.
+#[test]
+fn a_subdivision_cube_has_its_limit_surface_volume() {
+    let cube = "shape: SubdivisionMesh(points: [(-1.0, -1.0, -1.0), (1.0, -1.0, -1.0), \
+        (-1.0, 1.0, -1.0), (1.0, 1.0, -1.0), (-1.0, -1.0, 1.0), (1.0, -1.0, 1.0), \
+        (-1.0, 1.0, 1.0), (1.0, 1.0, 1.0)], faces: [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], \
+        [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]])";
+    let scene = parse(&scene_text(
+        &[&format!("name: \"cc\", {cube}, transform: [Translate((0.5, -1.0, 2.0))]")],
+        "",
+    ));
+    let mesh = reyes_scene::subdiv::control_mesh(&scene.objects[0].shape, |_, own| own)
+        .expect("a subdivision mesh");
+    let patches = reyes_subdiv::limit_patches(&mesh).expect("a valid mesh");
+    let gauss = [
+        (0.339_981_043_584_856, 0.652_145_154_862_546),
+        (0.861_136_311_594_053, 0.347_854_845_137_454),
+    ];
+    let nodes: Vec<(f64, f64)> = gauss
+        .iter()
+        .flat_map(|&(x, w)| [(0.5 - 0.5 * x, 0.5 * w), (0.5 + 0.5 * x, 0.5 * w)])
+        .collect();
+    let (mut volume, mut area, mut size) = (0.0_f64, 0.0_f64, 0.0_f64);
+    for patch in &patches {
+        let (lo, hi) = patch.bound();
+        size = size.max(f64::from((hi - lo).length()));
+        for cell in 0..64 {
+            let (ci, cj) = (f64::from(cell % 8), f64::from(cell / 8));
+            for &(x, wx) in &nodes {
+                for &(y, wy) in &nodes {
+                    let (u, v) = ((ci + x) / 8.0, (cj + y) / 8.0);
+                    let (p, du, dv) = patch.eval(u as f32, v as f32);
+                    let n = du.as_dvec3().cross(dv.as_dvec3());
+                    let w = wx * wy / 64.0;
+                    volume += w * p.as_dvec3().dot(n) / 3.0;
+                    area += w * n.length();
+                }
+            }
+        }
+    }
+    // Between the spheres of the face-centre and corner limit radii.
+    let ball = |r: f64| 4.0 / 3.0 * PI * r.powi(3);
+    assert!((ball(68.0 / 81.0)..ball(0.75_f64.sqrt())).contains(&volume), "reference {volume}");
+    let m = run(&scene, "cc", 400_000, 3);
+    eprintln!("{m} (reference {volume}, area {area})");
+    let bias = area * 1e-3 * size;
+    assert!(
+        (m.volume - volume).abs() <= 3.0 * m.volume_se + bias,
+        "volume {} ± {} vs {volume} (tessellation within {bias})",
+        m.volume,
+        m.volume_se
+    );
+    assert!(m.volume_se < 5e-3 * volume, "volume s.e. {} too large", m.volume_se);
+    // The missing sliver (volume at most `bias`) lies within 1 of the centre (the corner
+    // radius is 0.87), so it moves the centre by at most bias / volume.
+    let c = m.centre.expect("a centre");
+    for (a, want) in [0.5, -1.0, 2.0].into_iter().enumerate() {
+        assert!((c.at[a] - want).abs() <= 3.0 * c.se[a] + bias / volume, "centre {:?}", c.at);
+    }
+}
+
 /// Volume of the lens where spheres of radii `big` and `small` with centres `d` apart overlap,
 /// and the distance of its centroid from the big sphere's centre, towards the small one.
 fn lens(big: f64, small: f64, d: f64) -> (f64, f64) {

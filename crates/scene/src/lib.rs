@@ -13,6 +13,7 @@ mod locate;
 pub mod model;
 pub mod patches;
 mod roll;
+pub mod subdiv;
 mod syntax;
 mod validate;
 pub mod view;

@@ -17,7 +17,7 @@ use crate::Tracer;
 use crate::bvh::{self, Aabb, Bvh};
 use crate::placement::{MatrixKey, Placement, is_projective};
 use crate::quadric::Quadric;
-use crate::tessellate;
+use crate::{subdivide, tessellate};
 
 /// The points of a shape at one normalised time (and, for a tessellated patch mesh or
 /// NURBS, the exact surface normal at each of its vertices; empty otherwise).
@@ -186,13 +186,15 @@ impl Builder {
         }
 
         // Points of a mesh or patch, per deformation key (one key when still).
-        let tessellated = patches::is_bezier_shape(&object.shape);
+        let subdivided = matches!(object.shape, Shape::SubdivisionMesh { .. });
+        let tessellated = patches::is_bezier_shape(&object.shape) || subdivided;
         let own_points: Vec<Vec3> = match &object.shape {
             Shape::BilinearPatch { points } => points.iter().map(v3).collect(),
             Shape::Mesh { points, .. } => points.iter().map(v3).collect(),
             Shape::PatchMesh { kind: PatchType::Bilinear, points, .. } => {
                 points.iter().map(v3).collect()
             }
+            Shape::SubdivisionMesh { points, .. } => points.iter().map(v3).collect(),
             _ if tessellated => tessellate::own_positions(&object.shape),
             _ => Vec::new(),
         };
@@ -248,7 +250,11 @@ impl Builder {
         let matrices = placement.key_matrices();
         let deforming = point_keys.len() > 1;
         if tessellated {
-            let t = tessellate::tessellate(&object.shape, &point_keys, bake.as_ref());
+            let t = if subdivided {
+                subdivide::tessellate(&object.shape, &point_keys, bake.as_ref())
+            } else {
+                tessellate::tessellate(&object.shape, &point_keys, bake.as_ref())
+            };
             point_keys = t.keys;
             self.add_tessellated(index, &t.tris, &point_keys, &matrices, deforming);
         }
@@ -303,9 +309,7 @@ impl Builder {
                 }
             }
             // Tessellated above.
-            Shape::PatchMesh { .. } | Shape::NuPatch { .. } => {}
-            // TODO(#15, helper B): tessellate the limit surface, as the Bezier shapes are.
-            Shape::SubdivisionMesh { .. } => {}
+            Shape::PatchMesh { .. } | Shape::NuPatch { .. } | Shape::SubdivisionMesh { .. } => {}
             Shape::Mesh { points, faces, .. } => {
                 let mut surface = 0u32;
                 for (f, face) in faces.iter().enumerate() {
@@ -343,7 +347,7 @@ impl Builder {
 }
 
 impl Builder {
-    /// Adds the triangles of a tessellated patch mesh or NURBS, whose vertices and normals
+    /// Adds the triangles of a tessellated patch mesh, NURBS or subdivision mesh, whose vertices and normals
     /// at every key are `keys` (boxes over every key under every matrix).
     fn add_tessellated(
         &mut self,

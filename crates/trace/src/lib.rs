@@ -7,14 +7,16 @@
 //! triangles), or, for a bicubic patch-mesh sub-patch or a NURBS span, into the triangles of
 //! its tessellation (`tessellate.rs`: vertices and normals on the exact surface, the surface
 //! within 1/1000 of the patch's size of its triangles by a proven bound, hits reporting the
-//! normals interpolated), and builds a bounding volume hierarchy over them. [`Tracer::intersect`] finds the nearest hit of a [`Ray`] and
+//! normals interpolated), or, for a Catmull-Clark subdivision mesh, each limit patch into the
+//! triangles of its tessellation (`subdivide.rs`: the same rule, one grid for the whole mesh so
+//! that neighbouring patches meet vertex to vertex), and builds a bounding volume hierarchy over them. [`Tracer::intersect`] finds the nearest hit of a [`Ray`] and
 //! [`Tracer::occluded`] whether there is any.
 //!
 //! Layout: this file holds the API; `intake.rs` turns the scene into primitives and their
 //! boxes, `bvh.rs` builds the hierarchy over them and `query.rs` traverses it, intersecting
 //! each primitive met (`quadric.rs`, `patch.rs`; `placement.rs` carries the ray into the
 //! object's space at its time; `poly.rs` solves the polynomials; `tessellate.rs` makes the
-//! triangles of bicubic patch meshes and NURBS).
+//! triangles of bicubic patch meshes and NURBS, `subdivide.rs` those of subdivision meshes).
 //!
 //! Invariants and conventions:
 //!
@@ -50,6 +52,7 @@ mod placement;
 mod poly;
 mod quadric;
 mod query;
+mod subdivide;
 mod tessellate;
 
 use glam::Vec3;
@@ -99,7 +102,8 @@ pub struct Hit {
     /// Index of the surface within the object, in the dicer's order (0 for quadrics and
     /// patches; for meshes, faces in list order with bad faces skipped and polygons of
     /// more than four vertices fanned into several triangles; for patch meshes and NURBS,
-    /// the sub-patch or knot span, row by row).
+    /// the sub-patch or knot span, row by row; for subdivision meshes, the limit patch in
+    /// `reyes_subdiv::limit_patches` order, `(u, v)` the patch's own).
     pub surface: u32,
     /// Index of the mesh face in `Shape::Mesh::faces` (0 for other shapes).
     pub face: u32,

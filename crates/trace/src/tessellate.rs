@@ -148,10 +148,7 @@ pub(crate) fn tessellate(shape: &Shape, keys: &[PointKey], bake: Option<&DMat4>)
             }
         }
     }
-    let normal_matrix = bake.map(|m| {
-        let inv = m.inverse();
-        inv.transpose()
-    });
+    let bake = bake.map(Bake::new);
     let mut out_keys = Vec::with_capacity(sets.len());
     let mut tris = Vec::new();
     for (key, (time, set)) in sets.iter().enumerate() {
@@ -161,40 +158,69 @@ pub(crate) fn tessellate(shape: &Shape, keys: &[PointKey], bake: Option<&DMat4>)
             let (c, r) = (k % columns.max(1), k / columns.max(1));
             let (nu, nv) = (nus.get(c).copied().unwrap_or(1), nvs.get(r).copied().unwrap_or(1));
             let base = points.len() as u32;
-            let param = |i: u32, n: u32| if i >= n { 1.0 } else { f64::from(i) / f64::from(n) };
             for j in 0..=nv {
                 for i in 0..=nu {
                     let (u, v) = (param(i, nu), param(j, nv));
-                    let mut p = b.eval(u, v).p;
-                    let mut n = b.normal(u, v);
-                    if let (Some(m), Some(nm)) = (bake, &normal_matrix) {
-                        p = m.transform_point3(p);
-                        n = nm.transform_vector3(n).try_normalize().unwrap_or(n);
-                    }
-                    points.push(p.as_vec3());
-                    normals.push(n.as_vec3());
+                    let (p, n) = Bake::apply(bake.as_ref(), b.eval(u, v).p, b.normal(u, v));
+                    points.push(p);
+                    normals.push(n);
                 }
             }
             if key == 0 {
-                let at = |i: u32, j: u32| base + j * (nu + 1) + i;
-                let uv = |i: u32, j: u32| [param(i, nu) as f32, param(j, nv) as f32];
-                for j in 0..nv {
-                    for i in 0..nu {
-                        let (a, b, c, d) = ((i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1));
-                        for [x, y, z] in [[a, b, c], [a, c, d]] {
-                            tris.push(Tri {
-                                surface: k as u32,
-                                idx: [at(x.0, x.1), at(y.0, y.1), at(z.0, z.1)],
-                                uv: [uv(x.0, x.1), uv(y.0, y.1), uv(z.0, z.1)],
-                            });
-                        }
-                    }
-                }
+                grid_triangles(k as u32, base, nu, nv, &mut tris);
             }
         }
         out_keys.push(PointKey { time: *time, points, normals });
     }
     Tessellation { keys: out_keys, tris }
+}
+
+/// The parameter of grid line `i` of `n` (exactly 1 at the last).
+pub(crate) fn param(i: u32, n: u32) -> f64 {
+    if i >= n { 1.0 } else { f64::from(i) / f64::from(n) }
+}
+
+/// Appends the triangles of the `nu x nv` grid of surface `surface` whose vertex `(i, j)`
+/// is `base + j (nu + 1) + i` (the order of the module's invariants).
+pub(crate) fn grid_triangles(surface: u32, base: u32, nu: u32, nv: u32, tris: &mut Vec<Tri>) {
+    let at = |i: u32, j: u32| base + j * (nu + 1) + i;
+    let uv = |i: u32, j: u32| [param(i, nu) as f32, param(j, nv) as f32];
+    for j in 0..nv {
+        for i in 0..nu {
+            let (a, b, c, d) = ((i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1));
+            for [x, y, z] in [[a, b, c], [a, c, d]] {
+                tris.push(Tri {
+                    surface,
+                    idx: [at(x.0, x.1), at(y.0, y.1), at(z.0, z.1)],
+                    uv: [uv(x.0, x.1), uv(y.0, y.1), uv(z.0, z.1)],
+                });
+            }
+        }
+    }
+}
+
+/// A still affine placement baked into tessellated vertices: the matrix and its inverse
+/// transpose for the normals.
+pub(crate) struct Bake {
+    matrix: DMat4,
+    normals: DMat4,
+}
+
+impl Bake {
+    pub(crate) fn new(m: &DMat4) -> Bake {
+        Bake { matrix: *m, normals: m.inverse().transpose() }
+    }
+
+    /// A vertex and its normal, carried to world space when there is a bake, in `f32`.
+    pub(crate) fn apply(bake: Option<&Bake>, p: DVec3, n: DVec3) -> (Vec3, Vec3) {
+        match bake {
+            Some(b) => {
+                let m = b.normals.transform_vector3(n).try_normalize().unwrap_or(n);
+                (b.matrix.transform_point3(p).as_vec3(), m.as_vec3())
+            }
+            None => (p.as_vec3(), n.as_vec3()),
+        }
+    }
 }
 
 /// A unit normal interpolated with barycentric weights `(1 - wb - wc, wb, wc)`, or `None`

@@ -22,10 +22,10 @@
 
 use std::sync::Arc;
 
-use glam::{DVec3, Vec2, Vec3};
-use reyes_scene::patches::{self as rp, BezierPatch};
-use reyes_scene::{Basis, Faces, PatchType, Shape, SubdivTag, Wrap};
-use reyes_subdiv::{LimitPatch, Mesh, Tag};
+use glam::{Vec2, Vec3};
+use reyes_scene::Shape;
+use reyes_scene::patches::BezierPatch;
+use reyes_subdiv::{LimitPatch, Mesh};
 
 /// One limit surface patch (of the points, or of the colours), with its Bezier form when
 /// the quad is regular.
@@ -37,7 +37,7 @@ struct Limit {
 
 impl Limit {
     fn new(limit: LimitPatch) -> Limit {
-        let bezier = limit.bspline().map(|g| bspline_to_bezier(&g));
+        let bezier = limit.bspline().map(|g| reyes_scene::subdiv::bspline_to_bezier(&g));
         Limit { limit, bezier }
     }
 
@@ -55,27 +55,6 @@ impl Limit {
 #[inline]
 fn on_boundary(u: f32, v: f32) -> bool {
     u == 0.0 || u == 1.0 || v == 0.0 || v == 1.0
-}
-
-/// The 16 control points of a uniform bicubic B-spline patch (index `4 j + i`, `i` along u)
-/// as the Bezier patch of the same surface over the same `(u, v)`.
-fn bspline_to_bezier(g: &[Vec3; 16]) -> BezierPatch {
-    let shape = Shape::PatchMesh {
-        kind: PatchType::Bicubic,
-        nu: 4,
-        nv: 4,
-        uwrap: Wrap::default(),
-        vwrap: Wrap::default(),
-        points: g.iter().map(|p| p.to_array()).collect(),
-        ubasis: Basis::BSpline,
-        ustep: None,
-        vbasis: Basis::BSpline,
-        vstep: None,
-    };
-    let positions: Vec<DVec3> = g.iter().map(|p| p.as_dvec3()).collect();
-    rp::bezier_patches(&shape, Some(&positions))
-        .pop()
-        .unwrap_or_else(|| BezierPatch::new(1, 1, vec![DVec3::ZERO.extend(1.0); 4]))
 }
 
 /// One patch of a subdivision surface (see the module documentation).
@@ -182,47 +161,17 @@ impl SubdivPatch {
     }
 }
 
-/// The control mesh of a subdivision shape for `reyes_subdiv`, with `points` (a deformation
-/// key's, missing points keeping the shape's own) in place of the shape's.
-fn control_mesh(
-    points: &[[f32; 3]],
-    faces: &Faces,
-    tags: &[SubdivTag],
-    st: Option<&[[f32; 2]]>,
-    moved: impl Fn(usize, Vec3) -> Vec3,
-) -> Mesh {
-    let to_usize = |list: &[u32]| list.iter().map(|&i| i as usize).collect::<Vec<_>>();
-    Mesh {
-        points: points.iter().enumerate().map(|(i, p)| moved(i, Vec3::from(*p))).collect(),
-        face_counts: faces.iter().map(<[u32]>::len).collect(),
-        faces: to_usize(faces.indices()),
-        tags: tags
-            .iter()
-            .map(|t| match t {
-                SubdivTag::InterpolateBoundary => Tag::InterpolateBoundary,
-                SubdivTag::Crease { vertices, sharpness } => {
-                    Tag::Crease { vertices: to_usize(vertices), sharpness: *sharpness }
-                }
-                SubdivTag::Corner { vertices, sharpness } => {
-                    Tag::Corner { vertices: to_usize(vertices), sharpness: *sharpness }
-                }
-                SubdivTag::Hole { faces } => Tag::Hole { faces: to_usize(faces) },
-            })
-            .collect(),
-        facevarying_width: if st.is_some() { 2 } else { 0 },
-        facevarying: st.map_or_else(Vec::new, |st| st.iter().flatten().copied().collect()),
-    }
-}
-
 /// The patches of a (valid) subdivision shape, with its points replaced by `points_object`
 /// where given; empty for other shapes, or for a mesh the crate rejects (validation rejects
 /// such a scene first).
 pub(crate) fn patches(shape: &Shape, points_object: Option<&[Vec3]>) -> Vec<SubdivPatch> {
-    let Shape::SubdivisionMesh { points, faces, tags, colors, st } = shape else {
+    let Shape::SubdivisionMesh { colors, .. } = shape else {
         return Vec::new();
     };
     let moved = |i: usize, own: Vec3| points_object.and_then(|p| p.get(i).copied()).unwrap_or(own);
-    let mesh = control_mesh(points, faces, tags, st.as_deref(), moved);
+    let Some(mesh) = reyes_scene::subdiv::control_mesh(shape, moved) else {
+        return Vec::new();
+    };
     let Ok(limits) = reyes_subdiv::limit_patches(&mesh) else {
         return Vec::new();
     };
