@@ -91,6 +91,8 @@ pub(crate) fn closed_quadric(shape: &Shape) -> Result<Option<Quadric>, String> {
             Quadric::Torus { major: f64::from(major_radius), minor: f64::from(minor_radius) }
         }
         Shape::Mesh { .. } => return Ok(None),
+        // Read into a Mesh when the scene was loaded; closure() calls it open.
+        Shape::MeshFile { .. } => return Err("MeshFile (not read)".into()),
         // Closed, but its limit surface is not given to the parity test (a deliberate gap:
         // measure the control mesh, or a Mesh of the limit surface, instead).
         Shape::SubdivisionMesh { .. } => {
@@ -385,6 +387,8 @@ mod tests {
             points: vec![[0.0; 3]; 4],
             faces: faces.into(),
             colors: None,
+            normals: None,
+            st: None,
         };
         let tetra = vec![vec![0, 1, 2], vec![0, 3, 1], vec![1, 3, 2], vec![2, 3, 0]];
         assert_eq!(closed_quadric(&mesh(&tetra)), Ok(None));

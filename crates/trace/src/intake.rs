@@ -306,6 +306,8 @@ impl Builder {
             Shape::PatchMesh { .. } | Shape::NuPatch { .. } => {}
             // TODO(#15, helper B): tessellate the limit surface, as the Bezier shapes are.
             Shape::SubdivisionMesh { .. } => {}
+            // Read into a Mesh when the scene was loaded.
+            Shape::MeshFile { .. } => {}
             Shape::Mesh { points, faces, .. } => {
                 let mut surface = 0u32;
                 for (f, face) in faces.iter().enumerate() {

@@ -293,7 +293,7 @@ pub(crate) fn to_model_mesh(
 ) -> Result<Shape, RibError> {
     let PolyMesh { points, faces, holes } = mesh;
     if holes.is_empty() && faces.iter().all(|outline| outline.len() <= 4) {
-        return Ok(Shape::Mesh { points, faces, colors });
+        return Ok(Shape::Mesh { points, faces, colors, normals: None, st: None });
     }
     let mut holes = holes.into_iter().peekable();
     let mut out = Faces::with_capacity(faces.len(), faces.indices().len());
@@ -317,7 +317,7 @@ pub(crate) fn to_model_mesh(
             }
         }
     }
-    Ok(Shape::Mesh { points, faces: out, colors })
+    Ok(Shape::Mesh { points, faces: out, colors, normals: None, st: None })
 }
 
 /// A quadric's shape, with its optional `zmin`/`zmax` cuts in the model's form.

@@ -182,7 +182,7 @@ fn colours_of_every_class() {
     }
     match &s.objects[1].shape {
         // Per-face colours: each face gets its own three vertices.
-        Shape::Mesh { colors: Some(c), points, faces } => {
+        Shape::Mesh { colors: Some(c), points, faces, .. } => {
             assert_eq!(
                 (points.len(), faces),
                 (6, &Faces::from(vec![vec![0, 1, 2], vec![3, 4, 5]]))
@@ -210,7 +210,7 @@ fn face_varying_colours_unweld_each_face_outline_first_then_its_holes() {
          PointsGeneralPolygons [1 1] [3 4] [0 1 2  1 3 4 2] \"P\" [0 0 0 1 0 0 1 1 0 2 0 0 2 1 0]",
         cs.join("  ")
     )));
-    let Shape::Mesh { points, faces, colors: Some(colors) } = &s.objects[0].shape else {
+    let Shape::Mesh { points, faces, colors: Some(colors), .. } = &s.objects[0].shape else {
         panic!("{:?}", s.objects[0].shape)
     };
     let original = [[0, 0], [4, 0], [4, 4], [0, 4], [1, 1], [1, 3], [3, 3], [3, 1], [2, -2]];
