@@ -146,7 +146,8 @@ fn the_catalogue_covers_the_required_inputs() {
         "NaN fov",
         "inf yon",
         "mesh index out of range",
-        "mesh face with 5 indices",
+        "mesh zero normal",
+        "mesh file missing",
         "mesh colours length mismatch",
         "gradual shutter ramp 0",
         "gradual shutter ramp above 0.5",
@@ -319,7 +320,7 @@ fn exact_messages() {
     );
     assert_eq!(
         shown("deformation of a sphere"),
-        "scenes/bad.ron:7:56: objects[0].deform: deformation keys need a Mesh, BilinearPatch, PatchMesh or NuPatch shape, got Sphere"
+        "scenes/bad.ron:7:56: objects[0].deform: deformation keys need a Mesh, BilinearPatch, PatchMesh, NuPatch or SubdivisionMesh shape, got Sphere"
     );
     assert_eq!(
         shown("deformation of a patch with 3 points"),
