@@ -62,14 +62,22 @@ pub fn parse_files(text: &str, file: &Path) -> Result<Scene, LoadError> {
         Ok(scene) => scene,
         Err(err) => return Err(syntax::from_ron(text, file, &err).into()),
     };
-    match meshfile::resolve(&mut scene, text, file) {
-        Ok(()) => {}
+    let read = match meshfile::resolve(&mut scene, text, file) {
+        Ok(read) => read,
         Err(meshfile::Failure::Io(e)) => return Err(LoadError::MeshIo(e)),
         Err(meshfile::Failure::Bad(e)) => return Err(e.into()),
-    }
+    };
     match validate(scene) {
         Ok(scene) => Ok(resolve_textures(scene, file)),
-        Err(issue) => {
+        Err(mut issue) => {
+            // A fault of a mesh read from a file names the file.
+            for (i, mesh) in &read {
+                let shape = format!("objects[{i}].shape");
+                if issue.path == shape || issue.path.starts_with(&format!("{shape}.")) {
+                    issue.message =
+                        format!("{} (in the mesh read from {})", issue.message, mesh.display());
+                }
+            }
             let pos = locate::SourceMap::scan(text).find(&issue.path);
             Err(SceneError {
                 file: file.to_path_buf(),

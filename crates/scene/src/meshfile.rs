@@ -25,9 +25,15 @@ pub(crate) enum Failure {
 
 /// Replaces every `MeshFile` shape of `scene` by the mesh its file holds. `text` is the scene
 /// source (for error positions) and `file` the scene file (for relative paths and messages).
-pub(crate) fn resolve(scene: &mut Scene, text: &str, file: &Path) -> Result<(), Failure> {
+/// Returns the objects whose shapes were read, with the files they came from.
+pub(crate) fn resolve(
+    scene: &mut Scene,
+    text: &str,
+    file: &Path,
+) -> Result<Vec<(usize, PathBuf)>, Failure> {
+    let mut read = Vec::new();
     if !scene.objects.iter().any(|o| matches!(o.shape, Shape::MeshFile { .. })) {
-        return Ok(());
+        return Ok(read);
     }
     let dir = file.parent().filter(|d| !d.as_os_str().is_empty());
     for (i, object) in scene.objects.iter_mut().enumerate() {
@@ -60,8 +66,9 @@ pub(crate) fn resolve(scene: &mut Scene, text: &str, file: &Path) -> Result<(), 
                 .map_err(|m| Failure::Bad(error("group", format!("{}: {m}", full.display()))))?,
         };
         object.shape = if *subdivision { subdivision_shape(mesh) } else { mesh_shape(mesh) };
+        read.push((i, full));
     }
-    Ok(())
+    Ok(read)
 }
 
 /// The faces of `mesh`.
