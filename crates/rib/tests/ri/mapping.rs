@@ -524,3 +524,35 @@ fn display_lines_with_output_variables_become_aov_layers() {
         frame.displays.iter().filter(|d| d.extra).map(|d| d.name.as_str()).collect();
     assert_eq!(extras, ["copy.png"]);
 }
+
+/// Vertex (or varying) `N` and `st` of a polygon mesh become the model mesh's per-point
+/// `normals` and `st`, value for value and unwarned; per-face colours unweld the points, so
+/// then they are dropped with a warning naming the variable; facevarying `st` is warned of.
+#[test]
+fn polygon_normals_and_st_map_onto_the_mesh() {
+    let loaded = rib(&world(
+        "PointsPolygons [4] [0 1 2 3] \"P\" [0 0 0 1 0 0 1 1 0 0 1 0]
+           \"N\" [0 0 -1  0.1 0 -1  0.1 0.1 -1  0 0.1 -1]
+           \"varying float[2] st\" [0 0  1 0  1 1  0 1]
+         PointsPolygons [3] [0 1 2] \"P\" [0 0 0 1 0 0 1 1 0]
+           \"N\" [0 0 -1  0 0 -1  0 0 -1] \"uniform color Cs\" [1 0 0]
+         PointsPolygons [3] [0 1 2] \"P\" [0 0 0 1 0 0 1 1 0]
+           \"facevarying float[2] st\" [0 0  1 0  1 1]",
+    ))
+    .unwrap_or_else(|e| panic!("{e}"));
+    let s = &loaded.frames[0].scene;
+    let Shape::Mesh { normals: Some(n), st: Some(st), .. } = &s.objects[0].shape else {
+        panic!("{:?}", s.objects[0].shape)
+    };
+    assert_eq!(n, &vec![[0.0, 0.0, -1.0], [0.1, 0.0, -1.0], [0.1, 0.1, -1.0], [0.0, 0.1, -1.0]]);
+    assert_eq!(st, &vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]);
+    for k in [1, 2] {
+        let Shape::Mesh { normals: None, st: None, .. } = &s.objects[k].shape else {
+            panic!("{:?}", s.objects[k].shape)
+        };
+    }
+    let warned: Vec<String> = loaded.warnings.iter().map(|w| w.to_string()).collect();
+    assert_eq!(warned.len(), 2, "{warned:?}");
+    assert!(warned[0].contains("\"N\": only vertex or varying N"), "{warned:?}");
+    assert!(warned[1].contains("\"st\": only vertex or varying st"), "{warned:?}");
+}
