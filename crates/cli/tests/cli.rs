@@ -503,3 +503,40 @@ fn the_lookdev_scenes_render() {
         );
     }
 }
+
+/// A `MeshFile` that is missing is an I/O error (exit 1), one that is malformed bad input
+/// (exit 2): one line at the scene's `path` field naming the mesh file (and, malformed, its
+/// line), the name resolved beside the scene; no output. A good one renders.
+#[test]
+fn mesh_file_errors_name_the_scene_field_and_the_mesh_file() {
+    let dir = tempfile::tempdir().unwrap();
+    // Line 4 refers to a fourth point the file does not have.
+    std::fs::write(dir.path().join("bad.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n").unwrap();
+    std::fs::write(dir.path().join("good.obj"), "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+    let shape = |file: &str| format!("shape: MeshFile(path: \"{file}\")");
+    for (file, code, says) in [
+        ("missing.obj", 1, "cannot read the mesh file: ".to_string()),
+        ("bad.obj", 2, format!("{}:4: ", dir.path().join("bad.obj").display())),
+        ("good.obj", 0, String::new()),
+    ] {
+        let scene = scene_with(dir.path(), "mesh.ron", |t| {
+            t.replace("shape: Sphere(radius: 1.0)", &shape(file))
+        });
+        let out = dir.path().join("mesh.exr");
+        let o = run(&[scene.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(code), "{file}: {err}");
+        if code == 0 {
+            assert!(out.exists(), "{file}: no output");
+            continue;
+        }
+        assert_eq!(err.lines().count(), 1, "{err}");
+        // The scene position of the `path` value: line 6, after `objects: [(name: "ball", `
+        // and `shape: MeshFile(path: ` (two spaces, 25 and 22 characters).
+        let at = format!("{}:6:50: objects[0].shape.path: ", scene.display());
+        assert!(err.contains(&at), "{file}: {err}");
+        assert!(err.contains(&says), "{file}: {err}");
+        assert!(err.contains(&dir.path().join(file).display().to_string()), "{err}");
+        assert!(!out.exists());
+    }
+}

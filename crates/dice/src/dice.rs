@@ -377,7 +377,8 @@ impl<'b> Emitter<'b> {
                         // the surface, not from under it.
                         let on_polyline = boundary(0, u, v, i, j);
                         let looked = object.look.as_ref().map_or(Looked::NONE, |l| {
-                            l.object.looked(&l.system, &At { uv: [u, v], duv, p_object: sp.p })
+                            let (uv, duv) = pose.surface.st(u, v, duv);
+                            l.object.looked(&l.system, &At { uv, duv, p_object: sp.p })
                         });
                         if let Some(d) = &displaced {
                             sp.p = d.position(0, vertex).unwrap_or(sp.p);

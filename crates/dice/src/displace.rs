@@ -76,7 +76,8 @@ pub(crate) fn grid(
             let u = Patch::at(patch.u, i, nu);
             let sp = open.surface.eval(u, v);
             let n = sp.n.normalize_or_zero();
-            let at = At { uv: [u, v], duv, p_object: sp.p };
+            let (uv, duv) = open.surface.st(u, v, duv);
+            let at = At { uv, duv, p_object: sp.p };
             let dv = o.displace.map_or(0.0, |f| f.eval(&look.system, &at));
             let bv = o.bump.map_or(0.0, |f| f.eval(&look.system, &at));
             base.push(sp.p);

@@ -13,6 +13,8 @@ fn mesh_object(material: Material, matte: bool) -> Object {
         points: quad_and_triangle(),
         faces: Faces::from(vec![vec![0, 1, 2, 3], vec![1, 4, 2]]),
         colors: Some(reyes_testkit::fixtures::five_colors()),
+        normals: None,
+        st: None,
     };
     Object { matte, ..Object::new(shape, material).named("mesh") }
 }

@@ -60,6 +60,8 @@ fn static_scenes() -> Vec<Scene> {
                 points: [quad_and_triangle(), vec![[3.0, 0.0, 8.5]]].concat(),
                 faces: Faces::from(vec![vec![0, 1, 2, 3], vec![1, 4, 2], vec![1, 4, 5, 2, 3]]),
                 colors: None,
+                normals: None,
+                st: None,
             },
             vec![Transform::Translate([0.0, -0.5, 2.0])],
         ),
@@ -460,6 +462,8 @@ fn a_deforming_mesh_moves_with_its_points_and_odd_keys_do_not_panic() {
             points: points.clone(),
             faces: Faces::from(vec![vec![0, 1, 2, 3], vec![1, 4, 2], vec![1, 4, 5, 2, 3]]),
             colors: None,
+            normals: None,
+            st: None,
         },
         vec![Transform::Translate([0.0, 0.0, 1.0])],
     )

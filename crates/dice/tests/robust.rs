@@ -34,6 +34,8 @@ fn odd_shapes_and_transforms_do_not_panic() {
             points: vec![[0.0; 3], [1.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
             faces: Faces::from(vec![vec![0, 1, 2], vec![0, 1, 2, 3], vec![0, 0, 0]]),
             colors: None,
+            normals: None,
+            st: None,
         },
     ];
     let transforms = vec![

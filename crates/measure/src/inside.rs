@@ -94,6 +94,8 @@ pub(crate) fn closed_quadric(shape: &Shape) -> Result<Option<Quadric>, String> {
         // triangles of its limit surface's tessellation (within 1/1000 of each patch's
         // size of the surface), so its volume is that of the tessellation.
         Shape::Mesh { .. } | Shape::SubdivisionMesh { .. } => return Ok(None),
+        // Read into a Mesh when the scene was loaded; closure() calls it open.
+        Shape::MeshFile { .. } => return Err("MeshFile (not read)".into()),
         // `closure` calls these open.
         Shape::Disk { .. }
         | Shape::BilinearPatch { .. }
@@ -385,6 +387,8 @@ mod tests {
             points: vec![[0.0; 3]; 4],
             faces: faces.into(),
             colors: None,
+            normals: None,
+            st: None,
         };
         let tetra = vec![vec![0, 1, 2], vec![0, 3, 1], vec![1, 3, 2], vec![2, 3, 0]];
         assert_eq!(closed_quadric(&mesh(&tetra)), Ok(None));

@@ -80,8 +80,7 @@ pub fn load_scene_file(path: &Path, options: &RiOptions) -> Result<Loaded, Input
         return match detect(path, &bytes) {
             Format::Ron => {
                 let text = String::from_utf8_lossy(&bytes);
-                Ok(ron_frames(&text, Path::new("<stdin>"), options)
-                    .map_err(reyes_scene::LoadError::from)?)
+                Ok(ron_frames(&text, Path::new("<stdin>"), options)?)
             }
             Format::Rib => Ok(crate::load(Source::from_bytes("<stdin>", bytes), options)?),
         };
@@ -93,7 +92,7 @@ pub fn load_scene_file(path: &Path, options: &RiOptions) -> Result<Loaded, Input
     match detect(path, &head[..n]) {
         Format::Ron => {
             let text = reyes_scene::read_text(path)?;
-            Ok(ron_frames(&text, path, options).map_err(reyes_scene::LoadError::from)?)
+            Ok(ron_frames(&text, path, options)?)
         }
         Format::Rib => {
             let source = Source::open(path).map_err(|source| RibError::Io {
@@ -112,7 +111,7 @@ fn ron_frames(
     text: &str,
     file: &Path,
     options: &RiOptions,
-) -> Result<Loaded, reyes_scene::SceneError> {
+) -> Result<Loaded, reyes_scene::LoadError> {
     let numbers: Vec<i32> = match &options.frames {
         Some(ranges) => {
             let mut v: Vec<i32> = ranges.iter().flat_map(|&(a, b)| a..=b).collect();
@@ -129,10 +128,11 @@ fn ron_frames(
                 message:
                     "the scene is animated: choose its frames with --frames (e.g. --frames 1-24)"
                         .into(),
-            });
+            }
+            .into());
         }
         None => {
-            let scene = reyes_scene::parse(text, file)?;
+            let scene = reyes_scene::parse_files(text, file)?;
             let frames = vec![Frame { number: None, scene, displays: Vec::new() }];
             return Ok(Loaded { frames, warnings: Vec::new() });
         }
@@ -140,7 +140,7 @@ fn ron_frames(
     let mut frames = Vec::with_capacity(numbers.len());
     for n in numbers {
         let text = reyes_scene::animate::substitute(text, n, file)?;
-        let scene = reyes_scene::parse(&text, file)?;
+        let scene = reyes_scene::parse_files(&text, file)?;
         frames.push(Frame { number: Some(n), scene, displays: Vec::new() });
     }
     Ok(Loaded { frames, warnings: Vec::new() })

@@ -61,6 +61,8 @@ pub fn closure(shape: &Shape) -> Closure {
         Shape::PatchMesh { .. } => Closure::Open("PatchMesh".into()),
         Shape::NuPatch { .. } => Closure::Open("NuPatch".into()),
         Shape::Mesh { faces, .. } => mesh_closure(faces),
+        // Read into a Mesh or SubdivisionMesh before anything asks.
+        Shape::MeshFile { .. } => Closure::Open("MeshFile (not read)".into()),
         // The limit surface of a closed control mesh is closed; a hole opens it.
         Shape::SubdivisionMesh { faces, tags, .. } => {
             if tags.iter().any(|t| matches!(t, SubdivTag::Hole { faces } if !faces.is_empty())) {

@@ -57,13 +57,17 @@ pub enum LoadError {
     /// The file was read but is not a valid scene.
     #[error(transparent)]
     Scene(#[from] SceneError),
+    /// A mesh file the scene names (`MeshFile`) could not be read; the error is at the
+    /// shape's `path` field.
+    #[error(transparent)]
+    MeshIo(SceneError),
 }
 
 impl LoadError {
     /// Process exit status for this error: 1 for an unreadable file, 2 for a bad scene.
     pub fn exit_code(&self) -> u8 {
         match self {
-            LoadError::Io { .. } => 1,
+            LoadError::Io { .. } | LoadError::MeshIo(_) => 1,
             LoadError::Scene(_) => 2,
         }
     }
@@ -72,7 +76,7 @@ impl LoadError {
     pub fn path(&self) -> &Path {
         match self {
             LoadError::Io { path, .. } => path,
-            LoadError::Scene(e) => &e.file,
+            LoadError::Scene(e) | LoadError::MeshIo(e) => &e.file,
         }
     }
 }

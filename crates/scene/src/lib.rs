@@ -10,6 +10,7 @@ pub mod closure;
 mod error;
 pub mod filter;
 mod locate;
+mod meshfile;
 pub mod model;
 pub mod patches;
 mod roll;
@@ -37,15 +38,47 @@ pub use xform::{normal_matrix, object_to_world, transform_matrix};
 /// A leading byte-order mark is ignored. Errors carry the line and column of the offending
 /// text and the path of the offending field, e.g.
 /// `scenes/x.ron:12:30: objects[0].shape.radius: must be > 0, got -1`.
+///
+/// A [`Shape::MeshFile`] is read here, relative to `file`'s folder, into the mesh it holds;
+/// a mesh file that cannot be read is an error of this function too (use [`parse_files`] to
+/// tell it apart as I/O).
 pub fn parse(text: &str, file: &Path) -> Result<Scene, SceneError> {
+    parse_files(text, file).map_err(|e| match e {
+        LoadError::Scene(e) | LoadError::MeshIo(e) => e,
+        LoadError::Io { path, source } => SceneError {
+            file: path,
+            line: None,
+            col: None,
+            field: String::new(),
+            message: source.to_string(),
+        },
+    })
+}
+
+/// [`parse`], telling a mesh file that cannot be read ([`LoadError::MeshIo`], exit status 1)
+/// from a bad scene or a malformed mesh file ([`LoadError::Scene`], exit status 2).
+pub fn parse_files(text: &str, file: &Path) -> Result<Scene, LoadError> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let scene: Scene = match ron::Options::default().from_str(text) {
+    let mut scene: Scene = match ron::Options::default().from_str(text) {
         Ok(scene) => scene,
-        Err(err) => return Err(syntax::from_ron(text, file, &err)),
+        Err(err) => return Err(syntax::from_ron(text, file, &err).into()),
+    };
+    let read = match meshfile::resolve(&mut scene, text, file) {
+        Ok(read) => read,
+        Err(meshfile::Failure::Io(e)) => return Err(LoadError::MeshIo(e)),
+        Err(meshfile::Failure::Bad(e)) => return Err(e.into()),
     };
     match validate(scene) {
         Ok(scene) => Ok(resolve_textures(scene, file)),
-        Err(issue) => {
+        Err(mut issue) => {
+            // A fault of a mesh read from a file names the file.
+            for (i, mesh) in &read {
+                let shape = format!("objects[{i}].shape");
+                if issue.path == shape || issue.path.starts_with(&format!("{shape}.")) {
+                    issue.message =
+                        format!("{} (in the mesh read from {})", issue.message, mesh.display());
+                }
+            }
             let pos = locate::SourceMap::scan(text).find(&issue.path);
             Err(SceneError {
                 file: file.to_path_buf(),
@@ -53,7 +86,8 @@ pub fn parse(text: &str, file: &Path) -> Result<Scene, SceneError> {
                 col: pos.map(|p| p.col),
                 field: issue.path,
                 message: issue.message,
-            })
+            }
+            .into())
         }
     }
 }
@@ -106,13 +140,14 @@ pub fn read_text(path: &Path) -> Result<String, LoadError> {
 
 /// Reads, parses and validates the scene file at `path`.
 ///
-/// A file that cannot be read is [`LoadError::Io`] (exit code 1); a file that is not UTF-8
-/// or not a valid scene is [`LoadError::Scene`] (exit code 2).
+/// A file that cannot be read is [`LoadError::Io`] (exit code 1), a mesh file it names that
+/// cannot be read [`LoadError::MeshIo`] (exit code 1); a file that is not UTF-8 or not a
+/// valid scene, or a malformed mesh file, is [`LoadError::Scene`] (exit code 2).
 pub fn load(path: &Path) -> Result<Scene, LoadError> {
     let bytes =
         std::fs::read(path).map_err(|source| LoadError::Io { path: path.to_path_buf(), source })?;
     match std::str::from_utf8(&bytes) {
-        Ok(text) => Ok(parse(text, path)?),
+        Ok(text) => parse_files(text, path),
         Err(e) => {
             let valid = bytes.get(..e.valid_up_to()).and_then(|b| std::str::from_utf8(b).ok());
             Err(syntax::invalid_utf8(path, valid.unwrap_or("")).into())

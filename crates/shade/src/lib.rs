@@ -598,7 +598,7 @@ impl<'a> Shading<'a> {
 /// tracer's surface order (faces in order, faces with a bad index or fewer than three
 /// vertices skipped, quads as one bilinear patch, other polygons as fan triangles).
 fn mesh_tints(object: &Object) -> Vec<[Vec3; 4]> {
-    let Shape::Mesh { points, faces, colors: Some(colors) } = &object.shape else {
+    let Shape::Mesh { points, faces, colors: Some(colors), .. } = &object.shape else {
         return Vec::new();
     };
     let tint = |i: u32| colors.get(i as usize).map_or(Vec3::ONE, |c| Vec3::from(*c));

@@ -61,7 +61,7 @@ fn mesh(template: &Object) -> Vec<Object> {
         }
     }
     let mut o = template.clone();
-    o.shape = Shape::Mesh { points, faces, colors: None };
+    o.shape = Shape::Mesh { points, faces, colors: None, normals: None, st: None };
     o.transform = vec![];
     vec![o]
 }

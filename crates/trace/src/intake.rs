@@ -44,10 +44,19 @@ pub(crate) enum Geometry {
     DeformingTriangle([u32; 3]),
     /// A triangle of a tessellated patch: vertices, their exact surface normals and their
     /// `(u, v)` on the patch.
-    SmoothTriangle { p: [Vec3; 3], n: [Vec3; 3], uv: [[f32; 2]; 3] },
+    /// `None` for a mesh triangle with vertex normals, whose hit keeps the triangle's own
+    /// `(u, v)` (the dicer's convention) and whose normal is turned to the winding's side.
+    SmoothTriangle { p: [Vec3; 3], n: [Vec3; 3], uv: Option<[[f32; 2]; 3]> },
     /// A deforming [`Geometry::SmoothTriangle`]: vertices and normals are the object's
     /// deforming points and normals at these indices.
-    DeformingSmoothTriangle { idx: [u32; 3], uv: [[f32; 2]; 3] },
+    DeformingSmoothTriangle { idx: [u32; 3], uv: Option<[[f32; 2]; 3]> },
+    /// A mesh quad with vertex normals (corners in RenderMan order): hit as the bilinear
+    /// patch, shaded with the corners' normals interpolated bilinearly at the hit's `(u, v)`
+    /// and turned to the side of the patch's own normal, as the dicer shades it.
+    SmoothPatch { p: [DVec3; 4], n: [Vec3; 4] },
+    /// A deforming [`Geometry::SmoothPatch`]: corners and normals are the object's deforming
+    /// points and normals at these indices.
+    DeformingSmoothPatch([u32; 4]),
 }
 
 /// One primitive and what a hit on it reports.
@@ -219,6 +228,17 @@ impl Builder {
         if point_keys.is_empty() {
             point_keys = vec![PointKey { time: 0.0, points: own_points, normals: Vec::new() }];
         }
+        // A mesh's vertex normals, the same at every key (they are not keyed).
+        let mesh_normals = match &object.shape {
+            Shape::Mesh { normals: Some(n), points, .. } if n.len() == points.len() => {
+                let n: Vec<Vec3> = n.iter().map(v3).collect();
+                for key in &mut point_keys {
+                    key.normals.clone_from(&n);
+                }
+                true
+            }
+            _ => false,
+        };
         // A still affine placement of a mesh or patch is baked into its points (exact: the
         // dicer applies the same matrix to the same points); a tessellated patch's into its
         // vertices and normals once they are made.
@@ -235,9 +255,14 @@ impl Builder {
             if tessellated {
                 bake = Some(still);
             } else {
+                // Normals go by the inverse transpose (`Static` means invertible).
+                let normal_matrix = still.inverse().transpose();
                 for key in &mut point_keys {
                     for p in &mut key.points {
                         *p = still.transform_point3(p.as_dvec3()).as_vec3();
+                    }
+                    for n in &mut key.normals {
+                        *n = normal_matrix.transform_vector3(n.as_dvec3()).as_vec3();
                     }
                 }
             }
@@ -270,6 +295,8 @@ impl Builder {
         };
         let first_points = point_keys.first().map_or(&[][..], |k| k.points.as_slice());
         let first = |i: u32| first_points.get(i as usize).copied().unwrap_or(Vec3::ZERO);
+        let first_normals = point_keys.first().map_or(&[][..], |k| k.normals.as_slice());
+        let first_normal = |i: u32| first_normals.get(i as usize).copied().unwrap_or(Vec3::Z);
         // The bilinear patch with corners `idx`, RenderMan order.
         let patch = |idx: [u32; 4]| {
             if deforming {
@@ -310,6 +337,8 @@ impl Builder {
             }
             // Tessellated above.
             Shape::PatchMesh { .. } | Shape::NuPatch { .. } | Shape::SubdivisionMesh { .. } => {}
+            // Read into a Mesh when the scene was loaded.
+            Shape::MeshFile { .. } => {}
             Shape::Mesh { points, faces, .. } => {
                 let mut surface = 0u32;
                 for (f, face) in faces.iter().enumerate() {
@@ -321,17 +350,32 @@ impl Builder {
                         4 => {
                             // Around the face a, b, c, d: P0 = a, P1 = b, P2 = d, P3 = c.
                             let idx = [face[0], face[1], face[3], face[2]];
-                            self.push(patch(idx), index, surface, f as u32, bound(&idx));
+                            let g = match (mesh_normals, deforming) {
+                                (false, _) => patch(idx),
+                                (true, true) => Geometry::DeformingSmoothPatch(idx),
+                                (true, false) => Geometry::SmoothPatch {
+                                    p: idx.map(|i| first(i).as_dvec3()),
+                                    n: idx.map(first_normal),
+                                },
+                            };
+                            self.push(g, index, surface, f as u32, bound(&idx));
                             surface += 1;
                         }
                         n => {
                             for k in 1..n - 1 {
                                 let idx = [face[0], face[k], face[k + 1]];
                                 let b = bound(&idx);
-                                let g = if deforming {
-                                    Geometry::DeformingTriangle(idx)
-                                } else {
-                                    Geometry::Triangle(idx.map(first))
+                                let g = match (mesh_normals, deforming) {
+                                    (false, true) => Geometry::DeformingTriangle(idx),
+                                    (false, false) => Geometry::Triangle(idx.map(first)),
+                                    (true, true) => {
+                                        Geometry::DeformingSmoothTriangle { idx, uv: None }
+                                    }
+                                    (true, false) => Geometry::SmoothTriangle {
+                                        p: idx.map(first),
+                                        n: idx.map(first_normal),
+                                        uv: None,
+                                    },
                                 };
                                 self.push(g, index, surface, f as u32, b);
                                 surface += 1;
@@ -367,12 +411,12 @@ impl Builder {
                 .collect();
             let b = bound_points(matrices, &points);
             let g = if deforming {
-                Geometry::DeformingSmoothTriangle { idx: tri.idx, uv: tri.uv }
+                Geometry::DeformingSmoothTriangle { idx: tri.idx, uv: Some(tri.uv) }
             } else {
                 let Some(k) = first else { continue };
                 let p = tri.idx.map(|i| at(k, i).unwrap_or(Vec3::ZERO));
                 let n = tri.idx.map(|i| k.normals.get(i as usize).copied().unwrap_or(Vec3::Z));
-                Geometry::SmoothTriangle { p, n, uv: tri.uv }
+                Geometry::SmoothTriangle { p, n, uv: Some(tri.uv) }
             };
             self.push(g, index, tri.surface, 0, b);
         }

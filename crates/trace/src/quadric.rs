@@ -152,7 +152,8 @@ impl Quadric {
             | Shape::Mesh { .. }
             | Shape::PatchMesh { .. }
             | Shape::NuPatch { .. }
-            | Shape::SubdivisionMesh { .. } => return None,
+            | Shape::SubdivisionMesh { .. }
+            | Shape::MeshFile { .. } => return None,
         })
     }
 

@@ -240,7 +240,7 @@ impl Tracer {
         };
         // A tessellated patch's triangle: the exact normals and `(u, v)` of its vertices,
         // interpolated (the flat normal where the interpolation vanishes).
-        let smooth = |tri: &[Vec3; 3], normals: &[Vec3; 3], uv: &[[f32; 2]; 3]| {
+        let smooth = |tri: &[Vec3; 3], normals: &[Vec3; 3], uv: &Option<[[f32; 2]; 3]>| {
             let (origin, dir) = match &space {
                 Space::World => (ray.origin, ray.dir),
                 Space::Object(frame) => {
@@ -251,11 +251,18 @@ impl Tracer {
             let h = patch::triangle(tri, origin, dir)?;
             let (wb, wc) = tessellate::weights(h.u, h.v);
             let wa = 1.0 - wb - wc;
-            let n = tessellate::interpolate_normal(normals, wb, wc)
-                .unwrap_or_else(|| patch::triangle_normal(tri))
-                .as_dvec3();
-            let u = wa * uv[0][0] + wb * uv[1][0] + wc * uv[2][0];
-            let v = wa * uv[0][1] + wb * uv[1][1] + wc * uv[2][1];
+            let flat = patch::triangle_normal(tri);
+            let n = tessellate::interpolate_normal(normals, wb, wc).unwrap_or(flat);
+            let (u, v, n) = match uv {
+                Some(uv) => {
+                    let u = wa * uv[0][0] + wb * uv[1][0] + wc * uv[2][0];
+                    let v = wa * uv[0][1] + wb * uv[1][1] + wc * uv[2][1];
+                    (u, v, n)
+                }
+                // A mesh triangle: the dicer's (u, v), the normal on the winding's side.
+                None => (h.u, h.v, if n.dot(flat) < 0.0 { -n } else { n }),
+            };
+            let n = n.as_dvec3();
             let s = f64::from(h.t);
             let (u, v) = (f64::from(u), f64::from(v));
             match &space {
@@ -287,6 +294,17 @@ impl Tracer {
                 let keys = &self.objects.get(prim.object as usize)?.deform;
                 let (p, n) = deformed_smooth(keys, idx, ray.time)?;
                 smooth(&p, &n, uv)
+            }
+            Geometry::SmoothPatch { p, n } => {
+                let local = local_ray(&space)?;
+                from_local(&space, &local, smooth_patch(n, patch::bilinear(p, &local)?))
+            }
+            Geometry::DeformingSmoothPatch(idx) => {
+                let keys = &self.objects.get(prim.object as usize)?.deform;
+                let (p, n) = deformed_smooth(keys, idx, ray.time)?;
+                let p = p.map(|p| p.as_dvec3());
+                let local = local_ray(&space)?;
+                from_local(&space, &local, smooth_patch(&n, patch::bilinear(&p, &local)?))
             }
             Geometry::DeformingPatch(idx) => {
                 let keys = &self.objects.get(prim.object as usize)?.deform;
@@ -337,14 +355,32 @@ fn deformed<const N: usize>(keys: &[PointKey], idx: &[u32; N], time: f32) -> Opt
 /// The deforming points and normals `idx` at normalised `time` (normals lerped, not
 /// normalised: the hit normalises them).
 #[inline]
-fn deformed_smooth(keys: &[PointKey], idx: &[u32; 3], time: f32) -> Option<([Vec3; 3], [Vec3; 3])> {
+fn deformed_smooth<const N: usize>(
+    keys: &[PointKey],
+    idx: &[u32; N],
+    time: f32,
+) -> Option<([Vec3; N], [Vec3; N])> {
     let p = deformed(keys, idx, time)?;
     let (i, j, w) = bracket(keys.iter().map(|k| k.time), time);
     let (a, b) = (&keys.get(i)?.normals, &keys.get(j)?.normals);
-    let mut n = [Vec3::ZERO; 3];
+    let mut n = [Vec3::ZERO; N];
     for (o, &k) in n.iter_mut().zip(idx) {
         let k = k as usize;
         *o = a.get(k)?.lerp(*b.get(k)?, w);
     }
     Some((p, n))
+}
+
+/// The hit `h` of a bilinear patch with its corner normals `n` (RenderMan order)
+/// interpolated bilinearly at its `(u, v)`, normalised and turned to the side of the patch's
+/// own normal (as the dicer's mesh quads); the patch's normal where they cancel.
+fn smooth_patch(n: &[Vec3; 4], mut h: LocalHit) -> LocalHit {
+    let (u, v) = (h.u as f32, h.v as f32);
+    let bottom = n[0].lerp(n[1], u);
+    let top = n[2].lerp(n[3], u);
+    if let Some(s) = bottom.lerp(top, v).try_normalize() {
+        let s = s.as_dvec3();
+        h.n = if s.dot(h.n) < 0.0 { -s } else { s };
+    }
+    h
 }

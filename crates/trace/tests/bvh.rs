@@ -78,7 +78,7 @@ fn random_shape(rng: &mut Rng) -> Shape {
                 vec![at(0, 1), at(1, 1), at(2, 1), at(2, 2), at(0, 2)],
                 vec![at(0, 0), 9, at(2, 0), at(1, 0)],
             ];
-            Shape::Mesh { points, faces: faces.into(), colors: None }
+            Shape::Mesh { points, faces: faces.into(), colors: None, normals: None, st: None }
         }
     }
 }

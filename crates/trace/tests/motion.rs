@@ -118,8 +118,13 @@ fn deformation_keys_move_the_points() {
 fn deforming_mesh_triangles_follow_their_vertices() {
     let pts = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
     let shifted: Vec<[f32; 3]> = pts.iter().map(|p| [p[0] + 3.0, p[1], p[2]]).collect();
-    let shape =
-        Shape::Mesh { points: pts.clone(), faces: Faces::from(vec![vec![0, 1, 2]]), colors: None };
+    let shape = Shape::Mesh {
+        points: pts.clone(),
+        faces: Faces::from(vec![vec![0, 1, 2]]),
+        colors: None,
+        normals: None,
+        st: None,
+    };
     let t = Tracer::new(&scene(vec![deforming(shape, vec![(0.0, pts), (1.0, shifted)])]));
     let o = Vec3::new(3.2, 0.2, 1.0);
     assert!(shoot(&t, o, Vec3::NEG_Z, 0.0).is_none());

@@ -27,6 +27,8 @@ fn p_object_undoes_the_static_transform() {
         points: vec![[-1.0, -1.0, 0.0], [1.0, -1.0, 0.0], [1.0, 1.0, 0.0], [-1.0, 1.0, 0.0]],
         faces: Faces::from(vec![vec![0, 1, 2, 3]]),
         colors: None,
+        normals: None,
+        st: None,
     };
     let patch = Shape::BilinearPatch {
         points: [[-1.0, -1.0, 0.0], [1.0, -1.0, 0.0], [-1.0, 1.0, 0.0], [1.0, 1.0, 0.0]],
@@ -58,8 +60,13 @@ fn p_object_of_moving_and_deforming_objects() {
     // A deforming quad, flat at z = 0 then at z = 2: the object point is on the deformed
     // shape (the untransformed one: no transform here).
     let flat = |z: f32| vec![[-1.0, -1.0, z], [1.0, -1.0, z], [1.0, 1.0, z], [-1.0, 1.0, z]];
-    let quad =
-        Shape::Mesh { points: flat(0.0), faces: Faces::from(vec![vec![0, 1, 2, 3]]), colors: None };
+    let quad = Shape::Mesh {
+        points: flat(0.0),
+        faces: Faces::from(vec![vec![0, 1, 2, 3]]),
+        colors: None,
+        normals: None,
+        st: None,
+    };
     let t = Tracer::new(&scene(vec![deforming(quad, vec![(0.0, flat(0.0)), (1.0, flat(2.0))])]));
     let h = shoot(&t, Vec3::new(0.2, 0.3, -10.0), Vec3::Z, 0.25);
     assert!(close_v(h.p_object, Vec3::new(0.2, 0.3, 0.5), 1e-5), "{}", h.p_object);

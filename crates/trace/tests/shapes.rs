@@ -399,7 +399,13 @@ fn mesh_quads_and_triangles_follow_the_dicer() {
     ]);
     for xf in placements() {
         let m = object_to_world(&xf);
-        let shape = Shape::Mesh { points: points.clone(), faces: faces.clone(), colors: None };
+        let shape = Shape::Mesh {
+            points: points.clone(),
+            faces: faces.clone(),
+            colors: None,
+            normals: None,
+            st: None,
+        };
         let t = Tracer::new(&scene(vec![object(shape, xf.clone())]));
         assert_eq!(t.primitive_count(), 5);
         let up = Vec3::Z;
@@ -441,6 +447,8 @@ fn non_planar_quad_is_its_bilinear_patch() {
         points: pts.to_vec(),
         faces: Faces::from(vec![vec![0, 1, 2, 3]]),
         colors: None,
+        normals: None,
+        st: None,
     };
     let t = tracer(mesh, vec![]);
     // P0 = a, P1 = b, P2 = d, P3 = c.

@@ -30,7 +30,7 @@ mod patches;
 mod quadrics;
 mod subdivision;
 
-use glam::{DVec3, Vec3};
+use glam::{DVec3, Vec2, Vec3};
 use reyes_scene::patches::{self as rp, BezierPatch};
 use reyes_scene::{Object, PatchType, Shape};
 
@@ -183,17 +183,7 @@ impl Surface {
                 let (sp, cp) = tube(*phi_min, *phi_max, v);
                 (Vec3::new(cp * ct, cp * st, sp), white)
             }
-            Surface::Bilinear(b) => {
-                let n = match b.flat_normal {
-                    Some(n) => n,
-                    None => {
-                        let dpdu = (b.p[1] - b.p[0]).lerp(b.p[3] - b.p[2], v);
-                        let dpdv = (b.p[2] - b.p[0]).lerp(b.p[3] - b.p[1], u);
-                        dpdu.cross(dpdv).try_normalize().unwrap_or(b.average_normal)
-                    }
-                };
-                (n, lerp4(&b.tint, u, v))
-            }
+            Surface::Bilinear(b) => (b.normal(u, v), lerp4(&b.tint, u, v)),
             Surface::Hyperboloid { p1, p2, theta_max } => {
                 (hyperboloid_normal(*p1, *p2, *theta_max, u, v), white)
             }
@@ -205,6 +195,25 @@ impl Surface {
 }
 
 impl Surface {
+    /// The texture coordinates at `(u, v)` and their change over one step `duv` of the
+    /// parameters (per axis, the larger of the changes along u and along v): a mesh's or a
+    /// subdivision mesh's `st` where it has them, else `(u, v)` itself and `duv`.
+    pub fn st(&self, u: f32, v: f32, duv: [f32; 2]) -> ([f32; 2], [f32; 2]) {
+        let at = |u: f32, v: f32| match self {
+            Surface::Bilinear(b) => b.st(u, v),
+            Surface::Subdiv(s) => s.st(u, v),
+            _ => None,
+        };
+        let Some(st) = at(u, v) else { return ([u, v], duv) };
+        // One-sided differences, towards the inside of [0, 1]^2.
+        let step = |x: f32, d: f32| if x + d <= 1.0 { d } else { -d };
+        let (du, dv) = (step(u, duv[0]), step(v, duv[1]));
+        let along_u = at(u + du, v).map_or(Vec2::ZERO, |s| s - st);
+        let along_v = at(u, v + dv).map_or(Vec2::ZERO, |s| s - st);
+        let d = along_u.abs().max(along_v.abs());
+        (st.to_array(), d.to_array())
+    }
+
     /// The object-space control hull of the part `[u0, u1] x [v0, v1]` of a rational Bezier
     /// patch: the projected net of that sub-patch, whose convex hull encloses it (weights
     /// are positive). `None` for every other surface, which the test grid and its margin bound.
@@ -297,13 +306,26 @@ pub(crate) fn shape_surfaces(shape: &Shape, points_object: Option<&[Vec3]>) -> V
             let p = [0, 1, 2, 3].map(|i| moved(i, Vec3::from(points[i])));
             vec![Surface::Bilinear(Bilinear::new(p, [Vec3::ONE; 4], None))]
         }
-        Shape::Mesh { points, faces, colors } => {
+        Shape::Mesh { points, faces, colors, normals, st } => {
             let point = |i: u32| points.get(i as usize).map(|p| moved(i as usize, Vec3::from(*p)));
             let tint = |i: u32| {
                 colors
                     .as_ref()
                     .and_then(|c| c.get(i as usize))
                     .map_or(Vec3::ONE, |c| Vec3::from(*c))
+            };
+            // Normals are not keyed: a deforming mesh keeps its own at every time.
+            let normal = |i: u32| {
+                normals.as_ref().map(|n| n.get(i as usize).map_or(Vec3::Z, |n| Vec3::from(*n)))
+            };
+            let coords = |i: u32| {
+                st.as_ref().map(|s| s.get(i as usize).map_or(Vec2::ZERO, |s| Vec2::from(*s)))
+            };
+            // The corners' normals and st in the order of the patch corners `k`.
+            let data = |face: &[u32], k: [usize; 4]| {
+                let n = normals.as_ref().map(|_| k.map(|k| normal(face[k]).unwrap_or(Vec3::Z)));
+                let s = st.as_ref().map(|_| k.map(|k| coords(face[k]).unwrap_or(Vec2::ZERO)));
+                (n, s)
             };
             let mut out = Vec::with_capacity(faces.len());
             for face in faces {
@@ -318,7 +340,9 @@ pub(crate) fn shape_surfaces(shape: &Shape, points_object: Option<&[Vec3]>) -> V
                         // Around the face a, b, c, d: P0 = a, P1 = b, P2 = d, P3 = c.
                         let p = [pt(0), pt(1), pt(3), pt(2)];
                         let t = [tn(0), tn(1), tn(3), tn(2)];
-                        out.push(Surface::Bilinear(Bilinear::new(p, t, None)));
+                        let (n, s) = data(face, [0, 1, 3, 2]);
+                        let b = Bilinear::new(p, t, None).with_vertex_data(n, s);
+                        out.push(Surface::Bilinear(b));
                     }
                     n => {
                         for k in 1..n - 1 {
@@ -326,7 +350,9 @@ pub(crate) fn shape_surfaces(shape: &Shape, points_object: Option<&[Vec3]>) -> V
                             let p = [a, b, c, c];
                             let t = [tn(0), tn(k), tn(k + 1), tn(k + 1)];
                             let flat = (b - a).cross(c - a);
-                            out.push(Surface::Bilinear(Bilinear::new(p, t, Some(flat))));
+                            let (n, s) = data(face, [0, k, k + 1, k + 1]);
+                            let b = Bilinear::new(p, t, Some(flat)).with_vertex_data(n, s);
+                            out.push(Surface::Bilinear(b));
                         }
                     }
                 }
@@ -362,6 +388,8 @@ pub(crate) fn shape_surfaces(shape: &Shape, points_object: Option<&[Vec3]>) -> V
             .into_iter()
             .map(|p| Surface::Subdiv(Box::new(p)))
             .collect(),
+        // Read into a Mesh or SubdivisionMesh when the scene was loaded.
+        Shape::MeshFile { .. } => Vec::new(),
     }
 }
 
@@ -401,7 +429,8 @@ pub(crate) fn end_caps(shape: &Shape) -> Vec<Surface> {
         | Shape::Hyperboloid { .. }
         | Shape::PatchMesh { .. }
         | Shape::NuPatch { .. }
-        | Shape::SubdivisionMesh { .. } => Vec::new(),
+        | Shape::SubdivisionMesh { .. }
+        | Shape::MeshFile { .. } => Vec::new(),
     }
 }
 

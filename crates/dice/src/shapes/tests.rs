@@ -164,7 +164,7 @@ fn end_caps_close_the_solids_facing_out() {
             phimax: 360.0,
             thetamax: 360.0,
         },
-        Shape::Mesh { points: vec![], faces: Faces::new(), colors: None },
+        Shape::Mesh { points: vec![], faces: Faces::new(), colors: None, normals: None, st: None },
     ] {
         assert!(end_caps(&closed).is_empty());
     }
@@ -242,6 +242,8 @@ fn mesh_faces_become_patches_with_tints() {
         ],
         faces: Faces::from(vec![vec![0, 1, 2, 3], vec![1, 4, 2], vec![0, 1], vec![0, 9, 1]]),
         colors: Some(fixtures::five_colors()),
+        normals: None,
+        st: None,
     });
     let s = surfaces(&obj);
     assert_eq!(s.len(), 2, "the two-index face and the face with a bad index are skipped");
@@ -268,6 +270,8 @@ fn polygons_with_more_than_four_sides_are_fanned() {
         points: vec![[0.0; 3], [1.0, 0.0, 0.0], [1.5, 1.0, 0.0], [0.5, 2.0, 0.0], [-0.5, 1.0, 0.0]],
         faces: Faces::from(vec![vec![0, 1, 2, 3, 4]]),
         colors: None,
+        normals: None,
+        st: None,
     });
     assert_eq!(surfaces(&obj).len(), 3);
 }

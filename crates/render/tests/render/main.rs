@@ -12,6 +12,7 @@ mod filters;
 mod geometry;
 mod lens;
 mod lookdev;
+mod meshes;
 mod occlusion;
 mod pipeline;
 mod raytrace;

@@ -564,7 +564,7 @@ fn weld<'a>(objects: impl Iterator<Item = &'a Object>) -> (Shape, Material) {
     let mut at: HashMap<[u32; 3], u32> = HashMap::new();
     let mut any_colors = !one_color;
     for o in &objects {
-        let Shape::Mesh { points: p, faces: f, colors: c } = &o.shape else { continue };
+        let Shape::Mesh { points: p, faces: f, colors: c, .. } = &o.shape else { continue };
         any_colors |= c.is_some();
         let cs = color_of(&o.material);
         let remap: Vec<u32> = p
@@ -586,7 +586,16 @@ fn weld<'a>(objects: impl Iterator<Item = &'a Object>) -> (Shape, Material) {
         }
     }
     let material = if one_color { base } else { with_color(base, [1.0; 3]) };
-    (Shape::Mesh { points, faces, colors: any_colors.then_some(colors) }, material)
+    (
+        Shape::Mesh {
+            points,
+            faces,
+            colors: any_colors.then_some(colors),
+            normals: None,
+            st: None,
+        },
+        material,
+    )
 }
 
 /// `m` with its surface colour replaced.

@@ -261,6 +261,50 @@ pub(crate) fn check_primvars(r: &Request, mesh: &PolyMesh) -> Result<(), RibErro
     Ok(())
 }
 
+/// The `vertex` or `varying` normals `N` and texture coordinates `st` of a polygon mesh, one
+/// per point (the model's `Mesh` `normals` and `st`); `None` for either when absent or of
+/// another class (left to [`unused_primvars`]'s warning). Counts are checked as
+/// [`check_primvars`] checks them.
+#[allow(clippy::type_complexity)]
+pub(crate) fn vertex_normals_and_st(
+    r: &Request,
+    mesh: &PolyMesh,
+) -> Result<(Option<Vec<[f32; 3]>>, Option<Vec<[f32; 2]>>), RibError> {
+    let counts = Counts {
+        uniform: mesh.faces.len(),
+        vertex: mesh.points.len(),
+        facevarying: mesh.corners(),
+    };
+    let per_point = |class: Class| matches!(class, Class::Vertex | Class::Varying);
+    let normals = match r.param("N") {
+        Some(p) => match groups(r, p, 3, counts)? {
+            (class, v) if per_point(class) => {
+                Some(v.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect())
+            }
+            _ => None,
+        },
+        None => None,
+    };
+    let st = match r.param("st") {
+        Some(p) => match groups(r, p, 2, counts)? {
+            (class, v) if per_point(class) => {
+                Some(v.chunks_exact(2).map(|c| [c[0], c[1]]).collect())
+            }
+            _ => None,
+        },
+        None => None,
+    };
+    Ok((normals, st))
+}
+
+/// True if the mesh's `Cs` is per face or per face-vertex, so [`mesh_colors`] unwelds its
+/// points (and per-point `N` and `st` are dropped, with the warning of an unused variable).
+pub(crate) fn colors_unweld(r: &Request) -> bool {
+    r.param("Cs")
+        .and_then(|p| p.decl.as_ref())
+        .is_some_and(|d| matches!(d.class, Class::Uniform | Class::FaceVarying | Class::FaceVertex))
+}
+
 /// Warnings for the primitive variables of `r` that the model does not carry yet.
 pub(crate) fn unused_primvars(r: &Request, used: &[&str], warnings: &mut Vec<Warning>) {
     for p in &r.params {
@@ -268,9 +312,11 @@ pub(crate) fn unused_primvars(r: &Request, used: &[&str], warnings: &mut Vec<War
             continue;
         }
         let what = match p.name.as_str() {
-            "N" | "Np" => "vertex normals are not used yet: faces shade by their own normals",
+            "N" | "Np" => {
+                "only vertex or varying N on a polygon mesh without per-face colours is used: faces shade by their own normals"
+            }
             "st" | "s" | "t" => {
-                "per-vertex texture coordinates are not supported: texture maps read the surface parameters (u, v)"
+                "only vertex or varying st on a polygon mesh without per-face colours is used: texture maps read the surface parameters (u, v)"
             }
             "Os" => "per-vertex opacity is not supported: the Opacity attribute is used",
             _ => "primitive variable ignored",
@@ -293,7 +339,7 @@ pub(crate) fn to_model_mesh(
 ) -> Result<Shape, RibError> {
     let PolyMesh { points, faces, holes } = mesh;
     if holes.is_empty() && faces.iter().all(|outline| outline.len() <= 4) {
-        return Ok(Shape::Mesh { points, faces, colors });
+        return Ok(Shape::Mesh { points, faces, colors, normals: None, st: None });
     }
     let mut holes = holes.into_iter().peekable();
     let mut out = Faces::with_capacity(faces.len(), faces.indices().len());
@@ -317,7 +363,7 @@ pub(crate) fn to_model_mesh(
             }
         }
     }
-    Ok(Shape::Mesh { points, faces: out, colors })
+    Ok(Shape::Mesh { points, faces: out, colors, normals: None, st: None })
 }
 
 /// A quadric's shape, with its optional `zmin`/`zmax` cuts in the model's form.

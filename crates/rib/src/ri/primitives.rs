@@ -356,9 +356,24 @@ impl Machine {
     ) -> Result<Shape, RibError> {
         let mut mesh: PolyMesh = geometry::poly_mesh(r, nloops, nvertices, vertices)?;
         geometry::check_primvars(r, &mesh)?;
+        let (normals, st) = geometry::vertex_normals_and_st(r, &mesh)?;
         let (_, colors) = geometry::mesh_colors(r, &mut mesh)?;
-        geometry::unused_primvars(r, &["P", "Pw", "Cs"], &mut self.warnings);
-        geometry::to_model_mesh(r, mesh, colors)
+        // Per-face colours unweld the points; the vertex normals and st do not follow them.
+        let unwelded = geometry::colors_unweld(r);
+        let used: &[&str] = match (&normals, &st, unwelded) {
+            (_, _, true) => &["P", "Pw", "Cs"],
+            (Some(_), Some(_), false) => &["P", "Pw", "Cs", "N", "st"],
+            (Some(_), None, false) => &["P", "Pw", "Cs", "N"],
+            (None, Some(_), false) => &["P", "Pw", "Cs", "st"],
+            (None, None, false) => &["P", "Pw", "Cs"],
+        };
+        geometry::unused_primvars(r, used, &mut self.warnings);
+        let mut shape = geometry::to_model_mesh(r, mesh, colors)?;
+        if !unwelded && let Shape::Mesh { normals: n, st: s, .. } = &mut shape {
+            *n = normals;
+            *s = st;
+        }
+        Ok(shape)
     }
 }
 

@@ -182,7 +182,7 @@ fn colours_of_every_class() {
     }
     match &s.objects[1].shape {
         // Per-face colours: each face gets its own three vertices.
-        Shape::Mesh { colors: Some(c), points, faces } => {
+        Shape::Mesh { colors: Some(c), points, faces, .. } => {
             assert_eq!(
                 (points.len(), faces),
                 (6, &Faces::from(vec![vec![0, 1, 2], vec![3, 4, 5]]))
@@ -210,7 +210,7 @@ fn face_varying_colours_unweld_each_face_outline_first_then_its_holes() {
          PointsGeneralPolygons [1 1] [3 4] [0 1 2  1 3 4 2] \"P\" [0 0 0 1 0 0 1 1 0 2 0 0 2 1 0]",
         cs.join("  ")
     )));
-    let Shape::Mesh { points, faces, colors: Some(colors) } = &s.objects[0].shape else {
+    let Shape::Mesh { points, faces, colors: Some(colors), .. } = &s.objects[0].shape else {
         panic!("{:?}", s.objects[0].shape)
     };
     let original = [[0, 0], [4, 0], [4, 4], [0, 4], [1, 1], [1, 3], [3, 3], [3, 1], [2, -2]];
@@ -637,4 +637,36 @@ fn a_subdivision_mesh_in_a_motion_block_deforms_and_other_schemes_are_skipped() 
     let d = &s.objects[0].deform;
     assert_eq!(d.len(), 2);
     assert_eq!((d[0].points[7], d[1].points[7]), ([1.0, 1.0, 1.0], [1.0, 1.0, 3.0]));
+}
+
+/// Vertex (or varying) `N` and `st` of a polygon mesh become the model mesh's per-point
+/// `normals` and `st`, value for value and unwarned; per-face colours unweld the points, so
+/// then they are dropped with a warning naming the variable; facevarying `st` is warned of.
+#[test]
+fn polygon_normals_and_st_map_onto_the_mesh() {
+    let loaded = rib(&world(
+        "PointsPolygons [4] [0 1 2 3] \"P\" [0 0 0 1 0 0 1 1 0 0 1 0]
+           \"N\" [0 0 -1  0.1 0 -1  0.1 0.1 -1  0 0.1 -1]
+           \"varying float[2] st\" [0 0  1 0  1 1  0 1]
+         PointsPolygons [3] [0 1 2] \"P\" [0 0 0 1 0 0 1 1 0]
+           \"N\" [0 0 -1  0 0 -1  0 0 -1] \"uniform color Cs\" [1 0 0]
+         PointsPolygons [3] [0 1 2] \"P\" [0 0 0 1 0 0 1 1 0]
+           \"facevarying float[2] st\" [0 0  1 0  1 1]",
+    ))
+    .unwrap_or_else(|e| panic!("{e}"));
+    let s = &loaded.frames[0].scene;
+    let Shape::Mesh { normals: Some(n), st: Some(st), .. } = &s.objects[0].shape else {
+        panic!("{:?}", s.objects[0].shape)
+    };
+    assert_eq!(n, &vec![[0.0, 0.0, -1.0], [0.1, 0.0, -1.0], [0.1, 0.1, -1.0], [0.0, 0.1, -1.0]]);
+    assert_eq!(st, &vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]);
+    for k in [1, 2] {
+        let Shape::Mesh { normals: None, st: None, .. } = &s.objects[k].shape else {
+            panic!("{:?}", s.objects[k].shape)
+        };
+    }
+    let warned: Vec<String> = loaded.warnings.iter().map(|w| w.to_string()).collect();
+    assert_eq!(warned.len(), 2, "{warned:?}");
+    assert!(warned[0].contains("\"N\": only vertex or varying N"), "{warned:?}");
+    assert!(warned[1].contains("\"st\": only vertex or varying st"), "{warned:?}");
 }

@@ -169,16 +169,45 @@ pub enum Shape {
         /// point is `(x/w, y/w, z/w)`, `w > 0`; `P` is `w = 1`), u-major.
         points: Vec<[f32; 4]>,
     },
-    /// Polygon mesh of triangles and quads (planar or not).
+    /// Polygon mesh: triangles, quads (planar or not) and larger convex polygons (fanned
+    /// into triangles around their first index).
     Mesh {
         /// Vertex positions.
         points: Vec<V3>,
-        /// Faces: 3 or 4 indices into `points`, in order around the face (written as a list
-        /// of lists, `[[0, 1, 2, 3], [3, 2, 4]]`; held flat, see [`Faces`]).
+        /// Faces: 3 or more indices into `points`, in order around the face (written as a
+        /// list of lists, `[[0, 1, 2, 3], [3, 2, 4]]`; held flat, see [`Faces`]). A face of
+        /// more than four indices must be convex: it is drawn as the fan of triangles
+        /// `(0, k, k + 1)`.
         faces: Faces,
         /// Optional per-vertex colours (same length as `points`), multiplying the material colour.
         #[serde(default)]
         colors: Option<Vec<Rgb>>,
+        /// Optional per-point shading normals (same length as `points`, non-zero), in object
+        /// space: the mesh then shades smoothly, each face interpolating its corners' normals
+        /// (bilinearly over a quad, barycentrically over a triangle). They are oriented to
+        /// the side the face winds towards; they are not keyed by deformation (a deforming
+        /// mesh keeps these normals at every time).
+        #[serde(default)]
+        normals: Option<Vec<V3>>,
+        /// Optional per-point texture coordinates (same length as `points`), interpolated
+        /// over each face as the normals are; texture maps are looked up at them instead of
+        /// the face's own `(u, v)`.
+        #[serde(default)]
+        st: Option<Vec<[f32; 2]>>,
+    },
+    /// A polygon mesh read from an OBJ or PLY file when the scene is loaded
+    /// ([`crate::parse`]): it becomes a [`Shape::Mesh`] (or, with `subdivision`, a
+    /// [`Shape::SubdivisionMesh`]) before validation, so no later stage sees it.
+    MeshFile {
+        /// The file (`.obj` or `.ply`), relative to the scene file's folder unless absolute.
+        path: String,
+        /// Read the mesh as the control mesh of a Catmull-Clark subdivision surface
+        /// (its normals are then ignored; its texture coordinates become facevarying `st`).
+        #[serde(default)]
+        subdivision: bool,
+        /// Only the faces of this OBJ group or object (by name); `None`: every face.
+        #[serde(default)]
+        group: Option<String>,
     },
     /// Catmull-Clark subdivision surface (`RiSubdivisionMesh "catmull-clark"`): the limit
     /// surface of a control mesh of polygons of any size, with RenderMan's tags.
@@ -244,6 +273,7 @@ impl Shape {
             Shape::Paraboloid { .. } => "Paraboloid",
             Shape::BilinearPatch { .. } => "BilinearPatch",
             Shape::Mesh { .. } => "Mesh",
+            Shape::MeshFile { .. } => "MeshFile",
             Shape::Hyperboloid { .. } => "Hyperboloid",
             Shape::PatchMesh { .. } => "PatchMesh",
             Shape::NuPatch { .. } => "NuPatch",

@@ -95,16 +95,23 @@ pub(super) fn shape(at: &str, shape: &Shape) -> Check {
                 st.as_deref(),
             )
         }
-        Shape::Mesh { points, faces, colors } => {
+        Shape::MeshFile { path, .. } => fail(
+            field("path"),
+            format!(
+                "the mesh file {path:?} was not read: MeshFile is read by parse or load, \
+                 not by validate"
+            ),
+        ),
+        Shape::Mesh { points, faces, colors, normals, st } => {
             finite_each(&field("points"), points)?;
             if faces.is_empty() {
                 return fail(field("faces"), "must hold at least one face");
             }
             for (f, face) in faces.iter().enumerate() {
-                if !(3..=4).contains(&face.len()) {
+                if face.len() < 3 {
                     return fail(
                         format!("{at}.faces[{f}]"),
-                        format!("a face must have 3 or 4 indices, got {}", face.len()),
+                        format!("a face must have at least 3 indices, got {}", face.len()),
                     );
                 }
                 for (k, &index) in face.iter().enumerate() {
@@ -131,6 +138,22 @@ pub(super) fn shape(at: &str, shape: &Shape) -> Check {
                     );
                 }
                 finite_each(&field("colors"), colors)?;
+            }
+            if let Some(normals) = normals {
+                per_point(&field("normals"), "normal", normals.len(), points.len())?;
+                finite_each(&field("normals"), normals)?;
+                for (i, n) in normals.iter().enumerate() {
+                    if n.iter().all(|c| *c == 0.0) {
+                        return fail(
+                            format!("{at}.normals[{i}]"),
+                            "must be non-zero, got [0, 0, 0]",
+                        );
+                    }
+                }
+            }
+            if let Some(st) = st {
+                per_point(&field("st"), "(s, t) pair", st.len(), points.len())?;
+                finite_each(&field("st"), st)?;
             }
             Ok(())
         }
@@ -305,5 +328,14 @@ fn transform(at: &str, t: &Transform) -> Check {
             }
             Ok(())
         }
+    }
+}
+
+/// `len` values, one `what` per point of a mesh of `points` points.
+fn per_point(path: &str, what: &str, len: usize, points: usize) -> Check {
+    if len == points {
+        Ok(())
+    } else {
+        fail(path, format!("must have one {what} per point ({points}), got {len}"))
     }
 }
