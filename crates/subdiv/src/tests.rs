@@ -90,8 +90,16 @@ fn cube_limit_between_sphere_and_cube() {
         for j in 0..=8 {
             for i in 0..=8 {
                 let (q, _, _) = p.eval(i as f32 / 8.0, j as f32 / 8.0);
+                // The limit cube of half-side 1 lies strictly inside the cube and, contrary
+                // to "between the inscribed sphere and the cube", inside the inscribed sphere
+                // too: from 68/81 (face centres: the bicubic limit of a face's 4 x 4 net) to
+                // sqrt(3)/2 (corners: (9 v + 4 sum e + sum f) / 24 = v / 2). Sampling at
+                // 1/8 steps touches both ends, so 1e-5 is rounding only.
+                let r = q.length();
                 assert!(
-                    q.length() > 0.8 && q.abs().max_element() < 1.0,
+                    r >= 68.0 / 81.0 - 1e-5
+                        && r <= 3.0_f32.sqrt() / 2.0 + 1e-5
+                        && q.abs().max_element() < 1.0,
                     "{q} {i} {j} {:?}",
                     p.corners
                 );
