@@ -50,6 +50,11 @@ const EDGE_TEST: usize = 5;
 /// width (about 1e-4 pixel at raster coordinates of a thousand pixels, where `f32` steps
 /// by 6e-5).
 pub(crate) const OVERLAP: f32 = 1.0e-3;
+/// Raster length above which a piece is also halved where its chord's point for a parameter
+/// slides along the curve from the curve's point for it (see `Piece::strays`); shorter pieces
+/// are judged by their distance from the chord alone (a paraboloid's apex, where the curve's
+/// speed is unbounded, would otherwise be halved to the limit).
+const ALONG_PIECE: f32 = 1.0;
 /// Beyond this many halvings below a patch's range the floor is not honoured (the grid
 /// would be too large to dice anyway; the patch is split further or clamped).
 const MAX_FLOOR: u32 = 30;
@@ -239,8 +244,21 @@ impl Piece<'_, '_> {
                 if let (Some((_, ra)), Some((_, rb))) = (ea, eb) {
                     stray = stray.max(distance_to_segment(r, ra, rb));
                 }
+                // And along it: a grid puts its boundary vertex at parameter `t` at the
+                // chord's point for `t` ([`Edge::at`], linear in the parameter), next to
+                // its inside vertices on the surface at their parameters, so the curve
+                // must also be near that point, not just near the chord. Where the
+                // curve's speed varies (along an edge out of a Catmull-Clark
+                // extraordinary vertex) the chord's point slides along the curve away
+                // from the surface point, skewing the grids' boundary cells and opening
+                // gaps between grids that take different vertices of the polyline.
                 if let Some((ca, cb)) = chord {
-                    stray = stray.max(distance_to_segment(c, ca, cb) * px(c.z));
+                    let long = match (ea, eb) {
+                        (Some((_, ra)), Some((_, rb))) => (rb - ra).length() > ALONG_PIECE,
+                        _ => false,
+                    };
+                    let along = if long { (c - ca.lerp(cb, f)).length() } else { 0.0 };
+                    stray = stray.max(distance_to_segment(c, ca, cb).max(along) * px(c.z));
                 }
             }
         }
