@@ -50,7 +50,7 @@ const EDGE_TEST: usize = 5;
 /// width (about 1e-4 pixel at raster coordinates of a thousand pixels, where `f32` steps
 /// by 6e-5).
 pub(crate) const OVERLAP: f32 = 1.0e-3;
-/// Raster length above which a piece is also halved where its chord's point for a parameter
+/// Raster length above which a piece of a subdivision surface's edge is also halved where its chord's point for a parameter
 /// slides along the curve from the curve's point for it (see `Piece::strays`); shorter pieces
 /// are judged by their distance from the chord alone (a paraboloid's apex, where the curve's
 /// speed is unbounded, would otherwise be halved to the limit).
@@ -215,6 +215,7 @@ impl Piece<'_, '_> {
         let perspective = sp.camera.projection() == reyes_scene::Projection::Perspective;
         let px = |z: f32| if perspective { k / z } else { k };
         for (k, pose) in self.poses.iter().enumerate() {
+            let subdiv = matches!(pose.surface, crate::shapes::Surface::Subdiv(_));
             let (ea, eb) = (seen(pose, a[k]), seen(pose, b[k]));
             // The chord in camera space, even where an end is behind the eye: the part of
             // a piece that is in front must still follow the surface.
@@ -253,8 +254,14 @@ impl Piece<'_, '_> {
                 // from the surface point, skewing the grids' boundary cells and opening
                 // gaps between grids that take different vertices of the polyline.
                 if let Some((ca, cb)) = chord {
+                    // Only on subdivision surfaces for now: elsewhere the edges' speed
+                    // varies smoothly enough that the across test has always sufficed, and
+                    // pathological placements (fuzz regressions far-camera and
+                    // camera-swing) halve for seconds under the along test.
                     let long = match (ea, eb) {
-                        (Some((_, ra)), Some((_, rb))) => (rb - ra).length() > ALONG_PIECE,
+                        (Some((_, ra)), Some((_, rb))) => {
+                            subdiv && (rb - ra).length() > ALONG_PIECE
+                        }
                         _ => false,
                     };
                     let along = if long { (c - ca.lerp(cb, f)).length() } else { 0.0 };
