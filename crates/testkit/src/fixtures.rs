@@ -181,3 +181,32 @@ pub fn measure_scene(objects: &[&str], solids: &str) -> String {
         objects.join(",\n    ")
     )
 }
+
+/// The control cube of half-side 1: point `i` at `(+-1, +-1, +-1)` by its bits (1: x, 2: y,
+/// 4: z; a clear bit is -1).
+pub fn cube_corners() -> Vec<[f32; 3]> {
+    (0..8)
+        .map(|i| {
+            let s = |bit: i32| if i & bit == 0 { -1.0 } else { 1.0 };
+            [s(1), s(2), s(4)]
+        })
+        .collect()
+}
+
+/// The six faces of [`cube_corners`], counter-clockwise seen from outside.
+pub const CUBE_QUADS: [[u32; 4]; 6] =
+    [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
+
+/// The unit octahedron's points: `+x, -x, +y, -y, +z, -z`.
+pub const OCTAHEDRON_POINTS: [[f32; 3]; 6] = [
+    [1.0, 0.0, 0.0],
+    [-1.0, 0.0, 0.0],
+    [0.0, 1.0, 0.0],
+    [0.0, -1.0, 0.0],
+    [0.0, 0.0, 1.0],
+    [0.0, 0.0, -1.0],
+];
+
+/// The eight faces of [`OCTAHEDRON_POINTS`], counter-clockwise seen from outside.
+pub const OCTAHEDRON_FACES: [[u32; 3]; 8] =
+    [[0, 2, 4], [2, 1, 4], [1, 3, 4], [3, 0, 4], [2, 0, 5], [1, 2, 5], [3, 1, 5], [0, 3, 5]];

@@ -162,18 +162,18 @@ mod tests {
 
     /// The cube of half-side 1, corners moved about, with a semi-sharp crease.
     fn creased_cube() -> Shape {
-        let points: Vec<[f32; 3]> = (0..8)
-            .map(|i| {
-                let s = |bit: i32| if i & bit == 0 { -1.0 } else { 1.0 };
+        use reyes_testkit::fixtures::{CUBE_QUADS, cube_corners};
+        let points: Vec<[f32; 3]> = cube_corners()
+            .iter()
+            .enumerate()
+            .map(|(i, p)| {
                 let f = 1.0 + 0.05 * (i * 3 % 5) as f32;
-                [s(1) * f + 0.1, s(2) * f, s(4)]
+                [p[0] * f + 0.1, p[1] * f, p[2]]
             })
             .collect();
-        let faces =
-            [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
         Shape::SubdivisionMesh {
             points,
-            faces: faces.iter().map(|f| f.to_vec()).collect::<Vec<_>>().into(),
+            faces: CUBE_QUADS.iter().map(|f| f.to_vec()).collect::<Vec<_>>().into(),
             tags: vec![SubdivTag::Crease { vertices: vec![0, 1, 3], sharpness: 2.5 }],
             colors: None,
             st: None,

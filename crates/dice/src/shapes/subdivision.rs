@@ -198,17 +198,10 @@ mod tests {
 
     /// The cube of side 2 about the origin, faces wound counter-clockwise seen from outside.
     fn cube() -> Shape {
-        let points: Vec<[f32; 3]> = (0..8)
-            .map(|i| {
-                let s = |bit: i32| if i & bit == 0 { -1.0 } else { 1.0 };
-                [s(1), s(2), s(4)]
-            })
-            .collect();
-        let faces =
-            [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
+        use reyes_testkit::fixtures::{CUBE_QUADS, cube_corners};
         Shape::SubdivisionMesh {
-            points,
-            faces: faces.iter().map(|f| f.to_vec()).collect::<Vec<_>>().into(),
+            points: cube_corners(),
+            faces: CUBE_QUADS.iter().map(|f| f.to_vec()).collect::<Vec<_>>().into(),
             tags: Vec::new(),
             colors: None,
             st: None,

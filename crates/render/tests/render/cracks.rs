@@ -7,7 +7,9 @@
 //! can fail). A spinning sphere tests the grids of every motion key.
 
 use reyes_render::{RenderOptions, render};
-use reyes_testkit::fixtures::parse;
+use reyes_testkit::fixtures::{
+    CUBE_QUADS, OCTAHEDRON_FACES, OCTAHEDRON_POINTS, cube_corners, parse,
+};
 
 const W: u32 = 96;
 const H: u32 = 80;
@@ -134,36 +136,12 @@ struct Subdiv {
 
 impl Subdiv {
     fn ron(&self) -> String {
-        let cube: Vec<[f32; 3]> = (0..8)
-            .map(|i| {
-                let s = |bit: i32| if i & bit == 0 { -1.0 } else { 1.0 };
-                [s(1), s(2), s(4)]
-            })
-            .collect();
-        let quads =
-            [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
+        let cube = cube_corners();
+        let quads = CUBE_QUADS;
         let (points, faces, chain): (Vec<[f32; 3]>, Vec<Vec<u32>>, [u32; 3]) = match self.kind {
             1 => {
-                let r = 1.3;
-                let points = vec![
-                    [r, 0.0, 0.0],
-                    [-r, 0.0, 0.0],
-                    [0.0, r, 0.0],
-                    [0.0, -r, 0.0],
-                    [0.0, 0.0, r],
-                    [0.0, 0.0, -r],
-                ];
-                let faces = [
-                    [0, 2, 4],
-                    [2, 1, 4],
-                    [1, 3, 4],
-                    [3, 0, 4],
-                    [2, 0, 5],
-                    [1, 2, 5],
-                    [3, 1, 5],
-                    [0, 3, 5],
-                ];
-                (points, faces.iter().map(|f| f.to_vec()).collect(), [0, 2, 4])
+                let points = OCTAHEDRON_POINTS.iter().map(|p| p.map(|c| 1.3 * c)).collect();
+                (points, OCTAHEDRON_FACES.iter().map(|f| f.to_vec()).collect(), [0, 2, 4])
             }
             2 => {
                 let faces = quads.iter().flat_map(|&[a, b, c, d]| [vec![a, b, c], vec![a, c, d]]);
@@ -220,27 +198,9 @@ impl Closed {
                 )
             }
             Closed::Mesh(bumps) => {
-                let dirs = [
-                    [1.0, 0.0, 0.0],
-                    [-1.0, 0.0, 0.0],
-                    [0.0, 1.0, 0.0],
-                    [0.0, -1.0, 0.0],
-                    [0.0, 0.0, 1.0],
-                    [0.0, 0.0, -1.0],
-                ];
                 let mut points: Vec<[f32; 3]> =
-                    dirs.iter().zip(bumps).map(|(d, b)| d.map(|c| c * b)).collect();
-                // The eight faces, counter-clockwise seen from outside.
-                let faces = [
-                    [0, 2, 4],
-                    [2, 1, 4],
-                    [1, 3, 4],
-                    [3, 0, 4],
-                    [2, 0, 5],
-                    [1, 2, 5],
-                    [3, 1, 5],
-                    [0, 3, 5],
-                ];
+                    OCTAHEDRON_POINTS.iter().zip(bumps).map(|(d, b)| d.map(|c| c * b)).collect();
+                let faces = OCTAHEDRON_FACES.map(|f| f.map(|i| i as usize));
                 let mut mid = std::collections::HashMap::new();
                 let mut midpoint = |a: usize, b: usize, points: &mut Vec<[f32; 3]>| {
                     *mid.entry((a.min(b), a.max(b))).or_insert_with(|| {
