@@ -99,6 +99,10 @@ pub(crate) struct Wave {
     pub grids: Vec<NewGrid>,
     /// Patches for later rows: `(row, task)`.
     deferred: Vec<(u32, Task)>,
+    /// Patches to dice in this row, with their grid size, in key order when the tasks were:
+    /// the split walk only plans them (charging their micropolygons to the budget), and
+    /// they are diced once the whole row is known to fit.
+    leaves: Vec<Leaf>,
     /// Counts.
     pub stats: DiceStats,
 }
@@ -107,8 +111,16 @@ impl Wave {
     fn append(&mut self, mut other: Wave) {
         self.grids.append(&mut other.grids);
         self.deferred.append(&mut other.deferred);
+        self.leaves.append(&mut other.leaves);
         self.stats.add(&other.stats);
     }
+}
+
+/// A patch the split walk decided to dice, and its grid size.
+struct Leaf {
+    task: Task,
+    nu: u32,
+    nv: u32,
 }
 
 /// One object's motion, shading and split decisions.
@@ -515,6 +527,12 @@ impl<'a> Dicer<'a> {
     }
 
     /// Process `tasks` for row `row`, in parallel; the result is in task order.
+    ///
+    /// Each task in two passes: its split walk decides every grid and charges its
+    /// micropolygons to the row's budget, then the grids are diced and shaded, only if the
+    /// row still fits. A patch that would overrun the budget is thus refused after its
+    /// splits alone, before the far costlier dicing and shading of micropolygons that could
+    /// not be held anyway.
     fn wave(&self, row: u32, tasks: Vec<Task>) -> Wave {
         let parts: Vec<Wave> = tasks
             .into_par_iter()
@@ -523,6 +541,20 @@ impl<'a> Dicer<'a> {
                 if let Some(object) = &self.objects[task.key.object as usize] {
                     let poses = object.motion.poses(task.key.surface as usize);
                     self.run(object, &poses, task, row, &mut wave);
+                    let leaves = std::mem::take(&mut wave.leaves);
+                    if !self.over_budget.load(Ordering::Relaxed) {
+                        let diced: Vec<Wave> = leaves
+                            .into_par_iter()
+                            .map(|leaf| {
+                                let mut w = Wave::default();
+                                self.dice_leaf(object, &poses, leaf, &mut w);
+                                w
+                            })
+                            .collect();
+                        for part in diced {
+                            wave.append(part);
+                        }
+                    }
                 }
                 wave
             })
@@ -532,6 +564,24 @@ impl<'a> Dicer<'a> {
             all.append(part);
         }
         all
+    }
+
+    /// Dice and shade a planned grid.
+    fn dice_leaf(&self, object: &ObjectSetup<'_>, poses: &[Pose<'_>], leaf: Leaf, out: &mut Wave) {
+        let Leaf { task, nu, nv } = leaf;
+        let (hither, yon) = (self.camera.hither(), self.camera.yon());
+        let mut em = Emitter::new(&self.bucketer, hither, yon, self.splitter.near());
+        em.warp = self.warp;
+        em.dice(&self.camera, &object.ctx, task.key.surface as usize, poses, &task.patch, (nu, nv));
+        out.stats.culled += em.culled;
+        out.stats.backfacing += em.backfacing;
+        out.stats.crossing += em.crossing;
+        out.stats.moving += em.moving;
+        out.stats.displacement_escapes += em.escaped;
+        if em.grid.len() > 0 {
+            em.grid.shrink_to_fit();
+            out.grids.push(NewGrid { key: task.key, grid: em.grid, ranges: em.ranges });
+        }
     }
 
     /// Process one patch: split it (children for this row processed now, depth first,
@@ -591,7 +641,7 @@ impl<'a> Dicer<'a> {
                 }
             }
             Decision::Dice { nu, nv, limited, extra } => {
-                // Charge the grid before making it: a wave stops as soon as it is over.
+                // Charge the grid when it is planned: a walk stops as soon as it is over.
                 let n = u64::from(nu) * u64::from(nv);
                 let before = self.charged.fetch_add(n, Ordering::Relaxed);
                 if self.alive.saturating_add(before).saturating_add(n) > self.max_alive {
@@ -602,26 +652,7 @@ impl<'a> Dicer<'a> {
                 out.stats.vertices += u64::from(nu + 1) * u64::from(nv + 1);
                 out.stats.depth_limited += u64::from(limited);
                 out.stats.flatness += u64::from(extra);
-                let (hither, yon) = (self.camera.hither(), self.camera.yon());
-                let mut em = Emitter::new(&self.bucketer, hither, yon, self.splitter.near());
-                em.warp = self.warp;
-                em.dice(
-                    &self.camera,
-                    &object.ctx,
-                    task.key.surface as usize,
-                    poses,
-                    &task.patch,
-                    (nu, nv),
-                );
-                out.stats.culled += em.culled;
-                out.stats.backfacing += em.backfacing;
-                out.stats.crossing += em.crossing;
-                out.stats.moving += em.moving;
-                out.stats.displacement_escapes += em.escaped;
-                if em.grid.len() > 0 {
-                    em.grid.shrink_to_fit();
-                    out.grids.push(NewGrid { key: task.key, grid: em.grid, ranges: em.ranges });
-                }
+                out.leaves.push(Leaf { task, nu, nv });
             }
         }
     }

@@ -87,7 +87,6 @@ fn render_far_camera_slow() {
 }
 
 #[test]
-#[ignore = "owner: the lead (dicer work bounds): a mesh point at 1e15 is refused only after 3 s of CPU"]
 fn render_mesh_point_1e15_slow() {
     replay_with("render", "render-mesh-point-1e15-slow.ron", &["--timeout", "2"]);
 }

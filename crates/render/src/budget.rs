@@ -6,7 +6,7 @@
 //! windows waiting to be merged. A scene whose estimate exceeds the limit is refused before
 //! anything is allocated. What remains of the limit bounds the micropolygons the dicer may
 //! hold at once ([`reyes_dice::DiceOptions::max_micropolygons`]), checked as each grid is
-//! made; ray trees are bounded separately, by their own ray budget.
+//! planned by the split walk, before any of a patch's grids is diced and shaded; ray trees are bounded separately, by their own ray budget.
 
 use reyes_dice::MICROPOLYGON_BYTES;
 use reyes_scene::Scene;
