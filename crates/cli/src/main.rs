@@ -28,6 +28,7 @@ mod progress;
 mod signals;
 mod term;
 
+use std::borrow::Cow;
 use std::collections::BTreeMap;
 use std::ffi::OsStr;
 use std::fmt::Display;
@@ -474,16 +475,19 @@ fn write_picture(
     metadata.render_time = render_time;
     let image = &scene.image;
     let rect = image.crop_pixels();
+    // Only a crop copies the film: the whole frame is written from the render's own (a
+    // copy would be the frame's largest allocation, at the peak of its memory).
     let (film, aovs, placement) = if image.crop.is_some() {
         let placement =
             reyes_film::Placement { full: (image.width, image.height), origin: (rect[0], rect[2]) };
-        (film.crop(rect), aovs.map(|(a, l)| (a.crop(rect), l)), Some(placement))
+        let aovs = aovs.map(|(a, l)| (Cow::Owned(a.crop(rect)), l));
+        (Cow::Owned(film.crop(rect)), aovs, Some(placement))
     } else {
-        (film.clone(), aovs.map(|(a, l)| (a.clone(), l)), None)
+        (Cow::Borrowed(film), aovs.map(|(a, l)| (Cow::Borrowed(a), l)), None)
     };
     let picture = reyes_film::Picture {
         film: &film,
-        aovs: aovs.as_ref().map(|(a, l)| (a, *l)),
+        aovs: aovs.as_ref().map(|(a, l)| (a.as_ref(), *l)),
         outputs: &scene.outputs,
         metadata: &metadata,
         placement,
