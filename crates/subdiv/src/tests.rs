@@ -2,6 +2,7 @@
 //! size ~1 agree to a few f32 ulps (1e-6); 1e-5 leaves margin for the 20-level fallback.
 
 use super::*;
+use crate::patch::on_edge;
 use proptest::prelude::*;
 
 fn grid_mesh(n: usize, z: impl Fn(usize, usize) -> f32) -> Mesh {
