@@ -22,22 +22,22 @@
 //! bucket in slice order. The same (sample, micropolygon) pairs are tested as by a plain port,
 //! and each sample's list gets its points in the same order, so images and statistics are
 //! unchanged bit for bit. The batch, the per-path vertex placements and the lane test are in
-//! `bucket/lanes.rs`; the loop that drives them is here.
+//! `bucket/lanes.rs`, the making and resolving of visible points in `bucket/visible.rs`; the
+//! loop that drives them is here.
 
-use reyes_csg::{
-    Composite, LERP_DONE, NIL, Resolver, VisPoint, lerpz, resolve_sample, resolve_sample_traced,
-    shepard_weights,
-};
+use reyes_csg::{Composite, NIL, Resolver, resolve_sample};
 
-use crate::aov::{AovPlan, Sources};
+use crate::aov::AovPlan;
 
 use crate::mpoly::{Micropolygon, flags};
 use crate::samples::{BucketSamples, Needs};
-use crate::{Hider, LensSetup, Scratch};
+use crate::{Hider, Scratch};
 
 mod adaptive;
 mod lanes;
 mod occlusion;
+mod slices;
+mod visible;
 pub(crate) use adaptive::RefineScratch;
 pub use adaptive::{Adaptive, RefinedSample, disagree};
 use lanes::{
@@ -45,6 +45,8 @@ use lanes::{
     PlacePinhole, inside_mask,
 };
 pub(crate) use occlusion::Occlusion;
+pub(crate) use slices::{SliceSample, SliceSamples};
+pub use visible::gouraud;
 
 /// Port of `bound`: the x, y, z bounding box of four points. (The original's two-compare
 /// sorting network is an optimisation of exactly this.)
@@ -155,78 +157,6 @@ impl<'a> Surface<'a> {
     }
 }
 
-/// One sample as paths D and M read it: position less the lens's depth-independent shift
-/// (`x - lx * Dof_b`, or `x` for a pinhole), lens shift at depth 1 (`lx * Dof_a`), time and
-/// list index `pixel*NS + s` — exactly the values the paths would compute from
-/// [`BucketSamples`] per test, computed once per bucket instead.
-#[derive(Debug, Clone, Copy, Default)]
-pub(crate) struct SliceSample {
-    x: f32,
-    y: f32,
-    ax: f32,
-    ay: f32,
-    t: f32,
-    n: u32,
-}
-
-/// A bucket's samples in time-slice order (`by_time[tau*P + pixel]`, path M) and lens-slice
-/// order (`by_lens[lambda*P + pixel]`, path D), so the paths read a row of a slice's samples
-/// contiguously instead of through `BucketSamples::by_time` / `by_lens`. Reused from bucket
-/// to bucket (no allocation once grown); each is built only when a bucket reads it.
-#[derive(Debug, Default, Clone)]
-pub(crate) struct SliceSamples {
-    by_time: Vec<SliceSample>,
-    by_lens: Vec<SliceSample>,
-}
-
-impl SliceSamples {
-    fn build(
-        &mut self,
-        smp: &BucketSamples,
-        lens: Option<LensSetup>,
-        (time, static_lens): (bool, bool),
-        ns: usize,
-        p_count: usize,
-    ) {
-        let record = |slice_order: &[u32], slice: usize, pixel: usize| {
-            let s = slice_order[slice * p_count + pixel] as usize;
-            let k = s * p_count + pixel;
-            let n = (pixel * ns + s) as u32;
-            let t = if time { smp.t[k] } else { 0.0 };
-            match &lens {
-                Some(l) => {
-                    let (lx, ly) = (smp.lx[k], smp.ly[k]);
-                    SliceSample {
-                        x: smp.x[k] - lx * l.x_b,
-                        y: smp.y[k] - ly * l.y_b,
-                        ax: lx * l.x_a,
-                        ay: ly * l.y_a,
-                        t,
-                        n,
-                    }
-                }
-                None => SliceSample { x: smp.x[k], y: smp.y[k], ax: 0.0, ay: 0.0, t, n },
-            }
-        };
-        self.by_time.clear();
-        if time {
-            for tau in 0..ns {
-                for pixel in 0..p_count {
-                    self.by_time.push(record(&smp.by_time, tau, pixel));
-                }
-            }
-        }
-        self.by_lens.clear();
-        if static_lens && lens.is_some() {
-            for lambda in 0..ns {
-                for pixel in 0..p_count {
-                    self.by_lens.push(record(&smp.by_lens, lambda, pixel));
-                }
-            }
-        }
-    }
-}
-
 /// What every path needs for one bucket: the hider's tables and configuration, the bucket's
 /// samples (as generated and in slice order), its size, and the scratch that receives the
 /// visible points and the statistics.
@@ -244,68 +174,6 @@ struct Bucket<'a> {
 }
 
 impl Hider {
-    /// Port of the tail of `sample`, once a sample is known to be inside: reject a moving
-    /// hither/yon-straddling micropolygon under `original_moving_clip`, clip a crossing one at
-    /// the sample's depth, and push a visible point on list `nsample`. `v` holds the vertices
-    /// relative to the sample, as tested. Returns whether a point was created (otherwise the
-    /// test is a miss, as in Appendix A, where those checks came first and rejected the
-    /// sample whatever the inside test said). Out of line so the test loops stay small.
-    #[inline(never)]
-    fn hit(&self, nsample: usize, s: &Surface, v: &[[f32; 3]; 4], scratch: &mut Scratch) -> bool {
-        if s.crossing && self.config.original_moving_clip && s.mp.has(flags::MOVING) {
-            // Appendix A: a moving micropolygon straddling hither or yon at this sample's time
-            // is rejected outright instead of clipped (appendix-a.md 3.6).
-            let zlo = v[0][2].min(v[1][2]).min(v[2][2]).min(v[3][2]);
-            let zhi = v[0][2].max(v[1][2]).max(v[2][2]).max(v[3][2]);
-            if zlo < self.config.hither || zhi > self.config.yon {
-                return false;
-            }
-        }
-        let (minz, maxz, lerped) = if s.crossing {
-            let z = lerpz(v);
-            scratch.stats.lerps += 1;
-            if !(z >= self.config.hither && z <= self.config.yon) {
-                return false;
-            }
-            (z, z, LERP_DONE)
-        } else {
-            (s.zmin, s.zmax, 0)
-        };
-        let mp = s.mp;
-        let (color, trans) =
-            if mp.has(flags::GOURAUD) { gouraud(v, mp) } else { (mp.color[0], mp.trans[0]) };
-        let index = scratch.points.len() as u32;
-        if scratch.points.len() as u64 >= self.max_points {
-            scratch.stats.dropped_points += 1;
-            return false;
-        }
-        scratch.points.push(VisPoint {
-            v: *v,
-            minz,
-            maxz,
-            color,
-            trans,
-            flags: (mp.flags & !LERP_DONE) | lerped,
-            csg_tree: mp.csg_tree,
-            csg_node: mp.csg_node,
-            glass_opacity: mp.glass_opacity,
-            next: scratch.heads[nsample],
-        });
-        if scratch.occlusion.on {
-            let occ = &mut scratch.occlusion;
-            occ.link(&mut scratch.points, &mut scratch.heads, nsample, index, s.order);
-            if s.occluder {
-                occ.record(nsample, maxz);
-            }
-        } else {
-            scratch.heads[nsample] = index;
-        }
-        if scratch.keep_mp {
-            scratch.point_mp.push(s.index);
-        }
-        true
-    }
-
     /// Port of `VisEndBucket` up to `CSGResolve`: sample every micropolygon of the bucket
     /// (`list` indexes `mpolys`) and resolve each sample. Leaves per-sample composites in
     /// `scratch.rgba` / `scratch.z`, indexed `pixel*NS + s`.
@@ -414,43 +282,6 @@ impl Hider {
         scratch.stats.resolve_ns += t_resolve.elapsed().as_nanos() as u64;
         scratch.samples = samples;
         scratch.slices = slices;
-    }
-}
-
-impl Hider {
-    /// `CSGResolve` of every sample with the AOVs of `plan`: the same composites as the plain
-    /// loop (traced), then each sample's AOV values from its steps.
-    fn resolve_aovs(
-        &self,
-        plan: &AovPlan,
-        (mpolys, data): (&[Micropolygon], &[f32]),
-        resolver: &Resolver,
-        lerps: &mut u64,
-        scratch: &mut Scratch,
-    ) {
-        let n = scratch.heads.len();
-        let channels = plan.channels();
-        scratch.aov.clear();
-        scratch.aov.resize(n * channels, 0.0);
-        scratch.front_z.clear();
-        scratch.front_z.resize(n, f32::INFINITY);
-        let mut steps = std::mem::take(&mut scratch.steps);
-        for k in 0..n {
-            let head = scratch.heads[k];
-            steps.0.clear();
-            let c = if head == NIL {
-                Composite::EMPTY
-            } else {
-                resolve_sample_traced(&mut scratch.points, head, resolver, lerps, &mut steps)
-            };
-            scratch.rgba[k] = [c.rgb[0], c.rgb[1], c.rgb[2], c.alpha];
-            scratch.z[k] = c.z;
-            let sources =
-                Sources { points: &scratch.points, point_mp: &scratch.point_mp, mpolys, data };
-            let out = &mut scratch.aov[k * channels..(k + 1) * channels];
-            scratch.front_z[k] = sources.sample(plan, &steps.0, out);
-        }
-        scratch.steps = steps;
     }
 }
 
@@ -864,20 +695,4 @@ fn transpose(v: &[[f32; 3]; 4]) -> [[f32; 4]; 3] {
         *row = [v[0][a], v[1][a], v[2][a], v[3][a]];
     }
     out
-}
-
-/// Port of `gouraud`: the vertex colours and transmittances weighted by the Shepard weights of
-/// `lerpz` at the sample point.
-#[inline]
-pub fn gouraud(v: &[[f32; 3]; 4], mp: &Micropolygon) -> ([f32; 3], [f32; 3]) {
-    let w = shepard_weights(v);
-    let mut c = [0.0; 3];
-    let mut t = [0.0; 3];
-    for (k, wk) in w.iter().enumerate() {
-        for a in 0..3 {
-            c[a] += wk * mp.color[k][a];
-            t[a] += wk * mp.trans[k][a];
-        }
-    }
-    (c, t)
 }
