@@ -1,5 +1,6 @@
 //! The request loop of the RI state machine: blocks, options, attributes and transformations;
-//! geometry is handed to [`super::primitives`], and each `WorldEnd` to [`super::build`].
+//! geometry is handed to [`super::primitives`], solids and object instances to
+//! [`super::solids`], and each `WorldEnd` to [`super::build`].
 //!
 //! Invariants: every request is handled in the block structure the Specification allows
 //! (options before `WorldBegin`, geometry inside it); the block stack is checked at every
@@ -81,13 +82,13 @@ pub(crate) struct Machine {
     pub(super) build: Option<FrameBuild>,
     frame_number: Option<i32>,
     /// Object definitions: handle -> requests to replay.
-    objects: HashMap<String, Vec<Request>>,
+    pub(super) objects: HashMap<String, Vec<Request>>,
     /// The object definition being recorded.
-    recording: Option<(String, Vec<Request>, usize)>,
+    pub(super) recording: Option<(String, Vec<Request>, usize)>,
     /// `ObjectInstance`s replaying now, one inside the other.
-    instancing: usize,
+    pub(super) instancing: usize,
     /// Requests replayed by object instances in this world block.
-    instanced: usize,
+    pub(super) instanced: usize,
     pub(super) warnings: Vec<Warning>,
     /// Warnings given once per key (unknown shaders, unsupported features).
     pub(super) warned: std::collections::HashSet<String>,
@@ -427,14 +428,14 @@ impl Machine {
         }
     }
 
-    fn push(&mut self, b: Block, at: &Location) {
+    pub(super) fn push(&mut self, b: Block, at: &Location) {
         self.blocks.push((b, at.clone()));
         self.attribute_stack.push(self.attributes.clone());
         self.ctm_stack.push(self.ctm.clone());
     }
 
     /// Closes the innermost block, which must be `b`.
-    fn pop(&mut self, r: &Request, b: Block) -> Result<(), RibError> {
+    pub(super) fn pop(&mut self, r: &Request, b: Block) -> Result<(), RibError> {
         match self.blocks.last().map(|(top, _)| top) {
             Some(top) if *top == b => {}
             Some(top) => {
@@ -621,90 +622,6 @@ impl Machine {
             }
             _ => Err(first.error("geometry must be inside WorldBegin/WorldEnd")),
         }
-    }
-
-    fn solid_begin(&mut self, r: &Request) -> Result<(), RibError> {
-        if !self.in_world() {
-            return Err(r.error("solids must be inside WorldBegin/WorldEnd"));
-        }
-        let op = r.string(0).unwrap_or_default().to_string();
-        if !matches!(op.as_str(), "primitive" | "union" | "intersection" | "difference") {
-            return Err(r.error(format!(
-                "operation must be \"primitive\", \"union\", \"intersection\" or \"difference\", got \"{op}\""
-            )));
-        }
-        if self.build.as_ref().is_some_and(|b| b.solid_depth() >= MAX_SOLID_NESTING) {
-            return Err(r.error(format!("solids nested more than {MAX_SOLID_NESTING} deep")));
-        }
-        self.push(Block::Solid, &r.at);
-        let name = self.attributes.name.clone();
-        if let Some(b) = &mut self.build {
-            b.solid_begin(op, name, r.at.clone());
-        }
-        Ok(())
-    }
-
-    fn solid_end(&mut self, r: &Request) -> Result<(), RibError> {
-        self.pop(r, Block::Solid)?;
-        let b = self.build.as_mut().ok_or_else(|| r.error("no SolidBegin is open"))?;
-        b.solid_end(r)
-    }
-
-    fn object_end(&mut self, r: &Request) -> Result<(), RibError> {
-        let (h, recorded, _) =
-            self.recording.take().ok_or_else(|| r.error("no ObjectBegin is open"))?;
-        self.objects.insert(h, recorded);
-        Ok(())
-    }
-
-    fn object_instance(&mut self, r: &Request) -> Result<(), RibError> {
-        let h = handle(r, 0).ok_or_else(|| r.error("expected a handle"))?;
-        let Some(requests) = self.objects.get(&h).cloned() else {
-            return Err(
-                r.error(format!("no object defined with handle {}", h.trim_start_matches('#')))
-            );
-        };
-        if !self.in_world() {
-            return Err(r.error("instances must be inside WorldBegin/WorldEnd"));
-        }
-        if self.instancing >= MAX_INSTANCE_NESTING {
-            return Err(r.error(format!(
-                "object instances nested more than {MAX_INSTANCE_NESTING} deep (does a \
-                 definition instance itself?)"
-            )));
-        }
-        self.instanced = self.instanced.saturating_add(requests.len());
-        if self.instanced > MAX_INSTANCED_REQUESTS {
-            return Err(r.error(format!(
-                "object instances replay more than {MAX_INSTANCED_REQUESTS} requests in this \
-                 world block"
-            )));
-        }
-        // Replay the definition in its own attribute block.
-        let depth = self.blocks.len();
-        self.push(Block::Attribute, &r.at);
-        self.instancing += 1;
-        let replayed = requests.into_iter().try_for_each(|q| self.request(q));
-        self.instancing -= 1;
-        replayed?;
-        if self.blocks.len() != depth + 1 {
-            return Err(r.error(format!("the definition of object {h} leaves a block open")));
-        }
-        self.pop(r, Block::Attribute)
-    }
-
-    fn procedural(&mut self, r: &Request) -> Result<(), RibError> {
-        let name = r.string(0).unwrap_or_default();
-        if name == "DelayedReadArchive" {
-            let Some(file) = r.strings(1).and_then(|a| a.first()) else {
-                return Err(r.error("DelayedReadArchive needs a file name"));
-            };
-            let path = self.reader.resolve_archive(file, &r.at);
-            return self.reader.push_archive(&path, &r.at);
-        }
-        let w = r.warning(format!("procedural \"{name}\" is not supported: ignored"));
-        self.warn_once(format!("procedural {name}"), w);
-        Ok(())
     }
 
     /// Current space to the model's world at every time of the transformation.

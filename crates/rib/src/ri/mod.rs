@@ -18,6 +18,7 @@ pub(crate) mod geometry;
 mod options;
 mod primitives;
 mod shaders;
+mod solids;
 pub(crate) mod state;
 mod subdivision;
 mod triangulate;

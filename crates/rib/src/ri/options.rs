@@ -1,5 +1,5 @@
 //! Option requests of the RI state machine (Spec 3.2, 4.1): camera, display and hider
-//! options, each kept in the frame's [`FrameOptions`] with where it was set.
+//! options, each kept in the frame's [`FrameOptions`](super::state::FrameOptions) with where it was set.
 //!
 //! Invariant: options are refused inside the world block, where the Specification freezes
 //! them; every value is checked where the model needs it checked first (sizes, counts, names).
