@@ -53,6 +53,11 @@ pub struct Distribution {
     pub mpolys: Vec<f64>,
     /// Grid mean area over rate, one per grid.
     pub grids: Vec<f64>,
+    /// Of `mpolys`, those whose raster bound overlaps the image (what the picture shows;
+    /// a grid that reaches far off screen, or near the eye, has huge micropolygons there).
+    pub on_screen: Vec<f64>,
+    /// Per object (scene order): its micropolygons' summed area over rate, and their count.
+    pub objects: Vec<(f64, u64)>,
     /// Micropolygons skipped (a corner at or behind the eye).
     pub skipped: u64,
 }
@@ -67,7 +72,9 @@ pub fn measure(scene: &Scene) -> Result<Distribution, String> {
     let mut records = recorder.0.into_inner().unwrap_or_else(|e| e.into_inner());
     records.sort_by_key(|a| (a.0, a.2.1, a.2.0));
     let to_camera = camera.world_to_camera();
-    let mut out = Distribution::default();
+    let mut out =
+        Distribution { objects: vec![(0.0, 0); scene.objects.len()], ..Default::default() };
+    let (width, height) = (f64::from(scene.image.width), f64::from(scene.image.height));
     let mut start = 0;
     while start < records.len() {
         let key = records[start].0;
@@ -109,6 +116,17 @@ pub fn measure(scene: &Scene) -> Result<Distribution, String> {
                     (0..4).map(|k| c[k][0] * c[(k + 1) % 4][1] - c[(k + 1) % 4][0] * c[k][1]).sum();
                 let a = 0.5 * twice.abs() / rate;
                 out.mpolys.push(a);
+                let (x0, x1) = c.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                    (lo.min(p[0]), hi.max(p[0]))
+                });
+                let (y0, y1) = c.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                    (lo.min(p[1]), hi.max(p[1]))
+                });
+                if x1 >= 0.0 && x0 <= width && y1 >= 0.0 && y0 <= height {
+                    out.on_screen.push(a);
+                    out.objects[key.0].0 += a;
+                    out.objects[key.0].1 += 1;
+                }
                 sum += a;
                 n += 1;
             }
@@ -173,7 +191,16 @@ pub fn run(root: &Path, args: &[String]) -> Result<(), String> {
         let mut d = measure(&scene).map_err(|e| format!("{name}: {e}"))?;
         println!("{name}:");
         println!("  micropolygons: {}", summary(&mut d.mpolys));
+        println!("  on screen:     {}", summary(&mut d.on_screen));
         println!("  grid means:    {}", summary(&mut d.grids));
+        let by_object: Vec<String> = scene
+            .objects
+            .iter()
+            .zip(&d.objects)
+            .filter(|(_, (_, n))| *n > 0)
+            .map(|(o, (sum, n))| format!("{} {:.3} ({n})", o.name, sum / *n as f64))
+            .collect();
+        println!("  on-screen mean by object: {}", by_object.join(", "));
         if d.skipped > 0 {
             println!("  ({} micropolygons with a corner at or behind the eye skipped)", d.skipped);
         }
