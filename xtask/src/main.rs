@@ -4,12 +4,14 @@
 //! `heavy-motion` as its sphere count grows) and `cargo xtask study` (regenerate the
 //! sampling study's figures in docs/study/), `cargo xtask fuzz` (build the fuzzer with
 //! coverage instrumentation and run it; see docs/reliability.md), `cargo xtask geometry`
-//! (the coverage of small spheres against their radius, docs/geometry.md).
+//! (the coverage of small spheres against their radius, docs/geometry.md), `cargo xtask rate`
+//! (micropolygon areas against the shading rate, docs/geometry.md).
 
 mod bench;
 mod compare;
 mod fuzz;
 mod models;
+mod rate;
 mod study;
 
 use std::process::ExitCode;
@@ -18,7 +20,7 @@ use reyes_testkit::golden::{self, Outcome};
 
 fn usage() -> ExitCode {
     eprintln!(
-        "usage: cargo xtask <golden | bless [SCENE...] | bench [--runs N] [--threads T] [--baseline BIN] [SCENE...] | scaling [--threads T] [N...] | study [--quick] | geometry [--quick] | compare A.exr B.exr [--diff OUT.png] | fuzz [--execs N] [--renders N] [--targets ron,rib,render] [--seed S] [--save] [--time-limit SECS] | fuzz cmin | models [--bench]>"
+        "usage: cargo xtask <golden | bless [SCENE...] | bench [--runs N] [--threads T] [--baseline BIN] [SCENE...] | scaling [--threads T] [N...] | study [--quick] | geometry [--quick] | compare A.exr B.exr [--diff OUT.png] | fuzz [--execs N] [--renders N] [--targets ron,rib,render] [--seed S] [--save] [--time-limit SECS] | fuzz cmin | models [--bench] | rate [SCENE...]>"
     );
     ExitCode::from(2)
 }
@@ -40,6 +42,15 @@ fn main() -> ExitCode {
             Ok(()) => ExitCode::SUCCESS,
             Err(e) => {
                 eprintln!("xtask scaling: {e}");
+                ExitCode::FAILURE
+            }
+        };
+    }
+    if args.first().map(String::as_str) == Some("rate") {
+        return match rate::run(&root, &args[1..]) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(e) => {
+                eprintln!("xtask rate: {e}");
                 ExitCode::FAILURE
             }
         };

@@ -40,9 +40,12 @@
 //!   piece by its control hull, which encloses it whatever its curvature.
 //! * **Split.** A patch straddling hither at any breakpoint (some test z below it, not all)
 //!   is halved along its longer camera-space direction, at most 12 times; then it is diced
-//!   anyway. Otherwise the longest projected row and column over all breakpoints give
-//!   `nu = ceil(len_u / sqrt(rate))`, `nv` likewise (so the grid is near the shading rate at
-//!   every time), `rate` the object's own `shading_rate` or else `hider.shading_rate`, or
+//!   anyway. Otherwise the grid aims at micropolygons of the shading rate's area (RenderMan's
+//!   definition): the mean projected row and column lengths, scaled by the square root of
+//!   the patch's area over their product (shear), the largest over all breakpoints, over
+//!   `sqrt(rate)` give the unrounded counts, and the grid nearest them in area is taken
+//!   (docs/geometry.md, "Dicing to the shading rate"), `rate` the object's own
+//!   `shading_rate` or else `hider.shading_rate`, or
 //!   more where the flatness rule asks for more (`Splitter::with_flatness`: the grid within
 //!   `min(flatness, relative_flatness * extent)` pixels of the true surface);
 //!   above `max_grid_size` micropolygons the patch is halved along the longer projected

@@ -199,3 +199,42 @@ pub fn bucket_of(frame: &Frame, x: f32, y: f32) -> usize {
     let by = ((y + frame.border as f32).floor() as u32 / frame.bucket_h).min(frame.buckets_y - 1);
     (by * frame.buckets_x + bx) as usize
 }
+
+/// The grid the documented rule (docs/geometry.md, "Dicing to the shading rate") gives a
+/// flat patch without crack-free floors or flatness counts whose sides ask for `q_u` and
+/// `q_v` micropolygons (a side's mean raster length over the micropolygon side, which for
+/// an unsheared parallelogram is its side's length): of `floor` and `ceil` of each (at least
+/// 1), the pair whose area is nearest `q_u * q_v` in ratio, then nearest the aspect
+/// `q_u / q_v`, then the one with more along u. Written out independently of
+/// the dicer, in f64. The dicer works in f32, so a case where two pairs of different area
+/// are within 1e-3 of each other in that ratio tests rounding, not the rule, and is refused.
+pub fn rate_grid(q_u: f64, q_v: f64) -> (u64, u64) {
+    let sides = |q: f64| [(q.floor() as u64).max(1), (q.ceil() as u64).max(1)];
+    let mut pairs: Vec<(f64, f64, u64, u64)> = Vec::new();
+    for nu in sides(q_u) {
+        for nv in sides(q_v) {
+            let area = ((nu * nv) as f64 / (q_u * q_v)).ln().abs();
+            let aspect = ((nu as f64 / q_u) / (nv as f64 / q_v)).ln().abs();
+            pairs.push((area, aspect, nu, nv));
+        }
+    }
+    // Ties within f32 rounding of the dicer are ties here too.
+    let near = |a: f64, b: f64| (a - b).abs() <= 1e-9;
+    pairs.sort_by(|a, b| {
+        if !near(a.0, b.0) {
+            a.0.total_cmp(&b.0)
+        } else if !near(a.1, b.1) {
+            a.1.total_cmp(&b.1)
+        } else {
+            b.2.cmp(&a.2)
+        }
+    });
+    let best = pairs[0];
+    for p in &pairs[1..] {
+        if p.2 * p.3 != best.2 * best.3 {
+            assert!(p.0 - best.0 > 1e-3, "{q_u} x {q_v}: too near a tie to tell");
+            break;
+        }
+    }
+    (best.2, best.3)
+}

@@ -453,7 +453,10 @@ fn a_missing_or_short_displacement_bound_warns_and_leaves_no_holes() {
 }
 
 /// The texture cache stays within its bound on a scene with four times its texture memory,
-/// and the picture is the one an unbounded cache gives, for any thread count.
+/// and the picture is the one an unbounded cache gives, for any thread count. The scene's
+/// shading rate makes the lookups' footprints fine enough that the texels they read do not
+/// fit in the bound: 0.15 since dicing aims at the rate's area (issue #13; at 0.25 the
+/// coarser grids read coarser MIP levels, which fit, and nothing is evicted).
 #[test]
 fn the_texture_cache_stays_within_its_bound_on_four_times_its_size() {
     let dir = tempdir();
@@ -480,7 +483,7 @@ fn the_texture_cache_stays_within_its_bound_on_four_times_its_size() {
         parse(&format!(
             "Scene(image: (width: 256, height: 64),
               camera: (eye: (0.0, 0.0, -3.0), look_at: (0.0, 0.0, 0.0), fov: 40.0),
-              hider: (pixel_samples: (2, 2), shading_rate: 0.25),
+              hider: (pixel_samples: (2, 2), shading_rate: 0.15),
               objects: [{}],
               texture_cache: (max_bytes: {bytes}))",
             objects.join(", ")
