@@ -183,8 +183,11 @@ pub struct DiceStats {
     /// Diced cells with a corner displaced further than its object's declared displacement
     /// bound (counted, and still rendered: bounds use the displacement's own bound too).
     pub displacement_escapes: u64,
-    /// Grid vertices shaded (`(nu + 1) (nv + 1)` per grid).
+    /// Grid vertices diced (`(nu + 1) (nv + 1)` per grid).
     pub vertices: u64,
+    /// Of `vertices`, those shaded: the corners of kept micropolygons (a grid is shaded
+    /// after its cells are decided, so vertices only culled micropolygons use are not).
+    pub shaded: u64,
 }
 
 impl DiceStats {
@@ -206,6 +209,7 @@ impl DiceStats {
             bucket_entries,
             displacement_escapes,
             vertices,
+            shaded,
         } = *other;
         self.primitives += primitives;
         self.splits += splits;
@@ -222,6 +226,7 @@ impl DiceStats {
         self.bucket_entries += bucket_entries;
         self.displacement_escapes += displacement_escapes;
         self.vertices += vertices;
+        self.shaded += shaded;
     }
 }
 

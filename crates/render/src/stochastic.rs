@@ -301,7 +301,7 @@ fn render_rows(
         t_hide,
         t_film,
         lookdev: scene.has_lookdev().then(|| LookdevSummary {
-            vertices: dice_stats.vertices,
+            vertices: dice_stats.shaded,
             escapes: dice_stats.displacement_escapes,
             ..Default::default()
         }),
@@ -379,6 +379,8 @@ fn dice_summary(d: &DiceStats) -> DiceSummary {
         splits: d.splits,
         grids: d.grids,
         flatness: d.flatness,
+        vertices: d.vertices,
+        shaded: d.shaded,
         culled: d.culled,
         peak_micropolygons: 0,
         eager: false,
