@@ -971,3 +971,81 @@ fn corner_cubic_negative(sign: f32, from: &Quad, to: &Quad, k: usize) -> bool {
     let margin = -WINDING_MARGIN * scale(from).min(scale(to));
     bern.iter().all(|&c| sign * c < margin)
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::lazy::Dicer;
+    use crate::{DiceOptions, DiceStats};
+
+    /// A scene file of `scenes/`, 120 pixels across.
+    fn scene_file(name: &str) -> reyes_scene::Scene {
+        let root = reyes_testkit::golden::workspace_root();
+        let mut scene = reyes_scene::load(&root.join(format!("scenes/{name}.ron"))).unwrap();
+        let (w, h) = (scene.image.width, scene.image.height);
+        scene.image.width = 120;
+        scene.image.height = (120 * h / w).max(1);
+        scene
+    }
+
+    fn dice(scene: &reyes_scene::Scene, all: bool) -> (Vec<crate::lazy::NewGrid>, DiceStats) {
+        let frame = reyes_testkit::fixtures::frame_for(scene);
+        let options = DiceOptions { shade_every_vertex: all, ..Default::default() };
+        let (wave, _, _) = Dicer::new_eager(scene, &frame, &options).unwrap().dice_all();
+        (wave.grids, wave.stats)
+    }
+
+    /// Every vertex a kept micropolygon uses is shaded and no other: the others keep zero
+    /// colour, transmittance and AOVs, and the count is theirs. Shading every vertex instead
+    /// gives every kept micropolygon and its AOVs bit for bit.
+    #[test]
+    fn only_the_corners_of_kept_cells_are_shaded() {
+        // Back faces and off-screen cells (spheres), motion (cells kept over part of the
+        // shutter), AOVs, displacement and texture maps.
+        for name in ["spheres", "motion-blur", "aovs", "lookdev"] {
+            let scene = scene_file(name);
+            let (grids, stats) = dice(&scene, false);
+            let (all_grids, all_stats) = dice(&scene, true);
+            let mut shaded = 0u64;
+            let mut unused = 0u64;
+            for g in grids.iter().map(|g| &g.grid) {
+                let st = g.aov_stride;
+                let mut used = vec![false; g.count as usize];
+                for k in &g.kept {
+                    for c in g.corners(k.cell) {
+                        used[c] = true;
+                    }
+                }
+                for (c, &u) in used.iter().enumerate() {
+                    if u {
+                        shaded += 1;
+                    } else {
+                        unused += 1;
+                        assert_eq!((g.color[c], g.trans[c]), ([0.0; 3], [0.0; 3]), "{name}");
+                        assert!(g.aov[c * st..(c + 1) * st].iter().all(|&a| a == 0.0), "{name}");
+                    }
+                }
+            }
+            assert_eq!(stats.shaded, shaded, "{name}");
+            assert!(stats.shaded < stats.vertices, "{name}: every vertex used");
+            assert!(unused > 0, "{name}");
+            assert_eq!(all_stats.shaded, all_stats.vertices, "{name}");
+            assert_eq!(DiceStats { shaded: 0, ..stats }, DiceStats { shaded: 0, ..all_stats });
+            assert_eq!(grids.len(), all_grids.len(), "{name}");
+            let (mut a, mut b) = (Vec::new(), Vec::new());
+            for (g, h) in grids.iter().zip(&all_grids) {
+                assert_eq!(g.key, h.key, "{name}");
+                assert_eq!(g.grid.len(), h.grid.len(), "{name}");
+                for k in 0..g.grid.len() {
+                    let (p, q) = (g.grid.micropolygon(k), h.grid.micropolygon(k));
+                    assert_eq!(bytemuck::bytes_of(&p), bytemuck::bytes_of(&q), "{name}");
+                    a.clear();
+                    b.clear();
+                    g.grid.micropolygon_aovs(k, &mut a);
+                    h.grid.micropolygon_aovs(k, &mut b);
+                    let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                    assert_eq!(bits(&a), bits(&b), "{name}");
+                }
+            }
+        }
+    }
+}

@@ -109,6 +109,7 @@ pub fn render_diced(
 ) -> Result<Rendered, RenderError> {
     let pool = Pool::new(opts.threads)?;
     let mut dice_options = *dice_options;
+    dice_options.shade_every_vertex |= opts.shade_every_vertex;
     if let Some(limit) = opts.memory_limit {
         let threads = opts.threads.unwrap_or_else(|| pool.install(rayon::current_num_threads));
         let left = crate::budget::Estimate::new(scene, threads).micropolygons_left(limit);
