@@ -1,10 +1,12 @@
-//! Dice stage: evaluate, shade and project a patch's vertex grid at every breakpoint of its
-//! motion, and emit its micropolygons, one per segment between breakpoints.
+//! Dice stage: evaluate and project a patch's vertex grid at every breakpoint of its
+//! motion, emit its micropolygons, one per segment between breakpoints, and then shade the
+//! vertices the kept ones use.
 //!
 //! Invariants: vertex `k` of the micropolygon of grid cell `(i, j)` is grid vertex
 //! `(i,j), (i+1,j), (i+1,j+1), (i,j+1)` for `k = 0..4`, stored as (raster x, raster y,
 //! eye z); no vertex with `z <= 0` is ever projected; colours come from the geometry at
-//! shutter open (time 0) and are the same in every segment. For a segment `[t_a, t_b]` an
+//! shutter open (time 0) and are the same in every segment; a vertex no kept micropolygon
+//! uses is not shaded (its colour, transmittance and AOVs are zero, and never read). For a segment `[t_a, t_b]` an
 //! emitted micropolygon has `v` = the positions at `t_a`, `speed` = positions at `t_b` minus
 //! those at `t_a`, `time = [t_a, t_b]`, and `MOVING` iff some speed is non-zero or the segment
 //! is not the whole shutter (a moving cell that comes nearer than `hither/2` during its
@@ -495,6 +497,8 @@ impl<'b> Emitter<'b> {
     /// kept micropolygons use (every vertex under [`Emitter::shade_all`]): colour and
     /// transmittance (premultiplied, with the object's emission), and the AOVs. `opens` holds
     /// each vertex's surface point, from [`Emitter::dice`].
+    // Once per grid, and out of line, so that profiles show shading apart from dicing.
+    #[inline(never)]
     #[allow(clippy::too_many_arguments)]
     fn shade(
         &mut self,

@@ -49,14 +49,17 @@
 //!   direction (at most 40 splits deep, beyond which the grid is shrunk). One decision holds
 //!   for every breakpoint, so all times share one grid topology.
 //! * **Dice.** The `(nu+1) x (nv+1)` vertex grid is evaluated and projected at every
-//!   breakpoint (perspective or orthographic, through the screen window: see `camera.rs`),
-//!   shaded once in world space at shutter open (t = 0) under the object's light set, and
-//!   emitted as `nu x nv` micropolygons per segment
+//!   breakpoint (perspective or orthographic, through the screen window: see `camera.rs`)
+//!   and emitted as `nu x nv` micropolygons per segment
 //!   `[t_a, t_b]`: `v` the positions at `t_a`, `speed` the displacement to `t_b`,
 //!   `time = [t_a, t_b]`, `MOVING` if any speed is non-zero or the segment is not the whole
 //!   shutter. Consecutive segments over which a micropolygon does not move are merged; a
 //!   micropolygon still over the whole shutter is one record with time `[0, 1]` and zero
 //!   speed, so a still scene diced exactly as before motion existed.
+//! * **Shade.** Once every cell of a grid is decided (kept, or culled below), the vertices
+//!   the kept micropolygons use are shaded once in world space at shutter open (t = 0) under
+//!   the object's light set; the others are not shaded at all (cull before shading, as PRMan
+//!   and Pixie do). [`DiceStats::shaded`] counts the vertices shaded.
 //!
 //! Eye plane: no vertex with `z <= 0` is projected. A still micropolygon with a vertex nearer
 //! than `hither / 2` is dropped; a moving one keeps the part of its segment during which
