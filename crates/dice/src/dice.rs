@@ -514,7 +514,10 @@ impl<'b> Emitter<'b> {
         g.aov.resize(count * stride, 0.0);
         let mut values = Vec::with_capacity(stride);
         let mut shaded = 0;
-        for (vertex, _) in used.iter().enumerate().filter(|(_, used)| **used) {
+        for vertex in 0..count {
+            if !used[vertex] {
+                continue;
+            }
             shaded += 1;
             let (i, j) = (vertex % (nu + 1), vertex / (nu + 1));
             let (u, v) = (Patch::at(patch.u, i, nu), Patch::at(patch.v, j, nv));
