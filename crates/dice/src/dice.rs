@@ -110,26 +110,23 @@ struct Kept {
     time: [f32; 2],
 }
 
-/// A grid vertex at shutter open, where it is shaded: the point as evaluated (where texture
-/// maps are looked up, before displacement), and the displaced object-space position, normal
-/// and tint. Both passes of [`Emitter::dice`] take it from here, the first for the positions
-/// and the back-face calibration, the last again for the vertices it shades (the same
-/// arithmetic on the same inputs, so the same bits): recomputing it for the vertices shaded
-/// costs less than keeping it for every vertex.
-#[inline(always)]
-fn open_point(
-    surface: &crate::shapes::Surface,
-    displaced: Option<&displace::Displaced>,
-    (u, v): (f32, f32),
-    vertex: usize,
-) -> (Vec3, crate::shapes::SurfacePoint) {
-    let mut sp = surface.eval(u, v);
-    let p_lookup = sp.p;
-    if let Some(d) = displaced {
-        sp.p = d.position(0, vertex).unwrap_or(sp.p);
-        sp.n = d.normal(vertex);
-    }
-    (p_lookup, sp)
+/// What shading a vertex at shutter open needs, kept from its evaluation in
+/// [`Emitter::dice`] until its grid's cells are decided.
+#[derive(Debug, Clone, Copy)]
+struct Open {
+    /// Object-space position as evaluated, before displacement: where texture maps are
+    /// looked up.
+    p_lookup: Vec3,
+    /// Object-space position, displaced.
+    p_object: Vec3,
+    /// Colour multiplying the material colour (mesh vertex colours; white otherwise).
+    tint: Vec3,
+    /// World-space position (displaced) and its camera-space one: the surface point, not
+    /// the crack-free corner on a side's polyline.
+    p_world: Vec3,
+    p_shaded: Vec3,
+    /// World-space normal (displaced; not normalised).
+    n_world: Vec3,
 }
 
 /// [`Kept::to`] of a micropolygon that does not move.
@@ -384,6 +381,8 @@ impl<'b> Emitter<'b> {
         // Cosine between each vertex's normal and the direction to the eye at shutter open,
         // to calibrate the grid's winding (see `calibrate`); only when culling.
         let mut cosines = Vec::new();
+        // What shading each vertex at shutter open will need, once the cells are decided.
+        let mut opens = Vec::with_capacity(count);
         // Look development hook (crate::displace): the grid displaced along its normals at
         // every breakpoint, and its shading normals recomputed, before anything is shaded
         // or projected; the lookups' footprint is the grid's parameter spacing.
@@ -401,17 +400,23 @@ impl<'b> Emitter<'b> {
                     if b == 0 {
                         // Shutter open, where the vertex is shaded (REYES shades once, before
                         // motion): the surface point, displaced, and its normal.
+                        let mut sp = pose.surface.eval(u, v);
                         let vertex = j * (nu + 1) + i;
-                        let (_, sp) = open_point(pose.surface, displaced.as_ref(), (u, v), vertex);
                         // Crack-free dicing: a boundary vertex lies on its side's polyline,
                         // up to the edge tolerance off the surface; it is shaded (and its
                         // AOVs taken) at the surface point, so that rays it spawns leave from
                         // the surface, not from under it.
                         let on_polyline = boundary(0, u, v, i, j);
-                        let (p_world, p_surface) = pose.moment.world_and_camera(sp.p);
+                        // Texture maps are looked up at the undisplaced point.
+                        let p_lookup = sp.p;
+                        if let Some(d) = &displaced {
+                            sp.p = d.position(0, vertex).unwrap_or(sp.p);
+                            sp.n = d.normal(vertex);
+                        }
+                        let (p_world, p_shaded) = pose.moment.world_and_camera(sp.p);
                         let p_camera = match on_polyline {
                             Some(p) => pose.moment.world_and_camera(p).1,
-                            None => p_surface,
+                            None => p_shaded,
                         };
                         let n_world = object.normal_to_world * sp.n;
                         if object.cull_back {
@@ -425,6 +430,14 @@ impl<'b> Emitter<'b> {
                         if moving {
                             g.cam.push(p_camera);
                         }
+                        opens.push(Open {
+                            p_lookup,
+                            p_object: sp.p,
+                            tint: sp.tint,
+                            p_world,
+                            p_shaded,
+                            n_world,
+                        });
                     } else {
                         let p_object = match &displaced {
                             Some(d) => d.position(b, j * (nu + 1) + i),
@@ -476,14 +489,14 @@ impl<'b> Emitter<'b> {
         }
         self.quads = quads;
         if let Some(open) = poses.first() {
-            self.shade(camera, object, hook, open, patch, (nu, nv), displaced.as_ref());
+            self.shade(camera, object, hook, open, patch, (nu, nv), &opens);
         }
     }
 
     /// Shade, at shutter open (`open`, the first pose), the vertices of the grid that its
     /// kept micropolygons use (every vertex under [`Emitter::shade_all`]): colour and
-    /// transmittance (premultiplied, with the object's emission), and the AOVs; `displaced`
-    /// is the grid's displacement ([`Emitter::dice`]).
+    /// transmittance (premultiplied, with the object's emission), and the AOVs. `opens` holds
+    /// each vertex's surface point, from [`Emitter::dice`].
     // Once per grid, and out of line, so that profiles show shading apart from dicing.
     #[inline(never)]
     #[allow(clippy::too_many_arguments)]
@@ -495,9 +508,9 @@ impl<'b> Emitter<'b> {
         open: &Pose<'_>,
         patch: &Patch,
         (nu, nv): (usize, usize),
-        displaced: Option<&displace::Displaced>,
+        opens: &[Open],
     ) {
-        let count = (nu + 1) * (nv + 1);
+        let count = opens.len();
         let mut used = vec![self.shade_all; count];
         if !self.shade_all {
             for k in &self.grid.kept {
@@ -514,19 +527,16 @@ impl<'b> Emitter<'b> {
         g.aov.resize(count * stride, 0.0);
         let mut values = Vec::with_capacity(stride);
         let mut shaded = 0;
-        for vertex in 0..count {
+        for (vertex, o) in opens.iter().enumerate() {
             if !used[vertex] {
                 continue;
             }
             shaded += 1;
             let (i, j) = (vertex % (nu + 1), vertex / (nu + 1));
             let (u, v) = (Patch::at(patch.u, i, nu), Patch::at(patch.v, j, nv));
-            let (p_lookup, sp) = open_point(open.surface, displaced, (u, v), vertex);
-            let (p_world, p_shaded) = open.moment.world_and_camera(sp.p);
-            let n_world = object.normal_to_world * sp.n;
             let looked = object.look.as_ref().map_or(Looked::NONE, |l| {
                 let (uv, duv) = open.surface.st(u, v, duv);
-                l.object.looked(&l.system, &At { uv, duv, p_object: p_lookup })
+                l.object.looked(&l.system, &At { uv, duv, p_object: o.p_lookup })
             });
             // The shader face-forwards the normal toward the eye (two-sided), which is what
             // CSG needs: where a difference A - B shows B's surface through a hole in A, the
@@ -534,7 +544,7 @@ impl<'b> Emitter<'b> {
             // normal there is B's inward one. The geometric (outward) normal itself is not
             // stored: the orientation survives only in the vertex winding.
             let (mut color, trans) = match &hook {
-                None => object.shader.shade_looked(p_world, n_world, sp.tint, &looked),
+                None => object.shader.shade_looked(o.p_world, o.n_world, o.tint, &looked),
                 Some(hook) => hook.shader.shade(&VertexContext {
                     object: hook.object,
                     surface: hook.surface,
@@ -544,10 +554,10 @@ impl<'b> Emitter<'b> {
                     j: j as u32,
                     nu: nu as u32,
                     nv: nv as u32,
-                    p_world,
-                    n_world: n_world.normalize_or_zero(),
-                    p_object: sp.p,
-                    tint: sp.tint * looked.color,
+                    p_world: o.p_world,
+                    n_world: o.n_world.normalize_or_zero(),
+                    p_object: o.p_object,
+                    tint: o.tint * looked.color,
                     looked,
                 }),
             };
@@ -561,18 +571,18 @@ impl<'b> Emitter<'b> {
             g.trans[vertex] = trans;
             if let Some((layout, ids)) = &object.aov {
                 values.clear();
-                let n_camera = world_to_camera.transform_vector3(n_world).normalize_or_zero();
+                let n_camera = world_to_camera.transform_vector3(o.n_world).normalize_or_zero();
                 values.extend_from_slice(&n_camera.to_array());
-                values.extend_from_slice(&p_shaded.to_array());
+                values.extend_from_slice(&o.p_shaded.to_array());
                 values.extend_from_slice(&[u, v, ids[0], ids[1]]);
                 for group in &layout.groups {
                     // Local illumination's terms; the ray-traced shader's are not split (the
                     // render refuses component AOVs with it).
                     let terms = match &hook {
                         None => object.shader.components_looked(
-                            p_world,
-                            n_world,
-                            sp.tint,
+                            o.p_world,
+                            o.n_world,
+                            o.tint,
                             group.as_deref(),
                             &looked,
                         ),
