@@ -401,6 +401,7 @@ fn render_frame(
         done: checkpoint.as_ref().map(|_| &done),
         on_result: checkpoint.as_ref().map(|_| &save as &reyes_render::OnResult),
         keep_buckets: args.tile.is_some(),
+        shade_every_vertex: false,
     };
     let started = Instant::now();
     let rendered = render(scene, &opts);

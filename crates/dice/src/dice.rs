@@ -1,10 +1,12 @@
-//! Dice stage: evaluate, shade and project a patch's vertex grid at every breakpoint of its
-//! motion, and emit its micropolygons, one per segment between breakpoints.
+//! Dice stage: evaluate and project a patch's vertex grid at every breakpoint of its
+//! motion, emit its micropolygons, one per segment between breakpoints, and then shade the
+//! vertices the kept ones use.
 //!
 //! Invariants: vertex `k` of the micropolygon of grid cell `(i, j)` is grid vertex
 //! `(i,j), (i+1,j), (i+1,j+1), (i,j+1)` for `k = 0..4`, stored as (raster x, raster y,
 //! eye z); no vertex with `z <= 0` is ever projected; colours come from the geometry at
-//! shutter open (time 0) and are the same in every segment. For a segment `[t_a, t_b]` an
+//! shutter open (time 0) and are the same in every segment; a vertex no kept micropolygon
+//! uses is not shaded (its colour, transmittance and AOVs are zero, and never read). For a segment `[t_a, t_b]` an
 //! emitted micropolygon has `v` = the positions at `t_a`, `speed` = positions at `t_b` minus
 //! those at `t_a`, `time = [t_a, t_b]`, and `MOVING` iff some speed is non-zero or the segment
 //! is not the whole shutter (a moving cell that comes nearer than `hither/2` during its
@@ -106,6 +108,25 @@ struct Kept {
     flags: u32,
     /// Normalised shutter times of the segment.
     time: [f32; 2],
+}
+
+/// What shading a vertex at shutter open needs, kept from its evaluation in
+/// [`Emitter::dice`] until its grid's cells are decided.
+#[derive(Debug, Clone, Copy)]
+struct Open {
+    /// Object-space position as evaluated, before displacement: where texture maps are
+    /// looked up.
+    p_lookup: Vec3,
+    /// Object-space position, displaced.
+    p_object: Vec3,
+    /// Colour multiplying the material colour (mesh vertex colours; white otherwise).
+    tint: Vec3,
+    /// World-space position (displaced) and its camera-space one: the surface point, not
+    /// the crack-free corner on a side's polyline.
+    p_world: Vec3,
+    p_shaded: Vec3,
+    /// World-space normal (displaced; not normalised).
+    n_world: Vec3,
 }
 
 /// [`Kept::to`] of a micropolygon that does not move.
@@ -262,6 +283,10 @@ pub(crate) struct Emitter<'b> {
     /// A's `ALPHABETA`: straight in camera space), not linearly in raster: the back-face
     /// test follows ([`Emitter::backfacing`]).
     pub warp: bool,
+    /// Grid vertices shaded (those the kept micropolygons use).
+    pub shaded: u64,
+    /// Shade every vertex of a grid, used or not ([`crate::DiceOptions::shade_every_vertex`]).
+    pub shade_all: bool,
 }
 
 impl<'b> Emitter<'b> {
@@ -295,13 +320,27 @@ impl<'b> Emitter<'b> {
             cull: None,
             camera: None,
             warp: false,
+            shaded: 0,
+            shade_all: false,
         }
     }
 
     /// Dice `patch` of surface `surface` into `nu x nv` micropolygons at every breakpoint of
-    /// its motion (`poses`, in time order, the first at time 0), shade at time 0, and emit
-    /// into [`Emitter::grid`] (with their buckets in `ranges`) one micropolygon per cell and
-    /// segment (merging still segments), in cell order, then time order.
+    /// its motion (`poses`, in time order, the first at time 0), emit into [`Emitter::grid`]
+    /// (with their buckets in `ranges`) one micropolygon per cell and segment (merging still
+    /// segments), in cell order, then time order, and shade at time 0 the vertices the kept
+    /// micropolygons use.
+    ///
+    /// Order (PRMan's and Pixie's: cull before shading): first every vertex is evaluated,
+    /// displaced and projected at every breakpoint, with its normal and direction to the eye
+    /// at shutter open for the back-face calibration; then the winding is calibrated and
+    /// every cell decided (depth limits, back faces, buckets); only then are the vertices
+    /// that some kept micropolygon uses shaded ([`Emitter::shade`]). The others are left at
+    /// zero colour, transmittance and AOVs, which nothing reads: [`Grid::micropolygon`] and
+    /// [`Grid::micropolygon_aovs`] read only a kept cell's corners, and the bucketer only
+    /// positions. Shading a vertex depends only on its own inputs (the [`VertexShader`]
+    /// seam's invariant: the surface point, its grid's rectangle and its `(i, j)`), so each
+    /// shaded vertex gets the values it had when every vertex was shaded.
     pub fn dice(
         &mut self,
         camera: &CameraSetup,
@@ -319,9 +358,7 @@ impl<'b> Emitter<'b> {
         g.count = count as u32;
         g.labels = object.labels;
         g.color.clear();
-        g.color.reserve_exact(count);
         g.trans.clear();
-        g.trans.reserve_exact(count);
         g.pos.clear();
         g.pos.reserve_exact(count * poses.len());
         g.kept.clear();
@@ -331,8 +368,6 @@ impl<'b> Emitter<'b> {
         let moving = poses.len() > 1;
         g.aov.clear();
         g.aov_stride = object.aov.as_ref().map_or(0, |(a, _)| a.stride());
-        g.aov.reserve_exact(count * g.aov_stride);
-        let world_to_camera = camera.world_to_camera();
         self.ranges.clear();
         self.ranges.reserve_exact(nu * nv);
         let project = |p_camera: Vec3| {
@@ -346,13 +381,14 @@ impl<'b> Emitter<'b> {
         // Cosine between each vertex's normal and the direction to the eye at shutter open,
         // to calibrate the grid's winding (see `calibrate`); only when culling.
         let mut cosines = Vec::new();
+        // What shading each vertex at shutter open will need, once the cells are decided.
+        let mut opens = Vec::with_capacity(count);
         // Look development hook (crate::displace): the grid displaced along its normals at
         // every breakpoint, and its shading normals recomputed, before anything is shaded
         // or projected; the lookups' footprint is the grid's parameter spacing.
         let displaced =
             object.look.as_ref().and_then(|l| displace::grid(l, poses, patch, (nu, nv)));
         self.escaped += displaced.as_ref().map_or(0, |d| d.escaped);
-        let duv = [(patch.u[1] - patch.u[0]) / nu as f32, (patch.v[1] - patch.v[0]) / nv as f32];
         let boundary = |b: usize, u: f32, v: f32, i: usize, j: usize| {
             patch.sides.as_ref().and_then(|s| s.boundary(b, (u, v), (i, j), (nu, nv)))
         };
@@ -362,13 +398,8 @@ impl<'b> Emitter<'b> {
                 for i in 0..=nu {
                     let u = Patch::at(patch.u, i, nu);
                     if b == 0 {
-                        // Shutter open: shade here (REYES shades once, before motion). The
-                        // shader face-forwards the normal toward the eye (two-sided), which is
-                        // what CSG needs: where a difference A - B shows B's surface through
-                        // a hole in A, the eye sees B from B's inside, i.e. the outside of
-                        // the result, whose outward normal there is B's inward one. The
-                        // geometric (outward) normal itself is not stored: the orientation
-                        // survives only in the vertex winding.
+                        // Shutter open, where the vertex is shaded (REYES shades once, before
+                        // motion): the surface point, displaced, and its normal.
                         let mut sp = pose.surface.eval(u, v);
                         let vertex = j * (nu + 1) + i;
                         // Crack-free dicing: a boundary vertex lies on its side's polyline,
@@ -376,10 +407,8 @@ impl<'b> Emitter<'b> {
                         // AOVs taken) at the surface point, so that rays it spawns leave from
                         // the surface, not from under it.
                         let on_polyline = boundary(0, u, v, i, j);
-                        let looked = object.look.as_ref().map_or(Looked::NONE, |l| {
-                            let (uv, duv) = pose.surface.st(u, v, duv);
-                            l.object.looked(&l.system, &At { uv, duv, p_object: sp.p })
-                        });
+                        // Texture maps are looked up at the undisplaced point.
+                        let p_lookup = sp.p;
                         if let Some(d) = &displaced {
                             sp.p = d.position(0, vertex).unwrap_or(sp.p);
                             sp.n = d.normal(vertex);
@@ -390,30 +419,6 @@ impl<'b> Emitter<'b> {
                             None => p_shaded,
                         };
                         let n_world = object.normal_to_world * sp.n;
-                        let (mut color, trans) = match &hook {
-                            None => object.shader.shade_looked(p_world, n_world, sp.tint, &looked),
-                            Some(hook) => hook.shader.shade(&VertexContext {
-                                object: hook.object,
-                                surface: hook.surface,
-                                patch_u: patch.u,
-                                patch_v: patch.v,
-                                i: i as u32,
-                                j: j as u32,
-                                nu: nu as u32,
-                                nv: nv as u32,
-                                p_world,
-                                n_world: n_world.normalize_or_zero(),
-                                p_object: sp.p,
-                                tint: sp.tint * looked.color,
-                                looked,
-                            }),
-                        };
-                        if let Some(e) = object.look.as_ref().and_then(|l| l.object.emission) {
-                            // Emission, premultiplied by the opacity (1 - trans).
-                            for a in 0..3 {
-                                color[a] += e[a] * (1.0 - trans[a]);
-                            }
-                        }
                         if object.cull_back {
                             let to_eye = camera.viewer().seen_from(p_world) - p_world;
                             cosines.push(
@@ -422,35 +427,17 @@ impl<'b> Emitter<'b> {
                             );
                         }
                         g.pos.push(project(p_camera));
-                        g.color.push(color);
-                        g.trans.push(trans);
                         if moving {
                             g.cam.push(p_camera);
                         }
-                        if let Some((layout, ids)) = &object.aov {
-                            let n_camera =
-                                world_to_camera.transform_vector3(n_world).normalize_or_zero();
-                            g.aov.extend_from_slice(&n_camera.to_array());
-                            g.aov.extend_from_slice(&p_shaded.to_array());
-                            g.aov.extend_from_slice(&[u, v, ids[0], ids[1]]);
-                            for group in &layout.groups {
-                                // Local illumination's terms; the ray-traced shader's are not
-                                // split (the render refuses component AOVs with it).
-                                let terms = match &hook {
-                                    None => object.shader.components_looked(
-                                        p_world,
-                                        n_world,
-                                        sp.tint,
-                                        group.as_deref(),
-                                        &looked,
-                                    ),
-                                    Some(_) => [glam::Vec3::ZERO; 3],
-                                };
-                                for t in terms {
-                                    g.aov.extend_from_slice(&t.to_array());
-                                }
-                            }
-                        }
+                        opens.push(Open {
+                            p_lookup,
+                            p_object: sp.p,
+                            tint: sp.tint,
+                            p_world,
+                            p_shaded,
+                            n_world,
+                        });
                     } else {
                         let p_object = match &displaced {
                             Some(d) => d.position(b, j * (nu + 1) + i),
@@ -465,6 +452,10 @@ impl<'b> Emitter<'b> {
                 }
             }
         }
+        // Until shading, every vertex has zero colour and transmittance: the bucketer builds
+        // each candidate micropolygon's record, colours included, to read its bound.
+        g.color.resize(count, [0.0; 3]);
+        g.trans.resize(count, [0.0; 3]);
         if object.overlap && patch.sides.is_some() {
             for b in 0..poses.len() {
                 overlap(&mut self.grid.pos[b * count..(b + 1) * count], nu, nv);
@@ -497,6 +488,114 @@ impl<'b> Emitter<'b> {
             }
         }
         self.quads = quads;
+        if let Some(open) = poses.first() {
+            self.shade(camera, object, hook, open, patch, (nu, nv), &opens);
+        }
+    }
+
+    /// Shade, at shutter open (`open`, the first pose), the vertices of the grid that its
+    /// kept micropolygons use (every vertex under [`Emitter::shade_all`]): colour and
+    /// transmittance (premultiplied, with the object's emission), and the AOVs. `opens` holds
+    /// each vertex's surface point, from [`Emitter::dice`].
+    // Once per grid, and out of line, so that profiles show shading apart from dicing.
+    #[inline(never)]
+    #[allow(clippy::too_many_arguments)]
+    fn shade(
+        &mut self,
+        camera: &CameraSetup,
+        object: &ObjectContext<'_>,
+        hook: Option<Hook<'_>>,
+        open: &Pose<'_>,
+        patch: &Patch,
+        (nu, nv): (usize, usize),
+        opens: &[Open],
+    ) {
+        let count = opens.len();
+        let mut used = vec![self.shade_all; count];
+        if !self.shade_all {
+            for k in &self.grid.kept {
+                for c in self.grid.corners(k.cell) {
+                    used[c] = true;
+                }
+            }
+        }
+        let world_to_camera = camera.world_to_camera();
+        let duv = [(patch.u[1] - patch.u[0]) / nu as f32, (patch.v[1] - patch.v[0]) / nv as f32];
+        let g = &mut self.grid;
+        let stride = g.aov_stride;
+        g.aov.reserve_exact(count * stride);
+        g.aov.resize(count * stride, 0.0);
+        let mut values = Vec::with_capacity(stride);
+        let mut shaded = 0;
+        for (vertex, o) in opens.iter().enumerate() {
+            if !used[vertex] {
+                continue;
+            }
+            shaded += 1;
+            let (i, j) = (vertex % (nu + 1), vertex / (nu + 1));
+            let (u, v) = (Patch::at(patch.u, i, nu), Patch::at(patch.v, j, nv));
+            let looked = object.look.as_ref().map_or(Looked::NONE, |l| {
+                let (uv, duv) = open.surface.st(u, v, duv);
+                l.object.looked(&l.system, &At { uv, duv, p_object: o.p_lookup })
+            });
+            // The shader face-forwards the normal toward the eye (two-sided), which is what
+            // CSG needs: where a difference A - B shows B's surface through a hole in A, the
+            // eye sees B from B's inside, i.e. the outside of the result, whose outward
+            // normal there is B's inward one. The geometric (outward) normal itself is not
+            // stored: the orientation survives only in the vertex winding.
+            let (mut color, trans) = match &hook {
+                None => object.shader.shade_looked(o.p_world, o.n_world, o.tint, &looked),
+                Some(hook) => hook.shader.shade(&VertexContext {
+                    object: hook.object,
+                    surface: hook.surface,
+                    patch_u: patch.u,
+                    patch_v: patch.v,
+                    i: i as u32,
+                    j: j as u32,
+                    nu: nu as u32,
+                    nv: nv as u32,
+                    p_world: o.p_world,
+                    n_world: o.n_world.normalize_or_zero(),
+                    p_object: o.p_object,
+                    tint: o.tint * looked.color,
+                    looked,
+                }),
+            };
+            if let Some(e) = object.look.as_ref().and_then(|l| l.object.emission) {
+                // Emission, premultiplied by the opacity (1 - trans).
+                for a in 0..3 {
+                    color[a] += e[a] * (1.0 - trans[a]);
+                }
+            }
+            g.color[vertex] = color;
+            g.trans[vertex] = trans;
+            if let Some((layout, ids)) = &object.aov {
+                values.clear();
+                let n_camera = world_to_camera.transform_vector3(o.n_world).normalize_or_zero();
+                values.extend_from_slice(&n_camera.to_array());
+                values.extend_from_slice(&o.p_shaded.to_array());
+                values.extend_from_slice(&[u, v, ids[0], ids[1]]);
+                for group in &layout.groups {
+                    // Local illumination's terms; the ray-traced shader's are not split (the
+                    // render refuses component AOVs with it).
+                    let terms = match &hook {
+                        None => object.shader.components_looked(
+                            o.p_world,
+                            o.n_world,
+                            o.tint,
+                            group.as_deref(),
+                            &looked,
+                        ),
+                        Some(_) => [glam::Vec3::ZERO; 3],
+                    };
+                    for t in terms {
+                        values.extend_from_slice(&t.to_array());
+                    }
+                }
+                g.aov[vertex * stride..(vertex + 1) * stride].copy_from_slice(&values);
+            }
+        }
+        self.shaded += shaded;
     }
 
     /// Emit cell `cell` from its positions at each breakpoint (`(time, quad)`, in time
@@ -875,4 +974,82 @@ fn corner_cubic_negative(sign: f32, from: &Quad, to: &Quad, k: usize) -> bool {
     };
     let margin = -WINDING_MARGIN * scale(from).min(scale(to));
     bern.iter().all(|&c| sign * c < margin)
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::lazy::Dicer;
+    use crate::{DiceOptions, DiceStats};
+
+    /// A scene file of `scenes/`, 120 pixels across.
+    fn scene_file(name: &str) -> reyes_scene::Scene {
+        let root = reyes_testkit::golden::workspace_root();
+        let mut scene = reyes_scene::load(&root.join(format!("scenes/{name}.ron"))).unwrap();
+        let (w, h) = (scene.image.width, scene.image.height);
+        scene.image.width = 120;
+        scene.image.height = (120 * h / w).max(1);
+        scene
+    }
+
+    fn dice(scene: &reyes_scene::Scene, all: bool) -> (Vec<crate::lazy::NewGrid>, DiceStats) {
+        let frame = reyes_testkit::fixtures::frame_for(scene);
+        let options = DiceOptions { shade_every_vertex: all, ..Default::default() };
+        let (wave, _, _) = Dicer::new_eager(scene, &frame, &options).unwrap().dice_all();
+        (wave.grids, wave.stats)
+    }
+
+    /// Every vertex a kept micropolygon uses is shaded and no other: the others keep zero
+    /// colour, transmittance and AOVs, and the count is theirs. Shading every vertex instead
+    /// gives every kept micropolygon and its AOVs bit for bit.
+    #[test]
+    fn only_the_corners_of_kept_cells_are_shaded() {
+        // Back faces and off-screen cells (spheres), motion (cells kept over part of the
+        // shutter), AOVs, displacement and texture maps.
+        for name in ["spheres", "motion-blur", "aovs", "lookdev"] {
+            let scene = scene_file(name);
+            let (grids, stats) = dice(&scene, false);
+            let (all_grids, all_stats) = dice(&scene, true);
+            let mut shaded = 0u64;
+            let mut unused = 0u64;
+            for g in grids.iter().map(|g| &g.grid) {
+                let st = g.aov_stride;
+                let mut used = vec![false; g.count as usize];
+                for k in &g.kept {
+                    for c in g.corners(k.cell) {
+                        used[c] = true;
+                    }
+                }
+                for (c, &u) in used.iter().enumerate() {
+                    if u {
+                        shaded += 1;
+                    } else {
+                        unused += 1;
+                        assert_eq!((g.color[c], g.trans[c]), ([0.0; 3], [0.0; 3]), "{name}");
+                        assert!(g.aov[c * st..(c + 1) * st].iter().all(|&a| a == 0.0), "{name}");
+                    }
+                }
+            }
+            assert_eq!(stats.shaded, shaded, "{name}");
+            assert!(stats.shaded < stats.vertices, "{name}: every vertex used");
+            assert!(unused > 0, "{name}");
+            assert_eq!(all_stats.shaded, all_stats.vertices, "{name}");
+            assert_eq!(DiceStats { shaded: 0, ..stats }, DiceStats { shaded: 0, ..all_stats });
+            assert_eq!(grids.len(), all_grids.len(), "{name}");
+            let (mut a, mut b) = (Vec::new(), Vec::new());
+            for (g, h) in grids.iter().zip(&all_grids) {
+                assert_eq!(g.key, h.key, "{name}");
+                assert_eq!(g.grid.len(), h.grid.len(), "{name}");
+                for k in 0..g.grid.len() {
+                    let (p, q) = (g.grid.micropolygon(k), h.grid.micropolygon(k));
+                    assert_eq!(bytemuck::bytes_of(&p), bytemuck::bytes_of(&q), "{name}");
+                    a.clear();
+                    b.clear();
+                    g.grid.micropolygon_aovs(k, &mut a);
+                    h.grid.micropolygon_aovs(k, &mut b);
+                    let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                    assert_eq!(bits(&a), bits(&b), "{name}");
+                }
+            }
+        }
+    }
 }

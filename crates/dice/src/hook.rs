@@ -60,4 +60,8 @@ pub struct DiceOptions<'a> {
     /// The scene's textures and look development, loaded once for the render
     /// ([`Lookdev::load`]); `None`: the dicer loads its own when the scene has any.
     pub lookdev: Option<&'a Lookdev>,
+    /// Shade every grid vertex, also those no kept micropolygon uses (which nothing reads).
+    /// The image is the same either way; for tests and measurements of culling before
+    /// shading.
+    pub shade_every_vertex: bool,
 }

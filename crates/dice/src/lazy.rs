@@ -176,6 +176,8 @@ pub struct Dicer<'a> {
     eager: bool,
     /// The hider moves micropolygons under the perspective warp ([`Emitter::warp`]).
     warp: bool,
+    /// Shade every grid vertex ([`DiceOptions::shade_every_vertex`]).
+    shade_all: bool,
     /// Patches waiting for each bucket row.
     pending: Vec<Vec<Task>>,
     /// Grids alive (or released, with no micropolygons), and the free slots.
@@ -251,6 +253,7 @@ impl<'a> Dicer<'a> {
             eager,
             warp: !scene.hider.original.linear_motion
                 && scene.camera.projection == reyes_scene::Projection::Perspective,
+            shade_all: options.shade_every_vertex,
             pending: vec![Vec::new(); rows],
             slots: Vec::new(),
             free: Vec::new(),
@@ -572,12 +575,14 @@ impl<'a> Dicer<'a> {
         let (hither, yon) = (self.camera.hither(), self.camera.yon());
         let mut em = Emitter::new(&self.bucketer, hither, yon, self.splitter.near());
         em.warp = self.warp;
+        em.shade_all = self.shade_all;
         em.dice(&self.camera, &object.ctx, task.key.surface as usize, poses, &task.patch, (nu, nv));
         out.stats.culled += em.culled;
         out.stats.backfacing += em.backfacing;
         out.stats.crossing += em.crossing;
         out.stats.moving += em.moving;
         out.stats.displacement_escapes += em.escaped;
+        out.stats.shaded += em.shaded;
         if em.grid.len() > 0 {
             em.grid.shrink_to_fit();
             out.grids.push(NewGrid { key: task.key, grid: em.grid, ranges: em.ranges });

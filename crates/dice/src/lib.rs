@@ -52,14 +52,17 @@
 //!   direction (at most 40 splits deep, beyond which the grid is shrunk). One decision holds
 //!   for every breakpoint, so all times share one grid topology.
 //! * **Dice.** The `(nu+1) x (nv+1)` vertex grid is evaluated and projected at every
-//!   breakpoint (perspective or orthographic, through the screen window: see `camera.rs`),
-//!   shaded once in world space at shutter open (t = 0) under the object's light set, and
-//!   emitted as `nu x nv` micropolygons per segment
+//!   breakpoint (perspective or orthographic, through the screen window: see `camera.rs`)
+//!   and emitted as `nu x nv` micropolygons per segment
 //!   `[t_a, t_b]`: `v` the positions at `t_a`, `speed` the displacement to `t_b`,
 //!   `time = [t_a, t_b]`, `MOVING` if any speed is non-zero or the segment is not the whole
 //!   shutter. Consecutive segments over which a micropolygon does not move are merged; a
 //!   micropolygon still over the whole shutter is one record with time `[0, 1]` and zero
 //!   speed, so a still scene diced exactly as before motion existed.
+//! * **Shade.** Once every cell of a grid is decided (kept, or culled below), the vertices
+//!   the kept micropolygons use are shaded once in world space at shutter open (t = 0) under
+//!   the object's light set; the others are not shaded at all (cull before shading, as PRMan
+//!   and Pixie do). [`DiceStats::shaded`] counts the vertices shaded.
 //!
 //! Eye plane: no vertex with `z <= 0` is projected. A still micropolygon with a vertex nearer
 //! than `hither / 2` is dropped; a moving one keeps the part of its segment during which
@@ -186,8 +189,11 @@ pub struct DiceStats {
     /// Diced cells with a corner displaced further than its object's declared displacement
     /// bound (counted, and still rendered: bounds use the displacement's own bound too).
     pub displacement_escapes: u64,
-    /// Grid vertices shaded (`(nu + 1) (nv + 1)` per grid).
+    /// Grid vertices diced (`(nu + 1) (nv + 1)` per grid).
     pub vertices: u64,
+    /// Of `vertices`, those shaded: the corners of kept micropolygons (a grid is shaded
+    /// after its cells are decided, so vertices only culled micropolygons use are not).
+    pub shaded: u64,
 }
 
 impl DiceStats {
@@ -209,6 +215,7 @@ impl DiceStats {
             bucket_entries,
             displacement_escapes,
             vertices,
+            shaded,
         } = *other;
         self.primitives += primitives;
         self.splits += splits;
@@ -225,6 +232,7 @@ impl DiceStats {
         self.bucket_entries += bucket_entries;
         self.displacement_escapes += displacement_escapes;
         self.vertices += vertices;
+        self.shaded += shaded;
     }
 }
 

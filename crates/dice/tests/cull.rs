@@ -151,3 +151,48 @@ fn only_closed_opaque_plain_objects_under_a_pinhole_are_culled() {
     // culling the far side.
     assert!(count(&|s| s.objects[0].transform.insert(0, Transform::Scale([-1.0, 1.0, 1.0]))) > 0);
 }
+
+/// Culling before shading: a vertex is shaded only if a kept micropolygon uses it, so a
+/// ball whose back faces are culled shades about half of its grid vertices plus a band,
+/// and the same ball drawn two-sided shades all of them.
+///
+/// The bound, per grid of `nu x nv` cells (one micropolygon per kept cell, the ball being
+/// still): give each shaded vertex `(i, j)` the cell `(i, j)` it is corner 0 of. Where that
+/// cell is kept, this is one-to-one into the `K` kept cells. Where it is not, either the cell
+/// does not exist (`i = nu` or `j = nv`: `nu + nv + 1` vertices per grid, `V - C` over the
+/// scene, `V` the vertices diced and `C` the cells), or it is a culled cell sharing the
+/// vertex with a kept one (the vertex is shaded for a kept cell it is a corner of), again
+/// one-to-one. So `shaded <= K + (V - C) + R`, `R` the culled cells that share a vertex
+/// with a kept cell: the band along the silhouette. `R` is counted here from the two-sided
+/// dicing (the same grids): a culled micropolygon with a corner bit for bit at a kept one's
+/// (corners of different grids or at a pole that happen to coincide only make `R` larger).
+#[test]
+fn a_ball_shades_about_half_its_vertices() {
+    let (all, _) = dice(&ball_scene(false, false));
+    let (kept, _) = dice(&ball_scene(true, false));
+    // Two-sided: every diced vertex is used, and shaded.
+    assert_eq!(all.stats.shaded, all.stats.vertices);
+    assert_eq!(all.stats.culled, 0, "the ball is on screen and in front of the eye");
+    assert_eq!(kept.stats.vertices, all.stats.vertices, "the same grids");
+    let v = all.stats.vertices;
+    let c = all.mpolys.len() as u64;
+    let k = kept.mpolys.len() as u64;
+    assert_eq!(k + kept.stats.backfacing, c);
+    let kept_keys: std::collections::HashSet<Vec<u32>> = kept.mpolys.iter().map(key).collect();
+    let corner_bits = |mp: &Micropolygon| mp.v.map(|p| p.map(f32::to_bits));
+    let kept_corners: std::collections::HashSet<[u32; 3]> =
+        kept.mpolys.iter().flat_map(corner_bits).collect();
+    let band = all
+        .mpolys
+        .iter()
+        .filter(|mp| !kept_keys.contains(&key(mp)))
+        .filter(|mp| corner_bits(mp).iter().any(|p| kept_corners.contains(p)))
+        .count() as u64;
+    let bound = k + (v - c) + band;
+    let shaded = kept.stats.shaded;
+    assert!(shaded <= bound, "{shaded} vertices shaded, bound {bound} = {k} + {} + {band}", v - c);
+    // Not vacuous: the bound is well below shading every vertex, and so is the count: the
+    // cap facing the eye from 5 radii is 0.4 of the sphere.
+    assert!(bound < v * 7 / 10, "bound {bound} of {v} vertices");
+    assert!(shaded < v * 6 / 10, "{shaded} of {v} vertices shaded");
+}

@@ -73,6 +73,10 @@ pub struct RenderOptions<'a> {
     /// starting at line 0 after others means the frame started again (the lines before are
     /// to be forgotten).
     pub on_film_lines: Option<&'a OnFilmLines<'a>>,
+    /// Shade every grid vertex, also those that only culled micropolygons use
+    /// ([`reyes_dice::DiceOptions::shade_every_vertex`]): the image is the same, for tests
+    /// and measurements of culling before shading.
+    pub shade_every_vertex: bool,
 }
 
 /// A rendered frame.

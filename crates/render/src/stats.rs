@@ -18,6 +18,10 @@ pub struct DiceSummary {
     pub grids: u64,
     /// Micropolygons the flatness rule diced beyond the shading rate's grids.
     pub flatness: u64,
+    /// Grid vertices diced.
+    pub vertices: u64,
+    /// Of `vertices`, those shaded (the corners of kept micropolygons).
+    pub shaded: u64,
     /// Micropolygons or patches culled.
     pub culled: u64,
     /// The most micropolygons held at once (lazy dicing keeps only the rows in flight).
@@ -110,7 +114,7 @@ pub struct RenderStats {
 /// Look development's counts (docs/lookdev.md).
 #[derive(Debug, Clone, Copy, Default)]
 pub struct LookdevSummary {
-    /// Grid vertices shaded (every diced vertex, once).
+    /// Grid vertices shaded (each once: the corners of kept micropolygons).
     pub vertices: u64,
     /// The texture system's totals (its cache counts depend on thread timing: they are
     /// printed with the times, not the counts).
@@ -204,12 +208,14 @@ impl RenderStats {
         );
         let _ = writeln!(
             s,
-            " Dicer: {} primitives, {} splits, {} grids, {} micropolygons, {} culled, {} diced \
-             for flatness",
+            " Dicer: {} primitives, {} splits, {} grids, {} micropolygons, {} of {} vertices \
+             shaded, {} culled, {} diced for flatness",
             self.dice.primitives,
             self.dice.splits,
             self.dice.grids,
             self.micropolygons,
+            self.dice.shaded,
+            self.dice.vertices,
             self.dice.culled,
             self.dice.flatness
         );

@@ -110,6 +110,7 @@ pub fn render_diced(
 ) -> Result<Rendered, RenderError> {
     let pool = Pool::new(opts.threads)?;
     let mut dice_options = *dice_options;
+    dice_options.shade_every_vertex |= opts.shade_every_vertex;
     if let Some(limit) = opts.memory_limit {
         let threads = opts.threads.unwrap_or_else(|| pool.install(rayon::current_num_threads));
         let left = crate::budget::Estimate::new(scene, threads).micropolygons_left(limit);
@@ -327,7 +328,7 @@ fn render_rows(
         t_hide,
         t_film,
         lookdev: scene.has_lookdev().then(|| LookdevSummary {
-            vertices: dice_stats.vertices,
+            vertices: dice_stats.shaded,
             escapes: dice_stats.displacement_escapes,
             ..Default::default()
         }),
@@ -405,6 +406,8 @@ fn dice_summary(d: &DiceStats) -> DiceSummary {
         splits: d.splits,
         grids: d.grids,
         flatness: d.flatness,
+        vertices: d.vertices,
+        shaded: d.shaded,
         culled: d.culled,
         peak_micropolygons: 0,
         eager: false,

@@ -17,3 +17,4 @@ mod occlusion;
 mod pipeline;
 mod raytrace;
 mod sampling;
+mod shading;
