@@ -409,6 +409,12 @@ impl<'b> Emitter<'b> {
                         let on_polyline = boundary(0, u, v, i, j);
                         // Texture maps are looked up at the undisplaced point.
                         let p_lookup = sp.p;
+                        // The facing of the grid is the surface's, not its bump's: culled
+                        // objects are never displaced (their bound is 0), so this is the
+                        // normal of the geometry drawn. A bumped normal tilts away from the
+                        // eye near the silhouette and turned whole front-facing grids of
+                        // lookdev.ron's checkered ball into back faces.
+                        let n_facing = sp.n;
                         if let Some(d) = &displaced {
                             sp.p = d.position(0, vertex).unwrap_or(sp.p);
                             sp.n = d.normal(vertex);
@@ -421,9 +427,10 @@ impl<'b> Emitter<'b> {
                         let n_world = object.normal_to_world * sp.n;
                         if object.cull_back {
                             let to_eye = camera.viewer().seen_from(p_world) - p_world;
+                            let n = object.normal_to_world * n_facing;
                             cosines.push(
-                                n_world.dot(to_eye)
-                                    / (n_world.length() * to_eye.length()).max(f32::MIN_POSITIVE),
+                                n.dot(to_eye)
+                                    / (n.length() * to_eye.length()).max(f32::MIN_POSITIVE),
                             );
                         }
                         g.pos.push(project(p_camera));
