@@ -18,3 +18,18 @@ mod pipeline;
 mod raytrace;
 mod sampling;
 mod shading;
+
+use reyes_scene::Scene;
+use reyes_testkit::golden;
+
+/// A scene file of `scenes/` at 120 pixels wide (its aspect kept), edited by `edit`: the
+/// scenes the culling and shading-order tests render both ways.
+fn scene_file(name: &str, edit: impl Fn(&mut Scene)) -> Scene {
+    let root = golden::workspace_root();
+    let mut scene = reyes_scene::load(&root.join(format!("scenes/{name}.ron"))).unwrap();
+    let (w, h) = (scene.image.width, scene.image.height);
+    scene.image.width = 120;
+    scene.image.height = (120 * h / w).max(1);
+    edit(&mut scene);
+    scene
+}

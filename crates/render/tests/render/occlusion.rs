@@ -8,8 +8,9 @@
 
 use reyes_render::{RenderOptions, Rendered, render};
 use reyes_scene::Scene;
+
+use crate::scene_file;
 use reyes_testkit::fixtures;
-use reyes_testkit::golden;
 
 fn render_with(scene: &Scene, cull: bool) -> (Rendered, Vec<u8>) {
     let mut scene = scene.clone();
@@ -54,17 +55,6 @@ fn same_with_and_without(name: &str, scene: &Scene) -> (u64, u64) {
     assert_eq!(h_on.micropolygons, h_off.micropolygons, "{name}");
     assert!(h_on.hits + h_on.misses <= h_off.hits + h_off.misses, "{name}");
     (h_on.occlusion_culled, h_on.occluded_tests)
-}
-
-/// A scene file of `scenes/` at a small size.
-fn scene_file(name: &str, edit: impl Fn(&mut Scene)) -> Scene {
-    let root = golden::workspace_root();
-    let mut scene = reyes_scene::load(&root.join(format!("scenes/{name}.ron"))).unwrap();
-    let (w, h) = (scene.image.width, scene.image.height);
-    scene.image.width = 120;
-    scene.image.height = (120 * h / w).max(1);
-    edit(&mut scene);
-    scene
 }
 
 #[test]

@@ -10,7 +10,8 @@
 
 use reyes_render::{RenderOptions, Rendered, render};
 use reyes_scene::Scene;
-use reyes_testkit::golden;
+
+use crate::scene_file;
 
 fn render_with(scene: &Scene, shade_every_vertex: bool) -> (Rendered, Vec<u8>) {
     let opts = RenderOptions { threads: Some(2), shade_every_vertex, ..Default::default() };
@@ -63,17 +64,6 @@ fn same_either_way(name: &str, scene: &Scene) -> (u64, u64, bool) {
         assert_eq!(ra.vertices, a.dice.vertices, "{name}: ray-traced vertices, all shaded");
     }
     (u.dice.shaded, u.dice.vertices, u.rays.is_some())
-}
-
-/// A scene file of `scenes/` at a small size.
-fn scene_file(name: &str, edit: impl Fn(&mut Scene)) -> Scene {
-    let root = golden::workspace_root();
-    let mut scene = reyes_scene::load(&root.join(format!("scenes/{name}.ron"))).unwrap();
-    let (w, h) = (scene.image.width, scene.image.height);
-    scene.image.width = 120;
-    scene.image.height = (120 * h / w).max(1);
-    edit(&mut scene);
-    scene
 }
 
 #[test]
