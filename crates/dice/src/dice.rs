@@ -20,7 +20,7 @@
 //! time order, so it is deterministic.
 
 use glam::{Mat3, Vec3};
-use reyes_hider::{Micropolygon, flags};
+use reyes_hider::flags;
 
 use crate::aov::VertexAovs;
 use crate::bucket::{BucketRange, Bucketer};
@@ -30,7 +30,14 @@ use crate::hook::{VertexContext, VertexShader};
 use crate::lookdev::{At, Look, Looked};
 use crate::motion::{Placement, Pose};
 use crate::shade::Shader;
-use crate::split::{OVERLAP, Patch};
+use crate::split::Patch;
+
+mod facing;
+mod grid;
+
+pub(crate) use facing::cull_back_faces;
+pub(crate) use grid::Grid;
+use grid::{EXTRA, Kept, STILL, overlap};
 
 /// A vertex shader from [`crate::DiceOptions`], with where the dicer is.
 #[derive(Clone, Copy)]
@@ -64,7 +71,7 @@ pub(crate) struct ObjectContext<'a> {
     pub aov: Option<(std::sync::Arc<VertexAovs>, [f32; 2])>,
     /// Texture maps, displacement, bump and emission ([`crate::lookdev`]).
     pub look: Option<Look>,
-    /// Push crack-free grids' boundary vertices out by [`OVERLAP`] (not for CSG operands,
+    /// Push crack-free grids' boundary vertices out by [`crate::split::OVERLAP`] (not for CSG operands,
     /// for which a sample seeing a surface twice is as wrong as one seeing it not at all).
     pub overlap: bool,
 }
@@ -94,22 +101,6 @@ fn same(a: &Quad, b: &Quad) -> bool {
     a.iter().flatten().zip(b.iter().flatten()).all(|(x, y)| x == y || x.to_bits() == y.to_bits())
 }
 
-/// One kept micropolygon of a [`Grid`]: which cell, and over which segment.
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Kept {
-    /// Cell index, `j * nu + i`.
-    cell: u32,
-    /// Breakpoint of the positions `v`.
-    from: u32,
-    /// Breakpoint of the positions at the segment's end (`speed = to - from`), or
-    /// [`STILL`] (zero speed).
-    to: u32,
-    /// Flag bits.
-    flags: u32,
-    /// Normalised shutter times of the segment.
-    time: [f32; 2],
-}
-
 /// What shading a vertex at shutter open needs, kept from its evaluation in
 /// [`Emitter::dice`] until its grid's cells are decided.
 #[derive(Debug, Clone, Copy)]
@@ -127,126 +118,6 @@ struct Open {
     p_shaded: Vec3,
     /// World-space normal (displaced; not normalised).
     n_world: Vec3,
-}
-
-/// [`Kept::to`] of a micropolygon that does not move.
-const STILL: u32 = u32::MAX;
-
-/// Tag of [`Kept::from`] and [`Kept::to`] naming an entry of [`Grid::extra`] (positions at a
-/// time between breakpoints) rather than a breakpoint.
-const EXTRA: u32 = 1 << 31;
-
-/// A diced grid, stored compactly: its vertices once (each is shared by up to four
-/// micropolygons) and a short record per kept micropolygon, from which
-/// [`Grid::micropolygon`] builds the record the hider reads, bit for bit the one the dicer
-/// classified and bucketed.
-#[derive(Debug, Clone, PartialEq)]
-pub(crate) struct Grid {
-    /// Cells across.
-    nu: u32,
-    /// Vertices per breakpoint, `(nu + 1) (nv + 1)`.
-    count: u32,
-    /// Colour and transmittance of each vertex (from shutter open).
-    color: Vec<[f32; 3]>,
-    trans: Vec<[f32; 3]>,
-    /// Position of vertex `c` at breakpoint `b`: `pos[b * count + c]`.
-    pos: Vec<[f32; 3]>,
-    /// The object's flag bits and labels.
-    labels: Labels,
-    /// Kept micropolygons, in emission order (cell order, then time order).
-    kept: Vec<Kept>,
-    /// Camera-space position of vertex `c` at breakpoint `b`, `cam[b * count + c]`, kept
-    /// only for a moving grid some vertex of which comes nearer than `near` at some
-    /// breakpoint (else empty): what [`Emitter::emit`] needs to keep the part of a
-    /// micropolygon's motion in front of the eye.
-    cam: Vec<Vec3>,
-    /// Cell positions at times between breakpoints (where such a micropolygon's kept part
-    /// of its segment begins or ends), named by `EXTRA | index` in [`Kept`].
-    extra: Vec<Quad>,
-    /// Per-vertex AOV values, `aov_stride` floats per vertex (empty without AOVs).
-    aov: Vec<f32>,
-    aov_stride: usize,
-}
-
-impl Grid {
-    /// Kept micropolygons.
-    pub fn len(&self) -> usize {
-        self.kept.len()
-    }
-
-    /// Free the unused capacity (the grid is complete).
-    pub fn shrink_to_fit(&mut self) {
-        self.color.shrink_to_fit();
-        self.trans.shrink_to_fit();
-        self.pos.shrink_to_fit();
-        self.aov.shrink_to_fit();
-        self.kept.shrink_to_fit();
-        self.cam = Vec::new();
-        self.extra.shrink_to_fit();
-    }
-
-    /// Corner vertices of cell `cell`: `(i,j), (i+1,j), (i+1,j+1), (i,j+1)`.
-    #[inline]
-    fn corners(&self, cell: u32) -> [usize; 4] {
-        let (i, j) = ((cell % self.nu) as usize, (cell / self.nu) as usize);
-        let row = self.nu as usize + 1;
-        [j * row + i, j * row + i + 1, (j + 1) * row + i + 1, (j + 1) * row + i]
-    }
-
-    /// The positions of cell `cell` at breakpoint `b`.
-    #[inline]
-    fn quad(&self, cell: u32, b: u32) -> Quad {
-        let base = b as usize * self.count as usize;
-        self.corners(cell).map(|c| self.pos[base + c])
-    }
-
-    /// The positions a [`Kept`] end names: breakpoint `b`, or an entry of `extra`.
-    #[inline]
-    fn end(&self, cell: u32, b: u32) -> Quad {
-        if b & EXTRA != 0 { self.extra[(b & !EXTRA) as usize] } else { self.quad(cell, b) }
-    }
-
-    /// Kept micropolygon `k`.
-    #[inline]
-    pub fn micropolygon(&self, k: usize) -> Micropolygon {
-        self.build(&self.kept[k])
-    }
-
-    /// Append kept micropolygon `k`'s AOV values, vertex by vertex (`4 * stride` floats;
-    /// nothing without AOVs).
-    pub fn micropolygon_aovs(&self, k: usize, out: &mut Vec<f32>) {
-        let st = self.aov_stride;
-        if st == 0 {
-            return;
-        }
-        for c in self.corners(self.kept[k].cell) {
-            out.extend_from_slice(&self.aov[c * st..(c + 1) * st]);
-        }
-    }
-
-    #[inline]
-    fn build(&self, m: &Kept) -> Micropolygon {
-        let corners = self.corners(m.cell);
-        let from = self.end(m.cell, m.from);
-        let mut speed = [[0.0_f32; 3]; 4];
-        if m.to != STILL {
-            let to = self.end(m.cell, m.to);
-            for (s, (p, q)) in speed.iter_mut().zip(from.iter().zip(&to)) {
-                *s = [q[0] - p[0], q[1] - p[1], q[2] - p[2]];
-            }
-        }
-        Micropolygon {
-            v: from,
-            speed,
-            color: corners.map(|c| self.color[c]),
-            trans: corners.map(|c| self.trans[c]),
-            flags: m.flags,
-            csg_tree: self.labels.csg_tree,
-            csg_node: self.labels.csg_node,
-            glass_opacity: self.labels.glass_opacity,
-            time: m.time,
-        }
-    }
 }
 
 /// Dices grids, with the running counts.
@@ -631,86 +502,6 @@ impl<'b> Emitter<'b> {
         }
     }
 
-    /// The winding sign of the grid, from the first cell (in cell order) that is clearly
-    /// turned one way in raster space (corner 0's sine above 0.1, so not a sliver at a
-    /// pole) at a corner where the surface clearly faces toward or away from the eye
-    /// (`|cos| > 0.2`, from `cosines`, per vertex at shutter open): its raster signed area
-    /// times that side's sign. The sign holds for the whole grid: a smooth surface's
-    /// parametrisation turns the same way about its outward normal everywhere, and the
-    /// perspective projection of points in front of the eye keeps orientation. `None`
-    /// (no culling) when no cell qualifies.
-    fn calibrate(&self, cosines: &[f32]) -> Option<f32> {
-        let nu = self.grid.nu as usize;
-        let nv = self.grid.count as usize / (nu + 1) - 1;
-        // Interior cells first: a crack-free grid's boundary vertices lie on its sides'
-        // polylines, a little off the surface whose normals `cosines` are.
-        let interior = (1..nv.saturating_sub(1)).flat_map(|j| (1..nu - 1).map(move |i| (i, j)));
-        let border = (0..nv)
-            .flat_map(|j| (0..nu).map(move |i| (i, j)))
-            .filter(|&(i, j)| i == 0 || j == 0 || i + 1 == nu || j + 1 == nv);
-        interior.chain(border).find_map(|(i, j)| {
-            let cell = (j * nu + i) as u32;
-            let cos = *cosines.get(j * (nu + 1) + i)?;
-            let q = self.grid.quad(cell, 0);
-            let (area, scale) = corner_area(&q, 0);
-            let edge = |a: usize, b: usize| (q[b][0] - q[a][0]).hypot(q[b][1] - q[a][1]);
-            let (e1, e2) = (edge(0, 1), edge(0, 3));
-            // Both edges a real fraction of a pixel and of each other: a cell collapsed
-            // at a pole has an edge of rounding noise whose cross product has no sign.
-            let proper = e1.min(e2) > 1e-2 * e1.max(e2) && e1.min(e2) > 1e-3;
-            (proper && cos.abs() > 0.2 && area.abs() > 0.1 * scale)
-                .then(|| area.signum() * cos.signum())
-        })
-    }
-
-    /// True if cell quad `from` (moving to `to` over its segment, raster positions moving
-    /// linearly as the hider moves them) faces away from the eye at every time, with a
-    /// margin: every corner's signed area, `sign` times a quadratic in time, stays below
-    /// `-WINDING_MARGIN` times the corner's edge lengths. A non-convex or nearly edge-on
-    /// micropolygon is kept. Under the perspective warp (`warp`) a moving cell's corners are
-    /// tested as the hider moves them ([`corner_cubic_negative`]).
-    fn backfacing(sign: f32, from: &Quad, to: Option<&Quad>, warp: bool) -> bool {
-        if let (true, Some(to)) = (warp, to) {
-            return (0..4).all(|k| corner_cubic_negative(sign, from, to, k));
-        }
-        let mid = to.map(|to| {
-            let mut m = *from;
-            for (p, q) in m.iter_mut().zip(to) {
-                for a in 0..2 {
-                    p[a] = 0.5 * (p[a] + q[a]);
-                }
-            }
-            m
-        });
-        (0..4).all(|k| {
-            let (a0, s0) = corner_area(from, k);
-            if sign * a0 >= -WINDING_MARGIN * s0 {
-                return false;
-            }
-            let (Some(to), Some(mid)) = (to, mid.as_ref()) else {
-                return true;
-            };
-            let (a1, s1) = corner_area(to, k);
-            let (am, sm) = corner_area(mid, k);
-            let margin = -WINDING_MARGIN * s0.min(s1).min(sm);
-            if sign * a1 >= margin || sign * am >= margin {
-                return false;
-            }
-            // A(t) = a t^2 + b t + c through the three values; a concave parabola may peak
-            // between them.
-            let (c, a) = (a0, 2.0 * a1 + 2.0 * a0 - 4.0 * am);
-            let b = a1 - a0 - a;
-            let qa = sign * a;
-            if qa < 0.0 {
-                let t = -b / (2.0 * a);
-                if t > 0.0 && t < 1.0 && sign * ((a * t + b) * t + c) >= margin {
-                    return false;
-                }
-            }
-            true
-        })
-    }
-
     /// The part of cell `cell`'s motion from breakpoint `from` to breakpoint `to` (over
     /// `time`) during which every vertex is at least `near` in front of the eye: its
     /// positions at the start and end of that part and the part's times, or `None` if there
@@ -837,50 +628,6 @@ impl<'b> Emitter<'b> {
     }
 }
 
-/// Relative margin of the winding tests: a corner counts as turned one way when its signed
-/// area exceeds this fraction of the product of its edge lengths (a sine of 0.001).
-const WINDING_MARGIN: f32 = 1e-3;
-
-/// Raster signed area (cross product) at corner `k` of a quad, from its two edges, and the
-/// product of the edge lengths.
-#[inline]
-fn corner_area(q: &Quad, k: usize) -> (f32, f32) {
-    let (p, next, prev) = (q[k], q[(k + 1) % 4], q[(k + 3) % 4]);
-    let e1 = [next[0] - p[0], next[1] - p[1]];
-    let e2 = [prev[0] - p[0], prev[1] - p[1]];
-    let area = e1[0] * e2[1] - e1[1] * e2[0];
-    let scale = (e1[0].hypot(e1[1])) * (e2[0].hypot(e2[1]));
-    (area, scale)
-}
-
-/// Whether back faces of `object` may be culled (see [`ObjectContext::cull_back`]): it is
-/// one-sided (RenderMan's `Sides 1`), or they cannot be seen: a pinhole camera (under a lens a micropolygon turned away from the eye may face part
-/// of the lens), a closed surface (a full sphere or torus, a closed mesh), opaque, and not
-/// matte, glass or a CSG operand (CSG needs both sides: a difference shows the inside of
-/// its subtracted operand). Affine placements only: a projective matrix can turn a surface
-/// inside out between its parts.
-pub(crate) fn cull_back_faces(
-    object: &reyes_scene::Object,
-    labels: &Labels,
-    csg_operand: bool,
-    pinhole: bool,
-) -> bool {
-    let f = labels.flags;
-    let affine = |list: &[reyes_scene::Transform]| {
-        let m = reyes_scene::object_to_world(list);
-        m.row(3) == glam::Vec4::W && m.is_finite()
-    };
-    let placements_affine = if object.motion.is_empty() {
-        affine(&object.transform)
-    } else {
-        object.motion.iter().all(|k| affine(&k.transform))
-    };
-    let hidden = f & flags::OPAQUE != 0
-        && f & (flags::MATTE | flags::GLASS) == 0
-        && reyes_scene::closed_alone(&object.shape);
-    pinhole && !csg_operand && (hidden || object.one_sided) && placements_affine
-}
-
 /// Per-object setup: shading (under the object's light set, seen by `viewer`, with the object
 /// placed by `open`, its placement at shutter open), flags, and the CSG label `csg`
 /// (`(tree index, slot id)` of a CSG operand, from [`crate::CsgSetup::leaf`]).
@@ -919,68 +666,6 @@ pub(crate) fn object_context(
         look: None,
         overlap: csg.is_none(),
     }
-}
-
-/// Push the boundary vertices of one breakpoint's raster positions `pos` (a grid of
-/// `nu x nv` cells) out of the grid by [`OVERLAP`] pixels, each away from its neighbour
-/// toward the inside (the diagonal one at a corner), so that two crack-free grids along a
-/// shared edge overlap by a sliver instead of leaving one of rounding width between them.
-fn overlap(pos: &mut [[f32; 3]], nu: usize, nv: usize) {
-    let at = |i: usize, j: usize| j * (nu + 1) + i;
-    let inward = |k: usize, n: usize| {
-        if k == 0 {
-            1.min(n)
-        } else if k == n {
-            n - 1
-        } else {
-            k
-        }
-    };
-    let mut moved = Vec::with_capacity(2 * (nu + nv));
-    for j in 0..=nv {
-        let edge_row = j == 0 || j == nv;
-        let step = if edge_row { 1 } else { nu.max(1) };
-        let mut i = 0;
-        while i <= nu {
-            let (p, q) = (pos[at(i, j)], pos[at(inward(i, nu), inward(j, nv))]);
-            let (dx, dy) = (p[0] - q[0], p[1] - q[1]);
-            let len = dx.hypot(dy);
-            if len > 0.0 && len.is_finite() {
-                let k = OVERLAP / len;
-                moved.push((at(i, j), [p[0] + k * dx, p[1] + k * dy]));
-            }
-            i += step;
-        }
-    }
-    for (c, [x, y]) in moved {
-        pos[c][0] = x;
-        pos[c][1] = y;
-    }
-}
-
-/// True if the corner `k` of a cell moving from quad `from` to quad `to` as the hider moves
-/// it under the perspective warp (straight in camera space: the homogeneous raster point
-/// `(x z, y z, z)` of each vertex moves linearly) keeps `sign * (signed area) <
-/// -WINDING_MARGIN * (edge lengths)` throughout. The signed area times the three depths is
-/// the determinant of the corner's three homogeneous points, a cubic in the time of the
-/// segment; it is below the margin throughout if its four Bernstein coefficients are.
-fn corner_cubic_negative(sign: f32, from: &Quad, to: &Quad, k: usize) -> bool {
-    let idx = [k, (k + 1) % 4, (k + 3) % 4];
-    let h = |q: &Quad| idx.map(|i| Vec3::new(q[i][0] * q[i][2], q[i][1] * q[i][2], q[i][2]));
-    let (a, b) = (h(from), h(to));
-    let det = |x: Vec3, y: Vec3, z: Vec3| x.dot(y.cross(z));
-    let bern = [
-        det(a[0], a[1], a[2]),
-        (det(b[0], a[1], a[2]) + det(a[0], b[1], a[2]) + det(a[0], a[1], b[2])) / 3.0,
-        (det(a[0], b[1], b[2]) + det(b[0], a[1], b[2]) + det(b[0], b[1], a[2])) / 3.0,
-        det(b[0], b[1], b[2]),
-    ];
-    let scale = |q: &Quad| {
-        let (_, s) = corner_area(q, k);
-        s * idx.iter().map(|&i| q[i][2]).product::<f32>()
-    };
-    let margin = -WINDING_MARGIN * scale(from).min(scale(to));
-    bern.iter().all(|&c| sign * c < margin)
 }
 
 #[cfg(test)]

@@ -97,7 +97,7 @@ impl SubdivPatch {
         self.point(u, v).1
     }
 
-    /// Position and unit normal at `(u, v)`, from one evaluation (see [`SubdivPatch::normal`]).
+    /// Position and unit normal at `(u, v)`, from one evaluation.
     pub fn point(&self, u: f32, v: f32) -> (Vec3, Vec3) {
         let at = |u: f32, v: f32| -> (Vec3, Option<Vec3>) {
             match &self.points.bezier {
