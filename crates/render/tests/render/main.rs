@@ -33,3 +33,46 @@ fn scene_file(name: &str, edit: impl Fn(&mut Scene)) -> Scene {
     edit(&mut scene);
     scene
 }
+
+/// `scene` rendered with `opts`, and its EXR file's bytes.
+fn rendered_exr(
+    scene: &Scene,
+    opts: &reyes_render::RenderOptions,
+) -> (reyes_render::Rendered, Vec<u8>) {
+    let r = reyes_render::render(scene, opts).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("t.exr");
+    reyes_film::write(&path, &r.film).unwrap();
+    let bytes = std::fs::read(&path).unwrap();
+    (r, bytes)
+}
+
+/// The bits of `v`.
+fn bits(v: impl IntoIterator<Item = f32>) -> Vec<u32> {
+    v.into_iter().map(f32::to_bits).collect()
+}
+
+/// Two renders of one scene gave the same file, colours, depths and AOVs, bit for bit.
+fn assert_same_output(
+    name: &str,
+    (a, a_exr): &(reyes_render::Rendered, Vec<u8>),
+    (b, b_exr): &(reyes_render::Rendered, Vec<u8>),
+) {
+    assert!(a_exr == b_exr, "{name}: the EXRs differ");
+    let rgba = |r: &reyes_render::Rendered| bits(r.film.rgba().iter().flatten().copied());
+    assert_eq!(rgba(a), rgba(b), "{name}: colours");
+    assert_eq!(
+        bits(a.film.z().iter().copied()),
+        bits(b.film.z().iter().copied()),
+        "{name}: depths"
+    );
+    match (&a.aovs, &b.aovs) {
+        (Some(x), Some(y)) => assert_eq!(
+            bits(x.film.data().iter().copied()),
+            bits(y.film.data().iter().copied()),
+            "{name}: AOVs"
+        ),
+        (None, None) => {}
+        _ => panic!("{name}: AOVs in one render only"),
+    }
+}

@@ -6,49 +6,24 @@
 //! switches, adaptive refinement, AOVs, and coincident surfaces whose depths tie, where the
 //! order of a sample's visible points decides which is seen.
 
-use reyes_render::{RenderOptions, Rendered, render};
+use reyes_render::{RenderOptions, Rendered};
 use reyes_scene::Scene;
 
-use crate::scene_file;
+use crate::{assert_same_output, rendered_exr, scene_file};
 use reyes_testkit::fixtures;
 
 fn render_with(scene: &Scene, cull: bool) -> (Rendered, Vec<u8>) {
     let mut scene = scene.clone();
     scene.hider.occlusion_cull = cull;
-    let r = render(&scene, &RenderOptions { threads: Some(2), ..Default::default() }).unwrap();
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("t.exr");
-    reyes_film::write(&path, &r.film).unwrap();
-    let bytes = std::fs::read(&path).unwrap();
-    (r, bytes)
-}
-
-fn bits(v: impl IntoIterator<Item = f32>) -> Vec<u32> {
-    v.into_iter().map(f32::to_bits).collect()
+    rendered_exr(&scene, &RenderOptions { threads: Some(2), ..Default::default() })
 }
 
 /// Render `scene` both ways and require identical output; returns the micropolygons culled
 /// whole and the sample tests skipped with culling on.
 fn same_with_and_without(name: &str, scene: &Scene) -> (u64, u64) {
-    let (on, on_exr) = render_with(scene, true);
-    let (off, off_exr) = render_with(scene, false);
-    assert!(on_exr == off_exr, "{name}: the EXRs differ");
-    let rgba = |r: &Rendered| bits(r.film.rgba().iter().flatten().copied());
-    assert_eq!(rgba(&on), rgba(&off), "{name}: colours");
-    assert_eq!(
-        bits(on.film.z().iter().copied()),
-        bits(off.film.z().iter().copied()),
-        "{name}: depths"
-    );
-    match (&on.aovs, &off.aovs) {
-        (Some(a), Some(b)) => assert_eq!(
-            bits(a.film.data().iter().copied()),
-            bits(b.film.data().iter().copied()),
-            "{name}: AOVs"
-        ),
-        (None, None) => {}
-        _ => panic!("{name}: AOVs in one render only"),
-    }
+    let (a, b) = (render_with(scene, true), render_with(scene, false));
+    assert_same_output(name, &a, &b);
+    let (on, off) = (a.0, b.0);
     let (h_on, h_off) = (&on.stats.hider, &off.stats.hider);
     assert_eq!((h_off.occlusion_culled, h_off.occluded_tests), (0, 0), "{name}: culling off");
     // Culling only removes work: never more tests, and the same visits of micropolygons.

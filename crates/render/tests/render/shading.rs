@@ -8,48 +8,25 @@
 //! shader (whose rays are drawn per vertex from its tile of the grid), AOVs, CSG, motion
 //! blur (cells kept over part of the shutter) and depth of field.
 
-use reyes_render::{RenderOptions, Rendered, render};
+use reyes_render::{RenderOptions, Rendered};
 use reyes_scene::Scene;
 
-use crate::scene_file;
+use crate::{assert_same_output, rendered_exr, scene_file};
 
 fn render_with(scene: &Scene, shade_every_vertex: bool) -> (Rendered, Vec<u8>) {
-    let opts = RenderOptions { threads: Some(2), shade_every_vertex, ..Default::default() };
-    let r = render(scene, &opts).unwrap();
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("t.exr");
-    reyes_film::write(&path, &r.film).unwrap();
-    let bytes = std::fs::read(&path).unwrap();
-    (r, bytes)
-}
-
-fn bits(v: impl IntoIterator<Item = f32>) -> Vec<u32> {
-    v.into_iter().map(f32::to_bits).collect()
+    rendered_exr(
+        scene,
+        &RenderOptions { threads: Some(2), shade_every_vertex, ..Default::default() },
+    )
 }
 
 /// Render `scene` shading every vertex and shading only the used ones; require identical
 /// output and counts but for the vertices shaded. Returns (vertices shaded, diced, whether
 /// the ray-traced vertex shader shaded them).
 fn same_either_way(name: &str, scene: &Scene) -> (u64, u64, bool) {
-    let (used, used_exr) = render_with(scene, false);
-    let (all, all_exr) = render_with(scene, true);
-    assert!(used_exr == all_exr, "{name}: the EXRs differ");
-    let rgba = |r: &Rendered| bits(r.film.rgba().iter().flatten().copied());
-    assert_eq!(rgba(&used), rgba(&all), "{name}: colours");
-    assert_eq!(
-        bits(used.film.z().iter().copied()),
-        bits(all.film.z().iter().copied()),
-        "{name}: depths"
-    );
-    match (&used.aovs, &all.aovs) {
-        (Some(a), Some(b)) => assert_eq!(
-            bits(a.film.data().iter().copied()),
-            bits(b.film.data().iter().copied()),
-            "{name}: AOVs"
-        ),
-        (None, None) => {}
-        _ => panic!("{name}: AOVs in one render only"),
-    }
+    let (u, a) = (render_with(scene, false), render_with(scene, true));
+    assert_same_output(name, &u, &a);
+    let (used, all) = (u.0, a.0);
     let (u, a) = (&used.stats, &all.stats);
     // The same dicing and hiding: only the vertices shaded differ.
     assert_eq!(u.micropolygons, a.micropolygons, "{name}");
