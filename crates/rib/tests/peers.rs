@@ -1,22 +1,18 @@
-//! The peer renderers' benchmark scenes (`../shared/peers/*.rib` beside the repository,
-//! read-only) read without an error or a warning, with the requests each is known to hold.
+//! The peer renderers' benchmark scenes (`tests/data/peers/*.rib`, see the README there) read
+//! without an error or a warning, with the requests each is known to hold.
 
 use std::path::PathBuf;
 
 use reyes_rib::{Reader, RequestKind};
 
-/// The peers' folder: `shared/peers` beside the workspace root.
-fn peers() -> Option<PathBuf> {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/peers");
-    dir.is_dir().then_some(dir)
+/// The peers' scenes, kept with the tests.
+fn peers() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/peers")
 }
 
 #[test]
 fn peer_scenes_read_cleanly() {
-    let Some(dir) = peers() else {
-        eprintln!("SKIPPED: no peer scenes at ../shared/peers beside the repository");
-        return;
-    };
+    let dir = peers();
     let mut read = 0;
     for (file, spheres, motion, solids) in [
         ("csg.rib", 4, 0, 6),
@@ -48,10 +44,7 @@ fn peer_scenes_read_cleanly() {
 
 #[test]
 fn peer_depth_of_field_and_camera() {
-    let Some(dir) = peers() else {
-        eprintln!("SKIPPED: no peer scenes at ../shared/peers beside the repository");
-        return;
-    };
+    let dir = peers();
     let all: Vec<_> =
         Reader::open(dir.join("c_balls_dof.rib")).unwrap().map(Result::unwrap).collect();
     let dof = all.iter().find(|q| q.kind == RequestKind::DepthOfField).expect("DepthOfField");

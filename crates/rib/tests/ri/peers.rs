@@ -1,8 +1,8 @@
-//! The peers' benchmark scenes (`../shared/peers/*.rib` beside the repository) rendered from
+//! The peers' benchmark scenes (`tests/data/peers/*.rib`, see the README there) rendered from
 //! RIB and compared, over the whole image, with Aqsis 1.8.4's render of the same file and
 //! with our own RON port of the scene.
 //!
-//! Thresholds, from how closely the peers agree with each other (`../shared/peers/README.md`):
+//! Thresholds, from how closely the peers agree with each other (`tests/data/peers/README.md`):
 //! alpha within 3 dB of the Aqsis-Pixie PSNR, RGB (the R channel, as the README measures it)
 //! at least 38 dB on balls and balls-motion and 35 dB on balls-dof and csg. What separates two
 //! correct renderers here is sampling noise and each renderer's dicing of the silhouettes, so
@@ -17,13 +17,7 @@ use reyes_rib::RiOptions;
 use reyes_scene::Scene;
 
 fn peers() -> PathBuf {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/peers");
-    assert!(
-        dir.join("reference/aqsis").is_dir(),
-        "the peers' scenes and pictures must be at {} (../shared/peers beside the repository)",
-        dir.display()
-    );
-    dir
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/peers")
 }
 
 fn render_rib(name: &str) -> Film {
@@ -70,7 +64,7 @@ fn bench_files_render_from_rib_as_the_peers_render_them() {
     for (name, rgb_min, peers_alpha) in cases {
         let ours = render_rib(name);
         let aqsis =
-            reyes_film::read_exr(&peers().join(format!("reference/aqsis/{name}.exr"))).unwrap();
+            reyes_film::read_exr(&peers().join(format!("aqsis/{name}.exr"))).unwrap();
         let (r, a) = (psnr(&aqsis, &ours, 0), psnr(&aqsis, &ours, 3));
         report.push(format!("{name}: R {r:.1} dB, alpha {a:.1} dB"));
         assert!(r >= rgb_min, "{name}: R channel {r:.1} dB < {rgb_min}");
