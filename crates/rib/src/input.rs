@@ -8,7 +8,7 @@
 use std::io::Read;
 use std::path::Path;
 
-use crate::{Frame, Loaded, RiOptions, RibError, Source};
+use crate::{Frame, Loaded, RiOptions, RibError, Source, Warning};
 
 /// The two scene formats.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -45,6 +45,44 @@ impl InputError {
     }
 }
 
+/// A scene file refused: why, and the warnings gathered before the error (in file order), to
+/// be shown before it: what the reader tolerated often explains the refusal (a light ignored
+/// with a warning, then used by handle).
+#[derive(Debug, thiserror::Error)]
+#[error("{error}")]
+pub struct Refusal {
+    /// The error that stopped the load.
+    #[source]
+    pub error: InputError,
+    /// The warnings raised before it.
+    pub warnings: Vec<Warning>,
+}
+
+impl Refusal {
+    /// Exit code: 1 for I/O failures, 2 for bad scenes.
+    pub fn exit_code(&self) -> u8 {
+        self.error.exit_code()
+    }
+}
+
+impl From<InputError> for Refusal {
+    fn from(error: InputError) -> Self {
+        Refusal { error, warnings: Vec::new() }
+    }
+}
+
+impl From<RibError> for Refusal {
+    fn from(error: RibError) -> Self {
+        InputError::from(error).into()
+    }
+}
+
+impl From<reyes_scene::LoadError> for Refusal {
+    fn from(error: reyes_scene::LoadError) -> Self {
+        InputError::from(error).into()
+    }
+}
+
 /// The format of the file `path` whose first bytes are `head`: `.ron` is RON; `.rib` and
 /// `.rib.gz` (and any gzip data) are RIB; otherwise RON when the text starts (after white
 /// space) with a `//` or `/*` comment or with `Scene`, else RIB.
@@ -73,7 +111,11 @@ pub fn detect(path: &Path, head: &[u8]) -> Format {
 
 /// Loads the scene file `path` (`-`: standard input) in whichever format it is, into its
 /// frames (a RON scene is one frame without a number) and the warnings to show.
-pub fn load_scene_file(path: &Path, options: &RiOptions) -> Result<Loaded, InputError> {
+///
+/// # Errors
+///
+/// A [`Refusal`]: the first error, with the warnings raised before it.
+pub fn load_scene_file(path: &Path, options: &RiOptions) -> Result<Loaded, Refusal> {
     if path == Path::new("-") {
         let mut bytes = Vec::new();
         std::io::stdin().read_to_end(&mut bytes).map_err(InputError::Stdin)?;
@@ -82,7 +124,7 @@ pub fn load_scene_file(path: &Path, options: &RiOptions) -> Result<Loaded, Input
                 let text = String::from_utf8_lossy(&bytes);
                 Ok(ron_frames(&text, Path::new("<stdin>"), options)?)
             }
-            Format::Rib => Ok(crate::load(Source::from_bytes("<stdin>", bytes), options)?),
+            Format::Rib => load_rib(Source::from_bytes("<stdin>", bytes), options),
         };
     }
     let mut head = [0u8; 256];
@@ -99,9 +141,14 @@ pub fn load_scene_file(path: &Path, options: &RiOptions) -> Result<Loaded, Input
                 file: path.display().to_string().into(),
                 source,
             })?;
-            Ok(crate::load(source, options)?)
+            load_rib(source, options)
         }
     }
+}
+
+fn load_rib(source: Source, options: &RiOptions) -> Result<Loaded, Refusal> {
+    crate::ri::load_reporting(source, options)
+        .map_err(|(e, warnings)| Refusal { error: e.into(), warnings })
 }
 
 /// The frames of the RON scene `text`: one without a number, unless frames are chosen

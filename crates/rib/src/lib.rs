@@ -34,7 +34,7 @@ mod source;
 
 pub use decl::{Class, Decl, Declarations, STANDARD, Storage, Type};
 pub use error::{Location, Pos, RibError, Warning};
-pub use input::{Format, InputError, detect, load_scene_file};
+pub use input::{Format, InputError, Refusal, detect, load_scene_file};
 pub use reader::{Reader, ReaderOptions};
 pub use request::{Data, Param, Request, Value};
 pub use ri::{Display, Frame, Loaded, RiOptions, load};

@@ -143,8 +143,20 @@ impl Machine {
         }
     }
 
-    /// Reads every request and returns the frames.
-    pub(super) fn run(mut self) -> Result<Loaded, RibError> {
+    /// Reads every request and returns the frames; on the first error, that error with the
+    /// warnings gathered before it, so that a refused scene still says what it tolerated.
+    /// Either way the warnings are in file order ([`in_file_order`]).
+    pub(super) fn run(mut self) -> Result<Loaded, (RibError, Vec<Warning>)> {
+        let result = self.read_all();
+        self.warnings.extend(self.reader.take_warnings());
+        in_file_order(&mut self.warnings);
+        match result {
+            Ok(()) => Ok(Loaded { frames: self.frames, warnings: self.warnings }),
+            Err(e) => Err((e, self.warnings)),
+        }
+    }
+
+    fn read_all(&mut self) -> Result<(), RibError> {
         while let Some(r) = self.reader.next_request()? {
             self.warnings.extend(self.reader.take_warnings());
             self.request(r)?;
@@ -164,7 +176,7 @@ impl Machine {
                 message: "block not closed at the end of the input".into(),
             });
         }
-        Ok(Loaded { frames: self.frames, warnings: self.warnings })
+        Ok(())
     }
 
     pub(super) fn in_world(&self) -> bool {
@@ -633,4 +645,19 @@ impl Machine {
             self.ctm.clone()
         }
     }
+}
+
+/// Sorts warnings into file order: by line and column within each source, and the sources in
+/// the order their first warning was raised (the main file first; an archive's warnings
+/// together, where the first of them was raised). Most warnings are raised as their request
+/// is read; a few only when a frame is built (the camera's, at `WorldBegin`'s place), which this
+/// puts back in place. The sort is stable, so warnings at one position keep their order.
+pub(super) fn in_file_order(warnings: &mut [Warning]) {
+    let mut files: Vec<std::sync::Arc<str>> = Vec::new();
+    for w in warnings.iter() {
+        if !files.contains(&w.at.file) {
+            files.push(w.at.file.clone());
+        }
+    }
+    warnings.sort_by_key(|w| (files.iter().position(|f| *f == w.at.file), w.at.pos));
 }

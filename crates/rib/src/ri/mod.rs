@@ -76,6 +76,14 @@ pub struct Loaded {
 /// The first malformed request, unbalanced block or invalid value, as one line
 /// `file:line:col: Request: message`; [`RibError::Io`] if the source cannot be read.
 pub fn load(source: Source, options: &RiOptions) -> Result<Loaded, RibError> {
+    load_reporting(source, options).map_err(|(e, _)| e)
+}
+
+/// [`load`], keeping on an error the warnings gathered before it (in file order).
+pub(crate) fn load_reporting(
+    source: Source,
+    options: &RiOptions,
+) -> Result<Loaded, (RibError, Vec<Warning>)> {
     let reader = Reader::with_options(
         source,
         ReaderOptions { follow_archives: true, ..ReaderOptions::default() },

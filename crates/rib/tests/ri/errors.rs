@@ -100,3 +100,53 @@ fn every_malformed_case_gives_its_one_line_error() {
     assert!(cases().len() >= 30);
     insta::assert_snapshot!("state_machine_catalogue", snapshot);
 }
+
+/// Loads `text` as the file `test.rib` in a temporary folder, through the CLI's entry.
+fn load_file(text: &str) -> Result<reyes_rib::Loaded, reyes_rib::Refusal> {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("test.rib");
+    std::fs::write(&path, text).unwrap();
+    reyes_rib::load_scene_file(&path, &reyes_rib::RiOptions::default())
+}
+
+/// Each warning's `line:col` and the start of its message.
+fn places(warnings: &[reyes_rib::Warning]) -> Vec<String> {
+    warnings.iter().map(|w| format!("{}: {}", w.at.pos, &w.message[..12])).collect()
+}
+
+#[test]
+fn a_refused_scene_keeps_the_warnings_raised_before_its_error() {
+    // An unknown request and an unused parameter are tolerated; then the file is refused.
+    let text = "Projection \"perspective\"\nWorldBegin\nFrobnicate 1\n\
+                Sphere 1 -1 1 360 \"bogus\" [1]\nIlluminate 3 1\nWorldEnd\n";
+    let refused = load_file(text).err().expect("refused");
+    assert!(refused.to_string().contains("Illuminate"), "{refused}");
+    assert_eq!(refused.exit_code(), 2);
+    assert_eq!(refused.warnings.len(), 2, "{:?}", refused.warnings);
+    assert_eq!(refused.warnings[0].at.pos.line, 3, "{:?}", refused.warnings);
+    assert_eq!(refused.warnings[1].at.pos.line, 4, "{:?}", refused.warnings);
+    assert!(refused.warnings.iter().all(|w| w.at.file.ends_with("test.rib")));
+}
+
+#[test]
+fn warnings_come_in_file_order() {
+    // The orthographic camera's depth-of-field warning is raised when the frame is built, at
+    // WorldEnd, but belongs to WorldBegin (line 3): it comes before the unknown request of
+    // line 4 and the unused parameter of line 5.
+    let text = "DepthOfField 2.8 1 5\nProjection \"orthographic\"\nWorldBegin\nFrobnicate 1\n\
+                Sphere 1 -1 1 360 \"bogus\" [1]\nWorldEnd\n";
+    let loaded = load_file(text).unwrap();
+    let lines: Vec<u32> = loaded.warnings.iter().map(|w| w.at.pos.line).collect();
+    assert_eq!(lines, [3, 4, 5], "{:?}", places(&loaded.warnings));
+}
+
+#[test]
+fn an_unused_normal_on_a_patch_is_not_called_a_polygon_mesh() {
+    let text = "Projection \"perspective\"\nWorldBegin\nPatch \"bilinear\" \"P\" [0 0 5 1 0 5 0 1 5 1 1 5] \
+                \"N\" [0 0 -1 0 0 -1 0 0 -1 0 0 -1]\nWorldEnd\n";
+    let loaded = load_file(text).unwrap();
+    let shown: Vec<String> = loaded.warnings.iter().map(ToString::to_string).collect();
+    assert_eq!(shown.len(), 1, "{shown:?}");
+    assert!(shown[0].contains("Patch: \"N\": not used on this primitive"), "{shown:?}");
+    assert!(!shown[0].contains("polygon"), "{shown:?}");
+}
