@@ -6,7 +6,7 @@ impl RenderError {
     pub fn exit_code(&self) -> u8 {
         match self {
             RenderError::WontFit { .. } => 2,
-            RenderError::Dice(reyes_dice::DiceError::Texture { code, .. }) => *code,
+            RenderError::Texture { code, .. } => *code,
             _ => 1,
         }
     }
@@ -17,21 +17,32 @@ impl RenderError {
 pub enum RenderError {
     /// The dicer failed.
     #[error("dicing failed: {0}")]
-    Dice(#[from] reyes_dice::DiceError),
+    Dice(reyes_dice::DiceError),
+    /// A texture map could not be loaded: found when the maps load, before any bucket is
+    /// diced, so it is not called a dicing failure. The message names the file.
+    #[error("{message}")]
+    Texture {
+        /// The loader's message.
+        message: String,
+        /// Its exit code: 1 for I/O, 2 for a file that is not a usable image.
+        code: u8,
+    },
     /// The film stage failed (e.g. a degenerate filter).
     #[error("{0}")]
     Film(#[from] reyes_film::FilmError),
     /// The frame cannot fit in the memory limit (known before anything is allocated).
     #[error(
-        "the frame needs at least {need} MB (film {film} MB, bucket samples {buckets} MB) and the memory limit is {limit} MB; lower the resolution, pixel samples or bucket size, or raise --memory-limit"
+        "the frame needs at least {need} MB (film {film} MB, bucket samples {buckets} MB, program and scene {base} MB) and the memory limit is {limit} MB; lower the resolution, pixel samples or bucket size, or raise --memory-limit"
     )]
     WontFit {
-        /// The whole estimate, in MB.
+        /// The whole estimate, in MB: the sum of the three parts below as shown.
         need: u64,
         /// The film and its encoded copy, in MB.
         film: u64,
         /// The workers' bucket arrays, in MB.
         buckets: u64,
+        /// The program, its threads and the scene, in MB.
+        base: u64,
         /// The limit, in MB.
         limit: u64,
     },
@@ -52,4 +63,15 @@ pub enum RenderError {
     /// [`crate::cancel::request`] was called: the render stopped before its last bucket.
     #[error("the render was cancelled")]
     Cancelled,
+}
+
+impl From<reyes_dice::DiceError> for RenderError {
+    fn from(e: reyes_dice::DiceError) -> RenderError {
+        match e {
+            reyes_dice::DiceError::Texture { message, code } => {
+                RenderError::Texture { message, code }
+            }
+            e => RenderError::Dice(e),
+        }
+    }
 }

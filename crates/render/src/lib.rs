@@ -103,10 +103,15 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<Rendered, RenderErr
         let threads = opts.threads.unwrap_or_else(rayon::current_num_threads);
         let estimate = budget::Estimate::new(scene, threads);
         if estimate.total() > limit {
+            // Each part rounded up to whole MB, and the total their sum, so that the message
+            // adds up (the rounded total of the bytes could be 1 or 2 MB less).
+            let (film, buckets, base) =
+                (budget::mb(estimate.film), budget::mb(estimate.buckets), budget::mb(estimate.base));
             return Err(RenderError::WontFit {
-                need: budget::mb(estimate.total()),
-                film: budget::mb(estimate.film),
-                buckets: budget::mb(estimate.buckets),
+                need: film + buckets + base,
+                film,
+                buckets,
+                base,
                 limit: limit >> 20,
             });
         }

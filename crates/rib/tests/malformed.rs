@@ -24,6 +24,8 @@ const CASES: &[Case] = &[
     Case { name: "malformed number: exponent without digits", rib: "Scale 1e 1 1", error: "test.rib:1:7: Scale: argument sx: malformed number \"1e\"" },
     Case { name: "non-finite number", rib: "Sphere 1e39 -1 1 360", error: "test.rib:1:8: Sphere: argument radius: number 1e39 is out of range (not a finite 32-bit float)" },
     Case { name: "non-finite number in an array", rib: "Color [1 -1e40 0]", error: "test.rib:1:10: Color: argument color: number -1e40 is out of range (not a finite 32-bit float)" },
+    Case { name: "NaN written as a word", rib: "Rotate NaN 0 1 0", error: "test.rib:1:8: Rotate: argument angle: expected a number, got \"NaN\": RIB numbers are finite (NaN and infinity cannot be written)" },
+    Case { name: "infinity written as a word", rib: "Translate 0 Infinity 0", error: "test.rib:1:13: Translate: argument dy: expected a number, got \"Infinity\": RIB numbers are finite (NaN and infinity cannot be written)" },
     Case { name: "octal escape above 255", rib: "Display \"a\\400\" \"file\" \"rgb\"", error: "test.rib:1:11: Display: argument name: octal escape \\400 is above \\377" },
     Case { name: "control byte", rib: "WorldBegin\n\u{1}", error: "test.rib:2:1: unexpected control byte 0x01" },
     Case { name: "stray closing bracket", rib: "]", error: "test.rib:1:1: expected a request name, got ']'" },

@@ -211,3 +211,25 @@ fn film_lines_are_handed_on_once_final_and_their_blocks_make_the_same_file() {
         assert!(files.windows(2).all(|p| p[0] == p[1]), "bucket {bucket}: thread counts differ");
     }
 }
+
+#[test]
+fn a_frame_too_large_for_the_memory_limit_is_refused_with_parts_that_add_up() {
+    let scene = crate::scene_file("spheres", |s| {
+        s.image.width = 4000;
+        s.image.height = 3000;
+    });
+    let opts = reyes_render::RenderOptions {
+        memory_limit: Some(64 << 20),
+        ..reyes_render::RenderOptions::default()
+    };
+    let e = reyes_render::render(&scene, &opts).err().expect("rendered over the limit");
+    let reyes_render::RenderError::WontFit { need, film, buckets, base, limit } = &e else {
+        panic!("{e}")
+    };
+    assert_eq!(*need, film + buckets + base, "{e}");
+    assert_eq!(*limit, 64);
+    let shown = e.to_string();
+    for part in [need, film, buckets, base] {
+        assert!(shown.contains(&format!("{part} MB")), "{shown}");
+    }
+}

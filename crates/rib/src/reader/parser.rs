@@ -165,6 +165,21 @@ impl Parser<'_> {
                 ),
             )
         };
+        if let Tok::Unknown(word) = &tok
+            && matches!(arg.kind, ArgKind::Float | ArgKind::Int | ArgKind::Color)
+            && is_non_finite_word(word)
+        {
+            // `Rotate NaN 0 1 0`: a non-finite value written out by an exporter, not a
+            // missing argument followed by an unknown request.
+            return Err(self.error(
+                pos,
+                format!(
+                    "argument {}: expected {}, got {word:?}: RIB numbers are finite (NaN and infinity cannot be written)",
+                    arg.name,
+                    arg.kind.describe()
+                ),
+            ));
+        }
         if matches!(tok, Tok::Request(_) | Tok::Unknown(_) | Tok::Eof) {
             return Err(self.error(
                 self.at,
@@ -488,4 +503,11 @@ impl Peeked {
             Peeked::Name | Peeked::Close | Peeked::Eof => false,
         }
     }
+}
+
+/// Whether a bare word is how a program prints a non-finite float (`nan`, `NaN`, `inf`,
+/// `Infinity`, `nan(ind)`): RIB has no such numbers.
+fn is_non_finite_word(word: &str) -> bool {
+    let w = word.to_ascii_lowercase();
+    matches!(w.as_str(), "nan" | "inf" | "infinity") || w.starts_with("nan(")
 }

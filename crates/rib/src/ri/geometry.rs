@@ -10,7 +10,7 @@
 
 use reyes_scene::{Faces, Rgb, Shape, V3};
 
-use crate::{Class, Param, Request, RibError, Warning};
+use crate::{Class, Param, Request, RequestKind, RibError, Warning};
 
 /// Where a primitive variable's values go: one per primitive, per face, per vertex, or per
 /// face-vertex.
@@ -311,12 +311,24 @@ pub(crate) fn unused_primvars(r: &Request, used: &[&str], warnings: &mut Vec<War
         if used.contains(&p.name.as_str()) {
             continue;
         }
+        // Polygon requests use vertex or varying N and st in some cases; other primitives never.
+        let polygons = matches!(
+            r.kind,
+            RequestKind::Polygon
+                | RequestKind::GeneralPolygon
+                | RequestKind::PointsPolygons
+                | RequestKind::PointsGeneralPolygons
+        );
         let what = match p.name.as_str() {
-            "N" | "Np" => {
+            "N" | "Np" if polygons => {
                 "only vertex or varying N on a polygon mesh without per-face colours is used: faces shade by their own normals"
             }
-            "st" | "s" | "t" => {
+            "N" | "Np" => "not used on this primitive: it shades by its own surface normals",
+            "st" | "s" | "t" if polygons => {
                 "only vertex or varying st on a polygon mesh without per-face colours is used: texture maps read the surface parameters (u, v)"
+            }
+            "st" | "s" | "t" => {
+                "not used on this primitive: texture maps read the surface parameters (u, v)"
             }
             "Os" => "per-vertex opacity is not supported: the Opacity attribute is used",
             _ => "primitive variable ignored",
