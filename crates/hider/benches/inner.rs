@@ -16,7 +16,14 @@
 //! generation, the sampling loops and the resolve); after each case the bench also prints the
 //! rate over the sampling loops alone, from `Stats::sample_ns`.
 //!
-//! Run with `cargo bench -p reyes-hider --bench inner`.
+//! A second group, `hider_samples`, renders the `static` case at 8x8, 16x16, 32x32 and 64x64
+//! samples per pixel: with the work per sample test constant, its elem/s stays flat (issue #31
+//! asks for within 1.5x from 8x8 to 64x64). Occlusion culling's per-pixel depth once rescanned
+//! all of a pixel's samples on every sample's first occluder, `ns^2` a pixel, and this group is
+//! where that shows.
+//!
+//! Run with `cargo bench -p reyes-hider --bench inner` (or `-- hider_samples` for the second
+//! group alone).
 
 use std::hint::black_box;
 use std::time::Duration;
@@ -80,7 +87,16 @@ struct Case {
 /// (for motion, upstream of it), each moved by `speed` over the shutter, keeping those whose
 /// bound (grown by the lens blur, if any) touches the bucket.
 fn case(name: &'static str, speed: [f32; 2], lens: Option<LensSetup>) -> Case {
-    let config = HiderConfig { lens, ..HiderConfig::default() };
+    case_with(name, speed, lens, HiderConfig::default())
+}
+
+fn case_with(
+    name: &'static str,
+    speed: [f32; 2],
+    lens: Option<LensSetup>,
+    config: HiderConfig,
+) -> Case {
+    let config = HiderConfig { lens, ..config };
     let hider = Hider::new(config, frame());
     let (lo, hi) = (16.0 - 6.0 - speed[0], 16.0 - 6.0 - speed[1]);
     let mut mpolys = grid(7, 0.95, 11.0, (lo, hi), (38.0, 38.0));
@@ -121,8 +137,20 @@ fn cases() -> Vec<Case> {
 }
 
 fn inner(c: &mut Criterion) {
-    let mut group = c.benchmark_group("hider_inner");
-    for case in cases() {
+    run_group(c, "hider_inner", cases());
+}
+
+fn samples(c: &mut Criterion) {
+    let at = |name, n| {
+        case_with(name, [0.0, 0.0], None, HiderConfig { nx: n, ny: n, ..HiderConfig::default() })
+    };
+    let cases = vec![at("8x8", 8), at("16x16", 16), at("32x32", 32), at("64x64", 64)];
+    run_group(c, "hider_samples", cases);
+}
+
+fn run_group(c: &mut Criterion, name: &str, cases: Vec<Case>) {
+    let mut group = c.benchmark_group(name);
+    for case in cases {
         let mut scratch = Scratch::new();
         case.hider.render_bucket(BUCKET, &case.mpolys, &case.list, &mut scratch);
         let once = scratch.stats;
@@ -165,6 +193,6 @@ criterion_group! {
     config = Criterion::default()
         .warm_up_time(Duration::from_secs(1))
         .measurement_time(Duration::from_secs(4));
-    targets = inner
+    targets = inner, samples
 }
 criterion_main!(benches);

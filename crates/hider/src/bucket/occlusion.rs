@@ -79,6 +79,9 @@ pub(crate) struct Occlusion {
     pub(crate) depth: Vec<f32>,
     /// Per pixel: the largest `depth` of its samples.
     pixel_max: Vec<f32>,
+    /// Per pixel: how many of its samples have no occluder yet (`depth` +inf). While any has
+    /// none, the pixel's largest depth is +inf without looking at the others.
+    open: Vec<u32>,
     /// The processing order: (nearest depth, position in the bucket's list), sorted.
     pub(crate) order: Vec<(f32, u32)>,
     /// Per visible point of the main pass: its micropolygon's position in the bucket's list.
@@ -107,6 +110,8 @@ impl Occlusion {
         self.depth.resize(p_count * ns, f32::INFINITY);
         self.pixel_max.clear();
         self.pixel_max.resize(p_count, f32::INFINITY);
+        self.open.clear();
+        self.open.resize(p_count, ns as u32);
         self.order.extend(
             list.iter().enumerate().map(|(i, &m)| (nearest(&mpolys[m as usize]), i as u32)),
         );
@@ -168,6 +173,11 @@ impl Occlusion {
     }
 
     /// An occluder's point with largest depth `maxz` now lies in sample `n`'s list.
+    ///
+    /// The pixel's largest depth is rescanned over its samples only when the sample that
+    /// held it moves nearer; while some sample has no occluder it stays +inf unscanned. (A
+    /// rescan on every first occluder of a sample, as before, cost `ns` steps each, `ns^2` a
+    /// pixel: 64x64 samples ran 14 times slower per sample test than 8x8.)
     #[inline]
     pub(crate) fn record(&mut self, n: usize, maxz: f32) {
         let d = maxz * MARGIN;
@@ -178,9 +188,15 @@ impl Occlusion {
         }
         self.depth[n] = d;
         let p = n / self.ns;
-        if old >= self.pixel_max[p] {
-            let s = &self.depth[p * self.ns..(p + 1) * self.ns];
-            self.pixel_max[p] = s.iter().copied().fold(f32::NEG_INFINITY, f32::max);
+        if old == f32::INFINITY {
+            self.open[p] -= 1;
+            if self.open[p] > 0 {
+                return;
+            }
+        } else if old < self.pixel_max[p] {
+            return;
         }
+        let s = &self.depth[p * self.ns..(p + 1) * self.ns];
+        self.pixel_max[p] = s.iter().copied().fold(f32::NEG_INFINITY, f32::max);
     }
 }
