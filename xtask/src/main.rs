@@ -20,7 +20,7 @@ use reyes_testkit::golden::{self, Outcome};
 
 fn usage() -> ExitCode {
     eprintln!(
-        "usage: cargo xtask <golden | bless [SCENE...] | bench [--runs N] [--threads T] [--baseline BIN] [SCENE...] | scaling [--threads T] [N...] | study [--quick] | geometry [--quick] | compare A.exr B.exr [--diff OUT.png] | fuzz [--execs N] [--renders N] [--targets ron,rib,render] [--seed S] [--save] [--time-limit SECS] | fuzz cmin | models [--bench] | rate [SCENE...]>"
+        "usage: cargo xtask <golden | bless [SCENE...] | bench [--runs N] [--threads T] [--baseline BIN] [SCENE...] | scaling [--threads T] [N...] | study [--quick] | geometry [--quick] | compare A B [--diff OUT.png] | fuzz [--execs N] [--renders N] [--targets ron,rib,render] [--seed S] [--save] [--time-limit SECS] | fuzz cmin | models [--bench] | rate [SCENE...]>"
     );
     ExitCode::from(2)
 }

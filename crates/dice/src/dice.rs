@@ -18,107 +18,37 @@
 //! not move (bit for bit) are merged, so a still micropolygon is one record with time
 //! `[0, 1]` and zero speed, exactly as without motion. Emission order is grid order, then
 //! time order, so it is deterministic.
+//!
+//! A grid is diced in three passes, one module each: the positions (this file,
+//! [`Emitter::dice`]: every vertex evaluated, displaced and projected at every breakpoint),
+//! the cells (`emit.rs`: each cell's segments kept or dropped against the depth limits, back
+//! faces (`facing.rs`) and buckets) and the shading of the vertices the kept cells use
+//! (`shading.rs`). The grid store is `grid.rs`; what an object brings to all three (shader,
+//! labels, hooks) is `object.rs`.
 
-use glam::{Mat3, Vec3};
-use reyes_hider::flags;
+use glam::Vec3;
 
-use crate::aov::VertexAovs;
 use crate::bucket::{BucketRange, Bucketer};
-use crate::camera::{CameraSetup, Viewer};
+use crate::camera::CameraSetup;
 use crate::displace;
-use crate::hook::{VertexContext, VertexShader};
-use crate::lookdev::{At, Look, Looked};
-use crate::motion::{Placement, Pose};
-use crate::shade::Shader;
+use crate::motion::Pose;
 use crate::split::Patch;
 
+mod emit;
 mod facing;
 mod grid;
+mod object;
+mod shading;
 
 pub(crate) use facing::cull_back_faces;
 pub(crate) use grid::Grid;
-use grid::{EXTRA, Kept, STILL, overlap};
-
-/// A vertex shader from [`crate::DiceOptions`], with where the dicer is.
-#[derive(Clone, Copy)]
-pub(crate) struct Hook<'a> {
-    /// The shader.
-    pub shader: &'a dyn VertexShader,
-    /// Index of the object in the scene.
-    pub object: usize,
-    /// Index of the surface being diced (set per grid by [`Emitter::dice`]).
-    pub surface: usize,
-}
-
-/// One object's shading, flag bits and labels.
-#[derive(Clone)]
-pub(crate) struct ObjectContext<'a> {
-    /// Object to world at shutter open, for normals (inverse transpose up to a positive
-    /// factor).
-    pub normal_to_world: Mat3,
-    /// Shader of the object's material.
-    pub shader: Shader,
-    /// Labels every micropolygon of the object carries.
-    pub labels: Labels,
-    /// Shades the vertices instead of `shader` when present.
-    pub hook: Option<Hook<'a>>,
-    /// Back-facing micropolygons may be dropped: the object is a closed, opaque surface
-    /// drawn on its own (not matte, glass or a CSG operand) and the camera is a pinhole, so
-    /// a back-facing micropolygon always lies behind a front-facing one of the same object
-    /// at every sample that could see it ([`cull_back_faces`]).
-    pub cull_back: bool,
-    /// The per-vertex AOV layout when the scene writes AOVs, and the object's ids.
-    pub aov: Option<(std::sync::Arc<VertexAovs>, [f32; 2])>,
-    /// Texture maps, displacement, bump and emission ([`crate::lookdev`]).
-    pub look: Option<Look>,
-    /// Push crack-free grids' boundary vertices out by [`crate::split::OVERLAP`] (not for CSG operands,
-    /// for which a sample seeing a surface twice is as wrong as one seeing it not at all).
-    pub overlap: bool,
-}
-
-/// What every micropolygon of one object carries besides its geometry and colour.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Labels {
-    /// Flag bits (`OPAQUE`, `MATTE`, `GOURAUD`, `GLASS`).
-    pub flags: u32,
-    /// CSG tree index and slot id (0, 0 when the object is not a CSG operand).
-    pub csg_tree: u16,
-    /// See `csg_tree`.
-    pub csg_node: u16,
-    /// Appendix A `glasshackopacity` (0 unless `GLASS`).
-    pub glass_opacity: f32,
-}
+use grid::overlap;
+pub(crate) use object::{Hook, Labels, ObjectContext, object_context};
+use shading::Open;
 
 /// A micropolygon's vertices at one time: raster x, raster y, eye z (x and y NaN where z is
 /// not positive).
 type Quad = [[f32; 3]; 4];
-
-/// Whether a cell is at the same place at two breakpoints: every coordinate equal, or the
-/// same bits (so a vertex that is not finite at both, e.g. projected from behind the eye,
-/// counts as not moving, and the cell is classified once rather than once per segment).
-#[inline]
-fn same(a: &Quad, b: &Quad) -> bool {
-    a.iter().flatten().zip(b.iter().flatten()).all(|(x, y)| x == y || x.to_bits() == y.to_bits())
-}
-
-/// What shading a vertex at shutter open needs, kept from its evaluation in
-/// [`Emitter::dice`] until its grid's cells are decided.
-#[derive(Debug, Clone, Copy)]
-struct Open {
-    /// Object-space position as evaluated, before displacement: where texture maps are
-    /// looked up.
-    p_lookup: Vec3,
-    /// Object-space position, displaced.
-    p_object: Vec3,
-    /// Colour multiplying the material colour (mesh vertex colours; white otherwise).
-    tint: Vec3,
-    /// World-space position (displaced) and its camera-space one: the surface point, not
-    /// the crack-free corner on a side's polyline.
-    p_world: Vec3,
-    p_shaded: Vec3,
-    /// World-space normal (displaced; not normalised).
-    n_world: Vec3,
-}
 
 /// Dices grids, with the running counts.
 #[derive(Debug, Clone)]
@@ -209,9 +139,10 @@ impl<'b> Emitter<'b> {
     /// that some kept micropolygon uses shaded ([`Emitter::shade`]). The others are left at
     /// zero colour, transmittance and AOVs, which nothing reads: [`Grid::micropolygon`] and
     /// [`Grid::micropolygon_aovs`] read only a kept cell's corners, and the bucketer only
-    /// positions. Shading a vertex depends only on its own inputs (the [`VertexShader`]
-    /// seam's invariant: the surface point, its grid's rectangle and its `(i, j)`), so each
-    /// shaded vertex gets the values it had when every vertex was shaded.
+    /// positions. Shading a vertex depends only on its own inputs (the
+    /// [`crate::VertexShader`] seam's invariant: the surface point, its grid's rectangle and
+    /// its `(i, j)`), so each shaded vertex gets the values it had when every vertex was
+    /// shaded.
     pub fn dice(
         &mut self,
         camera: &CameraSetup,
@@ -368,380 +299,6 @@ impl<'b> Emitter<'b> {
         self.quads = quads;
         if let Some(open) = poses.first() {
             self.shade(camera, object, hook, open, patch, (nu, nv), &opens);
-        }
-    }
-
-    /// Shade, at shutter open (`open`, the first pose), the vertices of the grid that its
-    /// kept micropolygons use (every vertex under [`Emitter::shade_all`]): colour and
-    /// transmittance (premultiplied, with the object's emission), and the AOVs. `opens` holds
-    /// each vertex's surface point, from [`Emitter::dice`].
-    // Once per grid, and out of line, so that profiles show shading apart from dicing.
-    #[inline(never)]
-    #[allow(clippy::too_many_arguments)]
-    fn shade(
-        &mut self,
-        camera: &CameraSetup,
-        object: &ObjectContext<'_>,
-        hook: Option<Hook<'_>>,
-        open: &Pose<'_>,
-        patch: &Patch,
-        (nu, nv): (usize, usize),
-        opens: &[Open],
-    ) {
-        let count = opens.len();
-        let mut used = vec![self.shade_all; count];
-        if !self.shade_all {
-            for k in &self.grid.kept {
-                for c in self.grid.corners(k.cell) {
-                    used[c] = true;
-                }
-            }
-        }
-        let world_to_camera = camera.world_to_camera();
-        let duv = [(patch.u[1] - patch.u[0]) / nu as f32, (patch.v[1] - patch.v[0]) / nv as f32];
-        let g = &mut self.grid;
-        let stride = g.aov_stride;
-        g.aov.reserve_exact(count * stride);
-        g.aov.resize(count * stride, 0.0);
-        let mut values = Vec::with_capacity(stride);
-        let mut shaded = 0;
-        for (vertex, o) in opens.iter().enumerate() {
-            if !used[vertex] {
-                continue;
-            }
-            shaded += 1;
-            let (i, j) = (vertex % (nu + 1), vertex / (nu + 1));
-            let (u, v) = (Patch::at(patch.u, i, nu), Patch::at(patch.v, j, nv));
-            let looked = object.look.as_ref().map_or(Looked::NONE, |l| {
-                let (uv, duv) = open.surface.st(u, v, duv);
-                l.object.looked(&l.system, &At { uv, duv, p_object: o.p_lookup })
-            });
-            // The shader face-forwards the normal toward the eye (two-sided), which is what
-            // CSG needs: where a difference A - B shows B's surface through a hole in A, the
-            // eye sees B from B's inside, i.e. the outside of the result, whose outward
-            // normal there is B's inward one. The geometric (outward) normal itself is not
-            // stored: the orientation survives only in the vertex winding.
-            let (mut color, trans) = match &hook {
-                None => object.shader.shade_looked(o.p_world, o.n_world, o.tint, &looked),
-                Some(hook) => hook.shader.shade(&VertexContext {
-                    object: hook.object,
-                    surface: hook.surface,
-                    patch_u: patch.u,
-                    patch_v: patch.v,
-                    i: i as u32,
-                    j: j as u32,
-                    nu: nu as u32,
-                    nv: nv as u32,
-                    p_world: o.p_world,
-                    n_world: o.n_world.normalize_or_zero(),
-                    p_object: o.p_object,
-                    tint: o.tint * looked.color,
-                    looked,
-                }),
-            };
-            if let Some(e) = object.look.as_ref().and_then(|l| l.object.emission) {
-                // Emission, premultiplied by the opacity (1 - trans).
-                for a in 0..3 {
-                    color[a] += e[a] * (1.0 - trans[a]);
-                }
-            }
-            g.color[vertex] = color;
-            g.trans[vertex] = trans;
-            if let Some((layout, ids)) = &object.aov {
-                values.clear();
-                let n_camera = world_to_camera.transform_vector3(o.n_world).normalize_or_zero();
-                values.extend_from_slice(&n_camera.to_array());
-                values.extend_from_slice(&o.p_shaded.to_array());
-                values.extend_from_slice(&[u, v, ids[0], ids[1]]);
-                for group in &layout.groups {
-                    // Local illumination's terms; the ray-traced shader's are not split (the
-                    // render refuses component AOVs with it).
-                    let terms = match &hook {
-                        None => object.shader.components_looked(
-                            o.p_world,
-                            o.n_world,
-                            o.tint,
-                            group.as_deref(),
-                            &looked,
-                        ),
-                        Some(_) => [glam::Vec3::ZERO; 3],
-                    };
-                    for t in terms {
-                        values.extend_from_slice(&t.to_array());
-                    }
-                }
-                g.aov[vertex * stride..(vertex + 1) * stride].copy_from_slice(&values);
-            }
-        }
-        self.shaded += shaded;
-    }
-
-    /// Emit cell `cell` from its positions at each breakpoint (`(time, quad)`, in time
-    /// order): one micropolygon per segment, runs of segments over which it is still merged.
-    fn emit_segments(&mut self, cell: u32, quads: &[(f32, Quad)]) {
-        let n = quads.len();
-        if quads.windows(2).all(|w| same(&w[0].1, &w[1].1)) {
-            // Still over the whole shutter (or a single breakpoint).
-            if let Some((_, q)) = quads.first() {
-                self.emit(cell, (0, q), None, [0.0, 1.0]);
-            }
-            return;
-        }
-        let mut a = 0;
-        while a + 1 < n {
-            let mut b = a + 1;
-            let still = same(&quads[a].1, &quads[b].1);
-            if still {
-                while b + 1 < n && same(&quads[b].1, &quads[b + 1].1) {
-                    b += 1;
-                }
-            }
-            let to = (!still).then_some((b as u32, &quads[b].1));
-            self.emit(cell, (a as u32, &quads[a].1), to, [quads[a].0, quads[b].0]);
-            a = b;
-        }
-    }
-
-    /// The part of cell `cell`'s motion from breakpoint `from` to breakpoint `to` (over
-    /// `time`) during which every vertex is at least `near` in front of the eye: its
-    /// positions at the start and end of that part and the part's times, or `None` if there
-    /// is no such part (or a position is not finite). Camera-space positions move linearly
-    /// between breakpoints, so each vertex is in front of `near` over one interval of the
-    /// segment, and all four over the intersection of theirs.
-    fn in_front(
-        &self,
-        cell: u32,
-        from: u32,
-        to: u32,
-        time: [f32; 2],
-    ) -> Option<(Quad, Quad, [f32; 2])> {
-        let g = &self.grid;
-        let count = g.count as usize;
-        let corners = g.corners(cell);
-        let at = |b: u32| corners.map(|c| g.cam[b as usize * count + c]);
-        let (p, q) = (at(from), at(to));
-        let (mut lo, mut hi) = (0.0_f32, 1.0_f32);
-        for (p, q) in p.iter().zip(&q) {
-            if !(p.is_finite() && q.is_finite()) {
-                return None;
-            }
-            match (p.z >= self.near, q.z >= self.near) {
-                (true, true) => {}
-                (false, false) => return None,
-                // Where z(s) = p.z + s (q.z - p.z) reaches `near`.
-                (true, false) => hi = hi.min((p.z - self.near) / (p.z - q.z)),
-                (false, true) => lo = lo.max((self.near - p.z) / (q.z - p.z)),
-            }
-        }
-        // A part too short to hold a sample time is not worth a record.
-        if hi - lo <= 1e-6 || hi.is_nan() || lo.is_nan() {
-            return None;
-        }
-        let project = |s: f32| {
-            let mut quad = [[0.0_f32; 3]; 4];
-            for (k, (p, q)) in p.iter().zip(&q).enumerate() {
-                let c = crate::motion::lerp(*p, *q, s);
-                // Rounding may leave a vertex a hair nearer than `near` at the crossing.
-                let c = Vec3::new(c.x, c.y, c.z.max(self.near));
-                let r = self.camera.as_ref()?.eye_to_raster(c);
-                if !r.is_finite() {
-                    return None;
-                }
-                quad[k] = [r.x, r.y, c.z];
-            }
-            Some(quad)
-        };
-        let span = time[1] - time[0];
-        let t = [time[0] + lo * span, if hi >= 1.0 { time[1] } else { time[0] + hi * span }];
-        Some((project(lo)?, project(hi)?, t))
-    }
-
-    /// Classify one micropolygon of cell `cell` over its segment `time` (at breakpoint
-    /// `from` at the start, at `to` at the end, or at `from` throughout when `to` is `None`)
-    /// against the depth limits and buckets, and keep it or drop it.
-    #[inline(always)]
-    fn emit(&mut self, cell: u32, from: (u32, &Quad), to: Option<(u32, &Quad)>, time: [f32; 2]) {
-        let mut usable = true;
-        let (mut zmin, mut zmax) = (f32::INFINITY, f32::NEG_INFINITY);
-        for q in [Some(from.1), to.map(|t| t.1)].into_iter().flatten() {
-            for p in q {
-                usable &= p[0].is_finite() && p[1].is_finite() && p[2] >= self.near;
-                zmin = zmin.min(p[2]);
-                zmax = zmax.max(p[2]);
-            }
-        }
-        usable &= zmax.is_finite();
-        if !usable {
-            // A moving micropolygon that comes nearer than `near` (or passes behind the
-            // eye) during its segment keeps the part of the segment it is in front of it.
-            if let Some((to_b, _)) = to
-                && from.0 & EXTRA == 0
-                && !self.grid.cam.is_empty()
-                && let Some((a, b, t)) = self.in_front(cell, from.0, to_b, time)
-            {
-                let ia = EXTRA | self.grid.extra.len() as u32;
-                self.grid.extra.push(a);
-                let ib = EXTRA | self.grid.extra.len() as u32;
-                self.grid.extra.push(b);
-                self.emit(cell, (ia, &a), Some((ib, &b)), t);
-                return;
-            }
-            self.culled += 1;
-            return;
-        }
-        // All in front of hither, or all beyond yon, at both ends.
-        if zmax < self.hither || zmin > self.yon {
-            self.culled += 1;
-            return;
-        }
-        if let Some(sign) = self.cull
-            && Self::backfacing(sign, from.1, to.map(|t| t.1), self.warp)
-        {
-            self.culled += 1;
-            self.backfacing += 1;
-            return;
-        }
-        let crossing = zmin < self.hither || zmax > self.yon;
-        let mut flags = self.grid.labels.flags;
-        if crossing {
-            flags |= flags::HITHER_YON_CROSSING;
-        }
-        let moves = to.is_some_and(|(_, q)| {
-            from.1.iter().zip(q).any(|(p, q)| (0..3).any(|a| q[a] - p[a] != 0.0))
-        });
-        if moves || time != [0.0, 1.0] {
-            flags |= flags::MOVING;
-        }
-        let kept = Kept { cell, from: from.0, to: to.map_or(STILL, |t| t.0), flags, time };
-        let Some(range) = self.bucketer.range(&self.grid.build(&kept)) else {
-            self.culled += 1;
-            return;
-        };
-        self.ranges.push(range);
-        self.grid.kept.push(kept);
-        if crossing {
-            self.crossing += 1;
-        }
-        if flags & flags::MOVING != 0 {
-            self.moving += 1;
-        }
-    }
-}
-
-/// Per-object setup: shading (under the object's light set, seen by `viewer`, with the object
-/// placed by `open`, its placement at shutter open), flags, and the CSG label `csg`
-/// (`(tree index, slot id)` of a CSG operand, from [`crate::CsgSetup::leaf`]).
-pub(crate) fn object_context(
-    object: &reyes_scene::Object,
-    lights: &[reyes_scene::Light],
-    viewer: Viewer,
-    open: &Placement,
-    csg: Option<(u16, u16)>,
-) -> ObjectContext<'static> {
-    let shader = Shader::for_object(object, lights, viewer);
-    let mut flags = 0;
-    if shader.opaque() {
-        flags |= flags::OPAQUE;
-    }
-    if object.matte {
-        flags |= flags::MATTE;
-    }
-    if object.interpolation == reyes_scene::Interpolation::Gouraud {
-        flags |= flags::GOURAUD;
-    }
-    let mut glass_opacity = 0.0;
-    if let Some(a) = object.glass {
-        flags |= flags::GLASS;
-        glass_opacity = a;
-    }
-    let (csg_tree, csg_node) = csg.unwrap_or((0, 0));
-    let labels = Labels { flags, csg_tree, csg_node, glass_opacity };
-    ObjectContext {
-        normal_to_world: open.normal_to_world(),
-        shader,
-        labels,
-        hook: None,
-        cull_back: false,
-        aov: None,
-        look: None,
-        overlap: csg.is_none(),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use crate::lazy::Dicer;
-    use crate::{DiceOptions, DiceStats};
-
-    /// A scene file of `scenes/`, 120 pixels across.
-    fn scene_file(name: &str) -> reyes_scene::Scene {
-        let root = reyes_testkit::golden::workspace_root();
-        let mut scene = reyes_scene::load(&root.join(format!("scenes/{name}.ron"))).unwrap();
-        let (w, h) = (scene.image.width, scene.image.height);
-        scene.image.width = 120;
-        scene.image.height = (120 * h / w).max(1);
-        scene
-    }
-
-    fn dice(scene: &reyes_scene::Scene, all: bool) -> (Vec<crate::lazy::NewGrid>, DiceStats) {
-        let frame = reyes_testkit::fixtures::frame_for(scene);
-        let options = DiceOptions { shade_every_vertex: all, ..Default::default() };
-        let (wave, _, _) = Dicer::new_eager(scene, &frame, &options).unwrap().dice_all();
-        (wave.grids, wave.stats)
-    }
-
-    /// Every vertex a kept micropolygon uses is shaded and no other: the others keep zero
-    /// colour, transmittance and AOVs, and the count is theirs. Shading every vertex instead
-    /// gives every kept micropolygon and its AOVs bit for bit.
-    #[test]
-    fn only_the_corners_of_kept_cells_are_shaded() {
-        // Back faces and off-screen cells (spheres), motion (cells kept over part of the
-        // shutter), AOVs, displacement and texture maps.
-        for name in ["spheres", "motion-blur", "aovs", "lookdev"] {
-            let scene = scene_file(name);
-            let (grids, stats) = dice(&scene, false);
-            let (all_grids, all_stats) = dice(&scene, true);
-            let mut shaded = 0u64;
-            let mut unused = 0u64;
-            for g in grids.iter().map(|g| &g.grid) {
-                let st = g.aov_stride;
-                let mut used = vec![false; g.count as usize];
-                for k in &g.kept {
-                    for c in g.corners(k.cell) {
-                        used[c] = true;
-                    }
-                }
-                for (c, &u) in used.iter().enumerate() {
-                    if u {
-                        shaded += 1;
-                    } else {
-                        unused += 1;
-                        assert_eq!((g.color[c], g.trans[c]), ([0.0; 3], [0.0; 3]), "{name}");
-                        assert!(g.aov[c * st..(c + 1) * st].iter().all(|&a| a == 0.0), "{name}");
-                    }
-                }
-            }
-            assert_eq!(stats.shaded, shaded, "{name}");
-            assert!(stats.shaded < stats.vertices, "{name}: every vertex used");
-            assert!(unused > 0, "{name}");
-            assert_eq!(all_stats.shaded, all_stats.vertices, "{name}");
-            assert_eq!(DiceStats { shaded: 0, ..stats }, DiceStats { shaded: 0, ..all_stats });
-            assert_eq!(grids.len(), all_grids.len(), "{name}");
-            let (mut a, mut b) = (Vec::new(), Vec::new());
-            for (g, h) in grids.iter().zip(&all_grids) {
-                assert_eq!(g.key, h.key, "{name}");
-                assert_eq!(g.grid.len(), h.grid.len(), "{name}");
-                for k in 0..g.grid.len() {
-                    let (p, q) = (g.grid.micropolygon(k), h.grid.micropolygon(k));
-                    assert_eq!(bytemuck::bytes_of(&p), bytemuck::bytes_of(&q), "{name}");
-                    a.clear();
-                    b.clear();
-                    g.grid.micropolygon_aovs(k, &mut a);
-                    h.grid.micropolygon_aovs(k, &mut b);
-                    let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-                    assert_eq!(bits(&a), bits(&b), "{name}");
-                }
-            }
         }
     }
 }

@@ -58,7 +58,8 @@ fn check_lazy(scene: &Scene, options: &DiceOptions<'_>, what: &str) -> (u64, u64
 #[test]
 fn lazy_buckets_are_the_eager_buckets_for_every_scene() {
     for file in scene_files() {
-        let scene = reyes_scene::load(&file).expect("scene");
+        // An animated scene (scenes/animation.ron) at its first frame.
+        let scene = reyes_testkit::golden::load_scene(&file, Some(1)).expect("scene");
         let (peak, total) =
             check_lazy(&scene, &DiceOptions::default(), &file.display().to_string());
         assert!(peak <= total, "{}: {peak} > {total}", file.display());

@@ -43,15 +43,24 @@ pub struct Case {
     /// `golden/NAME-stochastic.exr`.
     #[serde(default)]
     pub method: Option<reyes_scene::HiderMethod>,
+    /// The frame rendered of an animated scene (one with `${...}` expressions,
+    /// docs/scene-format.md#animation), which needs one; the reference is then
+    /// `golden/NAME-frameN.exr`.
+    #[serde(default)]
+    pub frame: Option<i32>,
 }
 
 impl Case {
     /// The case's name: the scene's, with the hider appended when it is overridden.
     pub fn name(&self) -> String {
-        match self.method {
+        let scene = match self.frame {
             None => self.scene.clone(),
-            Some(reyes_scene::HiderMethod::Stochastic) => format!("{}-stochastic", self.scene),
-            Some(reyes_scene::HiderMethod::RayTrace) => format!("{}-raytraced", self.scene),
+            Some(n) => format!("{}-frame{n}", self.scene),
+        };
+        match self.method {
+            None => scene,
+            Some(reyes_scene::HiderMethod::Stochastic) => format!("{scene}-stochastic"),
+            Some(reyes_scene::HiderMethod::RayTrace) => format!("{scene}-raytraced"),
         }
     }
 }
@@ -99,6 +108,31 @@ pub fn workspace_root() -> PathBuf {
     root.canonicalize().unwrap_or(root)
 }
 
+/// Reads, parses and validates the scene file at `path` as [`reyes_scene::load`] does, an
+/// animated one (with `${...}` expressions) at frame `frame`, which it then needs; a frame
+/// given for a scene that is not animated changes nothing.
+pub fn load_scene(
+    path: &Path,
+    frame: Option<i32>,
+) -> Result<reyes_scene::Scene, reyes_scene::LoadError> {
+    let text = reyes_scene::read_text(path)?;
+    if !reyes_scene::animate::is_animated(&text) {
+        return reyes_scene::parse_files(&text, path);
+    }
+    let Some(frame) = frame else {
+        return Err(reyes_scene::SceneError {
+            file: path.to_path_buf(),
+            line: None,
+            col: None,
+            field: "${...}".into(),
+            message: "the scene is animated: give the frame to render".into(),
+        }
+        .into());
+    };
+    let text = reyes_scene::animate::substitute(&text, frame, path)?;
+    reyes_scene::parse_files(&text, path)
+}
+
 /// Read `golden/manifest.ron`.
 pub fn manifest(root: &Path) -> Result<Vec<Case>, GoldenError> {
     let path = root.join("golden/manifest.ron");
@@ -118,7 +152,7 @@ pub fn render_case(root: &Path, case: &Case) -> Result<(Film, f32), GoldenError>
 /// The case's scene at the case's size.
 fn case_scene(root: &Path, case: &Case) -> Result<reyes_scene::Scene, GoldenError> {
     let path = root.join("scenes").join(format!("{}.ron", case.scene));
-    let mut scene = reyes_scene::load(&path).map_err(err)?;
+    let mut scene = load_scene(&path, case.frame).map_err(err)?;
     scene.image.width = case.width;
     scene.image.height = case.height;
     if let Some(method) = case.method {

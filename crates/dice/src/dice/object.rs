@@ -1,0 +1,105 @@
+//! What an object brings to the dicing of each of its grids (stage: dice): its shader at
+//! shutter open, the labels every micropolygon of it carries (flag bits, CSG slot, glass
+//! opacity), an optional vertex-shader hook, and its back-face, AOV, look-development and
+//! overlap switches. Invariant: made once per object, before any of its grids is diced, and
+//! read only while dicing.
+
+use glam::Mat3;
+use reyes_hider::flags;
+
+use crate::aov::VertexAovs;
+use crate::camera::Viewer;
+use crate::hook::VertexShader;
+use crate::lookdev::Look;
+use crate::motion::Placement;
+use crate::shade::Shader;
+
+/// A vertex shader from [`crate::DiceOptions`], with where the dicer is.
+#[derive(Clone, Copy)]
+pub(crate) struct Hook<'a> {
+    /// The shader.
+    pub shader: &'a dyn VertexShader,
+    /// Index of the object in the scene.
+    pub object: usize,
+    /// Index of the surface being diced (set per grid by [`super::Emitter::dice`]).
+    pub surface: usize,
+}
+
+/// One object's shading, flag bits and labels.
+#[derive(Clone)]
+pub(crate) struct ObjectContext<'a> {
+    /// Object to world at shutter open, for normals (inverse transpose up to a positive
+    /// factor).
+    pub normal_to_world: Mat3,
+    /// Shader of the object's material.
+    pub shader: Shader,
+    /// Labels every micropolygon of the object carries.
+    pub labels: Labels,
+    /// Shades the vertices instead of `shader` when present.
+    pub hook: Option<Hook<'a>>,
+    /// Back-facing micropolygons may be dropped: the object is a closed, opaque surface
+    /// drawn on its own (not matte, glass or a CSG operand) and the camera is a pinhole, so
+    /// a back-facing micropolygon always lies behind a front-facing one of the same object
+    /// at every sample that could see it ([`super::cull_back_faces`]).
+    pub cull_back: bool,
+    /// The per-vertex AOV layout when the scene writes AOVs, and the object's ids.
+    pub aov: Option<(std::sync::Arc<VertexAovs>, [f32; 2])>,
+    /// Texture maps, displacement, bump and emission ([`crate::lookdev`]).
+    pub look: Option<Look>,
+    /// Push crack-free grids' boundary vertices out by [`crate::split::OVERLAP`] (not for CSG operands,
+    /// for which a sample seeing a surface twice is as wrong as one seeing it not at all).
+    pub overlap: bool,
+}
+
+/// What every micropolygon of one object carries besides its geometry and colour.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Labels {
+    /// Flag bits (`OPAQUE`, `MATTE`, `GOURAUD`, `GLASS`).
+    pub flags: u32,
+    /// CSG tree index and slot id (0, 0 when the object is not a CSG operand).
+    pub csg_tree: u16,
+    /// See `csg_tree`.
+    pub csg_node: u16,
+    /// Appendix A `glasshackopacity` (0 unless `GLASS`).
+    pub glass_opacity: f32,
+}
+
+/// Per-object setup: shading (under the object's light set, seen by `viewer`, with the object
+/// placed by `open`, its placement at shutter open), flags, and the CSG label `csg`
+/// (`(tree index, slot id)` of a CSG operand, from [`crate::CsgSetup::leaf`]).
+pub(crate) fn object_context(
+    object: &reyes_scene::Object,
+    lights: &[reyes_scene::Light],
+    viewer: Viewer,
+    open: &Placement,
+    csg: Option<(u16, u16)>,
+) -> ObjectContext<'static> {
+    let shader = Shader::for_object(object, lights, viewer);
+    let mut flags = 0;
+    if shader.opaque() {
+        flags |= flags::OPAQUE;
+    }
+    if object.matte {
+        flags |= flags::MATTE;
+    }
+    if object.interpolation == reyes_scene::Interpolation::Gouraud {
+        flags |= flags::GOURAUD;
+    }
+    let mut glass_opacity = 0.0;
+    if let Some(a) = object.glass {
+        flags |= flags::GLASS;
+        glass_opacity = a;
+    }
+    let (csg_tree, csg_node) = csg.unwrap_or((0, 0));
+    let labels = Labels { flags, csg_tree, csg_node, glass_opacity };
+    ObjectContext {
+        normal_to_world: open.normal_to_world(),
+        shader,
+        labels,
+        hook: None,
+        cull_back: false,
+        aov: None,
+        look: None,
+        overlap: csg.is_none(),
+    }
+}
