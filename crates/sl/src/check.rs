@@ -326,7 +326,7 @@ impl<'m> Checker<'m> {
                         format!("shader parameter \"{}\" needs a default value", v.name),
                     ));
                 };
-                let mut value = self.initializer(init, ty)?;
+                let mut value = self.initializer(init, ty, &v.name)?;
                 let id = self.new_var(
                     &v.name,
                     ty,
@@ -963,7 +963,7 @@ impl<'m> Checker<'m> {
             let id = self.new_var(&v.name, ty, d.ty.detail, VarKind::Local, v.pos);
             let init = match &v.init {
                 Some(e) => {
-                    let mut value = self.initializer(e, ty)?;
+                    let mut value = self.initializer(e, ty, &v.name)?;
                     self.assign_value(id, &mut value, e.pos)?;
                     Some(value)
                 }
@@ -983,29 +983,32 @@ impl<'m> Checker<'m> {
         Ok(())
     }
 
-    fn initializer(&mut self, e: &ast::Expr, ty: Type) -> DResult<Expr> {
+    fn initializer(&mut self, e: &ast::Expr, ty: Type, name: &str) -> DResult<Expr> {
         if let A::ArrayLit(items) = &e.kind {
             let Some(n) = ty.array else {
-                return Err(Diag::new(e.pos, format!("an array initialiser {{…}} for a {ty}")));
+                return Err(Diag::new(
+                    e.pos,
+                    format!("an array initialiser {{…}} for \"{name}\", a {ty}"),
+                ));
             };
             if items.len() as u32 != n {
                 return Err(Diag::new(
                     e.pos,
-                    format!("the initialiser has {} values for a {ty}", items.len()),
+                    format!("the initialiser has {} values for \"{name}\", a {ty}", items.len()),
                 ));
             }
             let mut parts = Vec::new();
             let mut detail = Detail::Uniform;
             for it in items {
                 let v = self.expr(it, Some(ty.element()))?;
-                let v = self.convert(v, ty.element(), "an array element")?;
+                let v = self.convert(v, ty.element(), &format!("an element of \"{name}\""))?;
                 detail = detail.join(v.detail);
                 parts.push(v);
             }
             return Ok(Expr { kind: ExprKind::Array(parts), ty, detail, pos: e.pos });
         }
         let v = self.expr(e, Some(ty))?;
-        self.convert(v, ty, "the initial value")
+        self.convert(v, ty, &format!("the initial value of \"{name}\""))
     }
 
     /// The detail rules of assigning `value` to variable `id`; a value varying only through
@@ -1033,7 +1036,7 @@ impl<'m> Checker<'m> {
         if let Some(&c) = self.ctrl.last().filter(|_| self.ctrl.len() > self.decl_ctrl[id]) {
             self.raise(
                 id,
-                || format!("cannot assign to uniform variable \"{name}\" under varying control (the condition at line {}:{} is varying)", c.line, c.col),
+                || format!("cannot assign to uniform variable \"{name}\" under varying control (the condition at {}:{} is varying)", c.line, c.col),
                 pos,
             )?;
         }

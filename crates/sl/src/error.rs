@@ -108,7 +108,13 @@ impl Diag {
 
     pub fn into_error(self, map: &SourceMap) -> SlError {
         if self.io {
-            return SlError::Io { path: map.show(self.pos), message: self.message };
+            // Line 0: the shader file itself, which has no position to show.
+            let path = if self.pos.line == 0 {
+                map.name(self.pos.file).to_string()
+            } else {
+                map.show(self.pos)
+            };
+            return SlError::Io { path, message: self.message };
         }
         SlError::Source {
             file: map.name(self.pos.file).to_string(),

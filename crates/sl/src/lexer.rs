@@ -130,6 +130,17 @@ impl Tok {
         }
     }
 
+    /// How "unexpected ..." messages name this token: `"x"`, `2`, `"a"` (a string), `'('`.
+    pub fn shown(&self) -> String {
+        match self {
+            Tok::Ident(s) => format!("\"{s}\""),
+            Tok::Num(_, s) => s.clone(),
+            Tok::Str(s) => format!("the string {}", quote(s)),
+            Tok::Punct(p) => format!("'{}'", p.as_str()),
+            Tok::Bad(m) => m.clone(),
+        }
+    }
+
     /// How messages name this token: `'('`, `the name "x"`, `the number 1.5`, `the string "a"`.
     pub fn describe(&self) -> String {
         match self {
@@ -288,10 +299,11 @@ pub fn lex(text: &[u8], file: u32) -> Vec<Token> {
             let bytes: Vec<u8> = c[i..(i + len).min(c.len())].iter().map(|x| x.0).collect();
             i += len.max(1);
             let shown = match std::str::from_utf8(&bytes) {
-                Ok(s) if !s.chars().any(char::is_control) => format!("'{s}'"),
+                Ok(s) if !s.chars().any(char::is_control) => format!("character '{s}'"),
+                _ if b < 0x20 || b == 0x7f => format!("control byte 0x{b:02x}"),
                 _ => format!("byte 0x{b:02x}"),
             };
-            Tok::Bad(format!("unexpected character {shown}"))
+            Tok::Bad(format!("unexpected {shown}"))
         };
         out.push(Token { tok, pos, line_start, space_before: space });
         line_start = false;

@@ -42,7 +42,7 @@ const RESERVED: &[&str] = &[
 ];
 
 /// Deepest nesting of expressions and statements (deeper input is refused, not a stack overflow).
-const MAX_DEPTH: u32 = 200;
+const MAX_DEPTH: u32 = 256;
 
 /// Parses a whole token stream.
 pub(crate) fn parse(toks: &[Token]) -> DResult<File> {
@@ -566,10 +566,7 @@ impl<'a> Parser<'a> {
     }
 
     fn assign(&mut self) -> DResult<Expr> {
-        self.enter()?;
-        let r = self.assign_inner();
-        self.depth -= 1;
-        r
+        self.assign_inner()
     }
 
     fn assign_inner(&mut self) -> DResult<Expr> {
@@ -584,8 +581,10 @@ impl<'a> Parser<'a> {
         };
         let pos = self.pos();
         self.i += 1;
-        let rhs = self.assign()?;
-        Ok(Expr { kind: ExprKind::Assign(op, Box::new(lhs), Box::new(rhs)), pos })
+        self.enter()?;
+        let rhs = self.assign();
+        self.depth -= 1;
+        Ok(Expr { kind: ExprKind::Assign(op, Box::new(lhs), Box::new(rhs?)), pos })
     }
 
     fn ternary(&mut self) -> DResult<Expr> {
@@ -626,18 +625,30 @@ impl<'a> Parser<'a> {
 
     fn binary(&mut self, min: u8) -> DResult<Expr> {
         let mut lhs = self.unary()?;
+        // Each operator of a chain makes the tree one deeper (a + b + c ...): counted.
+        let depth = self.depth;
+        let mut r = Ok(());
         while let Some((op, prec)) = self.binop() {
             if prec <= min {
                 break;
             }
             let pos = self.pos();
             self.i += 1;
-            self.enter()?;
-            let rhs = self.binary(prec)?;
-            self.depth -= 1;
+            if let Err(e) = self.enter() {
+                r = Err(e);
+                break;
+            }
+            let rhs = match self.binary(prec) {
+                Ok(rhs) => rhs,
+                Err(e) => {
+                    r = Err(e);
+                    break;
+                }
+            };
             lhs = Expr { kind: ExprKind::Binary(op, Box::new(lhs), Box::new(rhs)), pos };
         }
-        Ok(lhs)
+        self.depth = depth;
+        r.map(|()| lhs)
     }
 
     fn unary(&mut self) -> DResult<Expr> {

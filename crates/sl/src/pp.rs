@@ -15,6 +15,8 @@ use crate::lexer::{P, Tok, Token, lex};
 
 /// Deepest `#include` nesting (a file including itself is stopped here).
 const MAX_INCLUDE_DEPTH: usize = 64;
+/// Deepest nesting of macro calls in macro arguments.
+const MAX_ARG_DEPTH: usize = 200;
 /// Most tokens macro expansion may make for one compilation.
 const MAX_EXPANDED: usize = 4_000_000;
 
@@ -120,6 +122,8 @@ pub(crate) struct Preprocessor<'m> {
     out: Vec<Token>,
     depth: usize,
     expanded: usize,
+    /// Nesting of argument pre-expansion (F(F(F(...)))).
+    arg_depth: usize,
 }
 
 /// Preprocesses `input`: the whole token stream, or the first error.
@@ -137,6 +141,7 @@ pub(crate) fn preprocess(
         out: Vec::new(),
         depth: 0,
         expanded: 0,
+        arg_depth: 0,
     };
     let cmdline = pp.map.intern("<command line>");
     for (name, value) in defines {
@@ -313,7 +318,7 @@ impl Preprocessor<'_> {
                 if let Some(t) = args.first().filter(|_| c.parent_active) {
                     return Err(Diag::new(
                         t.pos,
-                        format!("#else: unexpected {} after #else", t.tok.describe()),
+                        format!("#else: unexpected {} after #else", t.tok.shown()),
                     ));
                 }
             }
@@ -324,7 +329,7 @@ impl Preprocessor<'_> {
                 if let Some(t) = args.first().filter(|_| c.parent_active) {
                     return Err(Diag::new(
                         t.pos,
-                        format!("#endif: unexpected {} after #endif", t.tok.describe()),
+                        format!("#endif: unexpected {} after #endif", t.tok.shown()),
                     ));
                 }
             }
@@ -369,7 +374,7 @@ impl Preprocessor<'_> {
                 if let Some(t) = toks.get(2) {
                     return Err(Diag::new(
                         t.pos,
-                        format!("#line: unexpected {} after the file name", t.tok.describe()),
+                        format!("#line: unexpected {} after the file name", t.tok.shown()),
                     ));
                 }
                 // The physical line after the directive gets number n.
@@ -399,7 +404,7 @@ impl Preprocessor<'_> {
         if let Some(t) = args.get(1) {
             return Err(Diag::new(
                 t.pos,
-                format!("{what}: unexpected {} after the macro name", t.tok.describe()),
+                format!("{what}: unexpected {} after the macro name", t.tok.shown()),
             ));
         }
         Ok(n.to_string())
@@ -564,7 +569,7 @@ impl Preprocessor<'_> {
         if let Some(t) = toks.get(after) {
             return Err(Diag::new(
                 t.pos,
-                format!("#include: unexpected {} after the file name", t.tok.describe()),
+                format!("#include: unexpected {} after the file name", t.tok.shown()),
             ));
         }
         let shown = if quoted { format!("\"{name}\"") } else { format!("<{name}>") };
@@ -780,9 +785,20 @@ impl Preprocessor<'_> {
                     let e = match expanded_cache.get(&p) {
                         Some(e) => e.clone(),
                         None => {
+                            if self.arg_depth >= MAX_ARG_DEPTH {
+                                return Err(Diag::new(
+                                    site,
+                                    format!(
+                                        "macro \"{name}\": arguments nested more than {MAX_ARG_DEPTH} deep"
+                                    ),
+                                ));
+                            }
                             let mut q: VecDeque<PTok> = args[p].iter().cloned().collect();
                             let mut e = Vec::new();
-                            self.expand(&mut q, None, &mut e)?;
+                            self.arg_depth += 1;
+                            let r = self.expand(&mut q, None, &mut e);
+                            self.arg_depth -= 1;
+                            r?;
                             expanded_cache.insert(p, e.clone());
                             e
                         }
@@ -881,7 +897,7 @@ impl Preprocessor<'_> {
         if let Some(t) = toks.get(e.i) {
             return Err(Diag::new(
                 t.pos,
-                format!("{what}: unexpected {} after the expression", t.tok.describe()),
+                format!("{what}: unexpected {} after the expression", t.tok.shown()),
             ));
         }
         Ok(v != 0)
