@@ -642,6 +642,17 @@ impl Preprocessor<'_> {
                 continue;
             };
             let Some(m) = self.macros.get(name).cloned() else {
+                // The predefined macros of C that shaders use in messages.
+                let name = name.to_string();
+                let mut tok = tok;
+                match name.as_str() {
+                    "__LINE__" => {
+                        let l = tok.t.pos.line;
+                        tok.t.tok = Tok::Num(f64::from(l), l.to_string());
+                    }
+                    "__FILE__" => tok.t.tok = Tok::Str(self.map.name(tok.t.pos.file).to_string()),
+                    _ => {}
+                }
                 out.push(tok);
                 continue;
             };

@@ -359,3 +359,20 @@ fn every_library_function_has_a_signature_and_a_callable_form() {
     }
     assert!(library().names().len() >= 90, "{}", library().names().len());
 }
+
+#[test]
+fn untyped_functions_are_void() {
+    let s = ok(
+        "setit(output float x) { x = 1; } surface s() { float y; setit(y); inner() { Ci = 0; } inner(); }",
+    );
+    assert_eq!(s.functions[0].ret, Type::VOID);
+    assert_eq!(s.functions[1].name, "inner");
+}
+
+#[test]
+fn message_passing_outputs_keep_uniform_variables_uniform() {
+    let s = surface(
+        "color C = 0; illuminance(P) { uniform float nonspec = 0; lightsource(\"__nonspecular\", nonspec); C += (1 - nonspec) * Cl; } Ci = C;",
+    );
+    assert_eq!(var(&s, "nonspec").detail, Detail::Uniform);
+}

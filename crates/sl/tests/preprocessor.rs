@@ -107,6 +107,11 @@ fn macro_tokens_take_the_expansion_site() {
 }
 
 #[test]
+fn line_and_file_macros() {
+    assert_eq!(text("\n  __LINE__ __FILE__"), "2 \"t.sl\"");
+}
+
+#[test]
 fn line_directive() {
     let p = positioned("a\n#line 100\nb\nc\n#line 7 \"orig.sl\"\nd");
     assert_eq!(p[1].1, "t.sl:100:1");
