@@ -375,7 +375,6 @@ impl<'m> Checker<'m> {
         pos: Pos,
         formal: bool,
     ) -> DResult<Type> {
-        let _ = formal;
         Ok(match array {
             None => Type::scalar(base),
             Some(ArraySpec::Fixed(n)) => Type { base, array: Some(n) },
@@ -635,7 +634,7 @@ impl<'m> Checker<'m> {
                 out.push(Stmt::If { cond, then: then?, els: els? });
             }
             ast::Stmt::While { cond, body } => {
-                let l = self.r#loop(None, Some(cond), None, body, "while")?;
+                let l = self.r#loop(Some(cond), None, body, "while")?;
                 out.push(l);
             }
             ast::Stmt::For { init, cond, step, body, pos: _ } => {
@@ -643,7 +642,7 @@ impl<'m> Checker<'m> {
                     let i = self.expr(i, None)?;
                     out.push(Stmt::Expr(i));
                 }
-                let l = self.r#loop(None, cond.as_ref(), step.as_ref(), body, "for")?;
+                let l = self.r#loop(cond.as_ref(), step.as_ref(), body, "for")?;
                 out.push(l);
             }
             ast::Stmt::Break(n, pos) | ast::Stmt::Continue(n, pos) => {
@@ -744,7 +743,7 @@ impl<'m> Checker<'m> {
                 let position =
                     self.convert(position, Type::POINT, "the position of \"illuminance\"")?;
                 let rest: Vec<Expr> = it.collect();
-                let (cone, options) = self.cone_and_options(rest, *pos, "illuminance")?;
+                let (cone, options) = self.cone_and_options(rest, "illuminance")?;
                 self.illuminance += 1;
                 self.ctrl.push(*pos);
                 let body = self.sub(body);
@@ -784,7 +783,7 @@ impl<'m> Checker<'m> {
                     Some(self.convert(p, Type::POINT, "the position of \"illuminate\"")?)
                 };
                 let rest: Vec<Expr> = it.collect();
-                let (cone, options) = self.cone_and_options(rest, *pos, word)?;
+                let (cone, options) = self.cone_and_options(rest, word)?;
                 if let Some((o, _)) = options.first() {
                     return Err(Diag::new(
                         *pos,
@@ -811,7 +810,6 @@ impl<'m> Checker<'m> {
     fn cone_and_options(
         &mut self,
         rest: Vec<Expr>,
-        pos: Pos,
         word: &str,
     ) -> DResult<(Option<(Expr, Expr)>, Vec<(String, Expr)>)> {
         let mut it = rest.into_iter().peekable();
@@ -847,13 +845,11 @@ impl<'m> Checker<'m> {
             };
             options.push((n.clone(), value));
         }
-        let _ = pos;
         Ok((cone, options))
     }
 
     fn r#loop(
         &mut self,
-        _init: Option<&ast::Expr>,
         cond: Option<&ast::Expr>,
         step: Option<&ast::Expr>,
         body: &ast::Stmt,
@@ -969,17 +965,9 @@ impl<'m> Checker<'m> {
                 }
                 None => None,
             };
-            self.under_ctrl(id, v.pos)?;
             self.declare(&v.name, Sym::Var(id), v.pos)?;
             out.push(Stmt::Local { var: id, init });
         }
-        Ok(())
-    }
-
-    fn under_ctrl(&mut self, id: VarId, pos: Pos) -> DResult<()> {
-        // A declaration under varying control makes the variable varying only when assigned;
-        // an uninitialised one keeps its detail.
-        let _ = (id, pos);
         Ok(())
     }
 

@@ -223,6 +223,8 @@ fn splice(text: &[u8]) -> Chars {
 
 /// Tokens of one file (`file` is its index for positions).
 pub fn lex(text: &[u8], file: u32) -> Vec<Token> {
+    // A UTF-8 byte-order mark is not part of the source.
+    let text = text.strip_prefix(b"\xef\xbb\xbf").unwrap_or(text);
     let chars = splice(text);
     let c = &chars.bytes;
     let at = |i: usize| c.get(i).map(|x| x.0).unwrap_or(0);
@@ -543,6 +545,12 @@ mod tests {
         );
         assert_eq!(t[4].tok, Tok::Str("st".into()));
         assert_eq!(t[0].pos.file, 3);
+    }
+
+    #[test]
+    fn byte_order_mark_is_skipped() {
+        let t = lex(b"\xef\xbb\xbfa", 0);
+        assert_eq!((t[0].tok.clone(), t[0].pos.col), (Tok::Ident("a".into()), 1));
     }
 
     #[test]

@@ -343,6 +343,8 @@ fn library_calls_resolve() {
          mx = rotate(mx, 1, vector(0, 0, 1)); mx = scale(mx, point(1, 2, 3)); float cm = comp(mx, 0, 1); setcomp(mx, 0, 1, 2);
          setxcomp(P, 1); float x = xcomp(P) + ycomp(N) + zcomp(I); float dd = Du(s) + Dv(t) + Deriv(s, t) + area(P) + depth(P);
          normal cn = calculatenormal(P); float fs = filterstep(0.5, s); float fs2 = filterstep(0.5, s, t, \"width\", 2);
+         float kd = 0; float got2 = surface(\"Kd\", kd) + displacement(\"amp\", kd) + atmosphere(\"d\", kd)
+             + incident(\"x\", kd) + opposite(\"x\", kd) + option(\"limits:bucketsize\", res) + rendererinfo(\"version\", res);
          color amb = ambient() + diffuse(N) + specular(N, -I, 0.1) + phong(N, -I, 10) + specularbrdf(-I, N, -I, 0.1);",
     );
     let _ = s;
