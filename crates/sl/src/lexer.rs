@@ -135,7 +135,7 @@ impl Tok {
         match self {
             Tok::Ident(s) => format!("\"{s}\""),
             Tok::Num(_, s) => s.clone(),
-            Tok::Str(s) => format!("the string {}", quote(s)),
+            Tok::Str(s) => format!("string {}", quote(s)),
             Tok::Punct(p) => format!("'{}'", p.as_str()),
             Tok::Bad(m) => m.clone(),
         }

@@ -23,6 +23,19 @@ fn error_of(src: &str) -> String {
     }
 }
 
+/// 300 parentheses deep: over the parser's limit of 256.
+const NESTED: &str = concat!(
+    "surface s() { float x = ",
+    "((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((",
+    "((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((",
+    "((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((",
+    "1",
+    "))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))",
+    "))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))",
+    "))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))",
+    "; }"
+);
+
 #[rustfmt::skip]
 const CASES: &[Case] = &[
     Case { name: "lexical: malformed number", src: "surface s() { float x = 1x; }", error: "test.sl:1:25: malformed number \"1x\"" },
@@ -183,6 +196,19 @@ const CASES: &[Case] = &[
     Case { name: "check: uniform output parameter written varying", src: "void f(output varying float x) { x = s; } surface s() { uniform float y = 0; f(y); }", error: "test.sl:1:80: cannot assign a varying value to uniform variable \"y\"" },
     Case { name: "check: uniform output of builtin", src: "surface s() { uniform float kr = 0, kt = 0; fresnel(I, N, 1.5, kr, kt); }", error: "test.sl:1:64: cannot assign a varying value to uniform variable \"kr\"" },
     Case { name: "check: void used as value", src: "void f() {} surface s() { float x = f(); }", error: "test.sl:1:37: the initial value of \"x\" must be float, got void" },
+    Case { name: "pp: #else with extra tokens", src: "#if 0\n#else X\n#endif\nsurface s() {}", error: "test.sl:2:7: #else: unexpected \"X\" after #else" },
+    Case { name: "pp: #line extra tokens", src: "#line 3 \"f.sl\" x\nsurface s() {}", error: "test.sl:1:16: #line: unexpected \"x\" after the file name" },
+    Case { name: "pp: include extra string", src: "#include \"a.h\" \"b\"\nsurface s() {}", error: "test.sl:1:16: #include: unexpected string \"b\" after the file name" },
+    Case { name: "lexical: octal escape too large", src: "surface s() { string x = \"\\777\"; }", error: "test.sl:1:26: octal escape \\777 is above \\377" },
+    Case { name: "syntax: missing paren after while", src: "surface s() { while s > 0 Ci = 1; }", error: "test.sl:1:21: expected '(' after \"while\", got \"s\"" },
+    Case { name: "syntax: function without body", src: "float f() return 1;", error: "test.sl:1:11: expected '{' to begin the body of function \"f\", got \"return\"" },
+    Case { name: "syntax: nesting too deep", src: NESTED, error: "test.sl:1:280: nesting deeper than 256 levels" },
+    Case { name: "check: array element type", src: "surface s() { float a[2] = {1, Cs}; }", error: "test.sl:1:32: an element of \"a\" must be float, got color" },
+    Case { name: "check: cast an array", src: "surface s() { float a[2]; color c = color a; }", error: "test.sl:1:37: cannot cast an array (float[2]) to color" },
+    Case { name: "check: index a scalar in an assignment", src: "surface s() { float f; f[0] = 1; }", error: "test.sl:1:25: indexing \"f\", a float, which is not an array" },
+    Case { name: "check: illuminance axis type", src: "surface s() { illuminance(P, Cs, 1) { Ci = 1; } }", error: "test.sl:1:30: the axis of \"illuminance\" must be vector, got color (write a cast: vector (...))" },
+    Case { name: "check: illuminance angle type", src: "surface s() { illuminance(P, N, Cs) { Ci = 1; } }", error: "test.sl:1:33: the angle of \"illuminance\" must be float, got color" },
+    Case { name: "check: right operand of and", src: "surface s() { if (s > 0 && Cs) Ci = 1; }", error: "test.sl:1:28: the right operand of '&&' must be a relation or a float, got color" },
 ];
 
 #[test]
