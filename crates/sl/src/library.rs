@@ -95,7 +95,8 @@ pub fn library() -> &'static Library {
     LIB.get_or_init(|| parse_table(TABLE))
 }
 
-/// The signature table.
+/// The signature table. `transform` of a vector or normal transforms it as one (as `vtransform`
+/// and `ntransform` do), so a vector argument resolves to its own overload, not to the point one.
 const TABLE: &str = r#"
 # 15.1 Mathematical functions
 float radians(float)
@@ -133,9 +134,12 @@ float filterstep(float, float, float, ...params)
 <T=float,color,point,vector> T spline(string, float, T, T, T, T, ...T)
 <T=float,color,point,vector> T spline(float, T[])
 <T=float,color,point,vector> T spline(string, float, T[])
-<T=float,color,point,vector,normal> T Du(T)
-<T=float,color,point,vector,normal> T Dv(T)
-<T=float,color,point,vector,normal> T Deriv(T, float)
+<T=float,color,vector,normal> T Du(T)
+<T=float,color,vector,normal> T Dv(T)
+<T=float,color,vector,normal> T Deriv(T, float)
+vector Du(point)
+vector Dv(point)
+vector Deriv(point, float)
 <T=float,color,point,vector> varying T random()
 <T=float,color,point,vector> T noise(float)
 <T=float,color,point,vector> T noise(float, float)
@@ -173,6 +177,10 @@ point transform(string, point)
 point transform(string, string, point)
 point transform(matrix, point)
 point transform(string, matrix, point)
+<T=vector,normal> T transform(string, T)
+<T=vector,normal> T transform(string, string, T)
+<T=vector,normal> T transform(matrix, T)
+<T=vector,normal> T transform(string, matrix, T)
 vector vtransform(string, vector)
 vector vtransform(string, string, vector)
 vector vtransform(matrix, vector)
@@ -182,7 +190,7 @@ normal ntransform(string, string, normal)
 normal ntransform(matrix, normal)
 normal ntransform(string, matrix, normal)
 float depth(point)
-<T=point,vector,normal> T calculatenormal(T)
+normal calculatenormal(point)
 
 # 15.3 Color functions
 float comp(color, float)
@@ -232,8 +240,8 @@ float opposite(string, output any)
 float attribute(string, output any)
 float option(string, output any)
 float rendererinfo(string, output any)
-string shadername()
-string shadername(string)
+ext string shadername()
+ext string shadername(string)
 
 # Extensions: later PRMan ray-tracing and point-cloud functions the public shaders call.
 ext varying float occlusion(point, normal, float, ...params)

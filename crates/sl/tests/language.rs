@@ -378,3 +378,15 @@ fn message_passing_outputs_keep_uniform_variables_uniform() {
     );
     assert_eq!(var(&s, "nonspec").detail, Detail::Uniform);
 }
+
+#[test]
+fn geometric_results_have_their_own_types() {
+    let s = surface("vector a = transform(\"world\", I); normal b = transform(\"world\", N); point c = transform(\"world\", P);
+                     vector d = Du(P); normal n = calculatenormal(P); float e = Du(s);");
+    assert_eq!(call_ret(init(&s, "a")).1, Type::VECTOR);
+    assert_eq!(call_ret(init(&s, "b")).1, Type::NORMAL);
+    assert_eq!(call_ret(init(&s, "c")).1, Type::POINT);
+    assert_eq!(call_ret(init(&s, "d")).1, Type::VECTOR);
+    assert_eq!(call_ret(init(&s, "n")).1, Type::NORMAL);
+    assert_eq!(call_ret(init(&s, "e")).1, Type::FLOAT);
+}
