@@ -226,8 +226,9 @@ pub enum ExprKind {
     Global(&'static str),
     /// An array element.
     Index(Box<Expr>, Box<Expr>),
-    /// A conversion: float to triple or matrix (promotion), between point/vector/normal, a
-    /// parenthesised triple to the type its context asks for, float to boolean (`!= 0`).
+    /// A conversion to this expression's type: float to triple (all three components) or to
+    /// matrix (the float times the identity), between point, vector and normal (the same three
+    /// numbers), float to boolean (`!= 0`).
     Convert(Box<Expr>),
     /// A unary operator.
     Unary(UnOp, Box<Expr>),
@@ -248,9 +249,8 @@ pub enum ExprKind {
     },
     /// `c ? a : b`.
     Cond(Box<Expr>, Box<Expr>, Box<Expr>),
-    /// A triple from 3 floats or a matrix from 16 (or a matrix from 1 float: that times the
-    /// identity), in `space` when given (then transformed to "current"; for colours, from that
-    /// colour space to RGB).
+    /// A triple from 3 floats or a matrix from 16 (row by row), in `space` when given (then
+    /// transformed to "current"; for colours, from that colour space to RGB).
     Construct {
         /// Components, each float.
         parts: Vec<Expr>,

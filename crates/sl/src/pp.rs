@@ -903,7 +903,7 @@ impl Preprocessor<'_> {
         if toks.is_empty() {
             return Err(Diag::new(hash.pos, format!("{what}: expected an expression")));
         }
-        let mut e = IfExpr { toks: &toks, i: 0, what, end: hash.pos };
+        let mut e = IfExpr { toks: &toks, i: 0, what, end: hash.pos, eval: true };
         let v = e.ternary()?;
         if let Some(t) = toks.get(e.i) {
             return Err(Diag::new(
@@ -943,6 +943,8 @@ struct IfExpr<'a> {
     i: usize,
     what: &'a str,
     end: Pos,
+    /// False in the operand `&&`, `||` or `?:` skip: parsed, not evaluated (no division error).
+    eval: bool,
 }
 
 impl IfExpr<'_> {
@@ -966,15 +968,21 @@ impl IfExpr<'_> {
     fn ternary(&mut self) -> DResult<i64> {
         let c = self.binary(0)?;
         if self.eat(P::Question) {
-            let a = self.ternary()?;
+            let outer = self.eval;
+            self.eval = outer && c != 0;
+            let a = self.ternary();
+            self.eval = outer;
+            let a = a?;
             if !self.eat(P::Colon) {
                 return Err(Diag::new(
                     self.pos(),
                     format!("{}: expected ':' of '?:', got {}", self.what, got(self.toks, self.i)),
                 ));
             }
-            let b = self.ternary()?;
-            return Ok(if c != 0 { a } else { b });
+            self.eval = outer && c == 0;
+            let b = self.ternary();
+            self.eval = outer;
+            return Ok(if c != 0 { a } else { b? });
         }
         Ok(c)
     }
@@ -1001,7 +1009,15 @@ impl IfExpr<'_> {
             }
             let at = self.pos();
             self.i += 1;
-            let rhs = self.binary(prec)?;
+            let outer = self.eval;
+            match p {
+                P::AndAnd => self.eval = outer && lhs != 0,
+                P::OrOr => self.eval = outer && lhs == 0,
+                _ => {}
+            }
+            let rhs = self.binary(prec);
+            self.eval = outer;
+            let rhs = rhs?;
             lhs = match p {
                 P::OrOr => i64::from(lhs != 0 || rhs != 0),
                 P::AndAnd => i64::from(lhs != 0 && rhs != 0),
@@ -1020,10 +1036,16 @@ impl IfExpr<'_> {
                 P::Minus => lhs.wrapping_sub(rhs),
                 P::Star => lhs.wrapping_mul(rhs),
                 P::Slash | P::Percent => {
-                    if rhs == 0 {
+                    if rhs == 0 && self.eval {
                         return Err(Diag::new(at, format!("{}: division by zero", self.what)));
                     }
-                    if p == P::Slash { lhs.wrapping_div(rhs) } else { lhs.wrapping_rem(rhs) }
+                    if rhs == 0 {
+                        0
+                    } else if p == P::Slash {
+                        lhs.wrapping_div(rhs)
+                    } else {
+                        lhs.wrapping_rem(rhs)
+                    }
                 }
                 _ => unreachable!("filtered above"),
             };

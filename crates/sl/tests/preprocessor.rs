@@ -66,6 +66,9 @@ fn conditionals() {
     assert_eq!(text("#if 0\n#if 1\nx\n#endif\n#else\ny\n#endif"), "y");
     // Skipped text may hold what would not lex, and unknown directives.
     assert_eq!(text("#if 0\ndon't @ 1x \"open\n#frobnicate\n#endif\nok"), "ok");
+    // Operands that && || ?: skip are not evaluated.
+    assert_eq!(text("#if 0 && 1 / 0\na\n#elif 1 || 1 / 0\nb\n#endif"), "b");
+    assert_eq!(text("#if 1 ? 2 : 1 / 0\nc\n#endif"), "c");
     // Integer arithmetic, unknown names are 0.
     assert_eq!(
         text(
