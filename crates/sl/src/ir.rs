@@ -295,3 +295,202 @@ impl Expr {
         self.ty.base
     }
 }
+
+impl CheckedShader {
+    /// A readable listing of the IR: every variable with its final detail and type, every call
+    /// with the type of the overload it resolved to, every implicit conversion as `(type)`, and
+    /// every `if` and loop marked uniform or varying. For tests and for reading.
+    pub fn dump(&self) -> String {
+        let mut out = String::new();
+        let p = Printer { s: self };
+        out.push_str(&format!("{} {}\n", self.kind, self.name));
+        for &id in &self.params {
+            let v = &self.vars[id];
+            let output = matches!(v.kind, VarKind::Param { output: true, .. });
+            let default = match &v.kind {
+                VarKind::Param { default: Some(d), .. } => format!(" = {}", p.expr(d)),
+                _ => String::new(),
+            };
+            out.push_str(&format!(
+                "  param {}{} {} {}{default}\n",
+                if output { "output " } else { "" },
+                v.detail.name(),
+                v.ty,
+                v.name
+            ));
+        }
+        for f in &self.functions {
+            let params: Vec<String> = f
+                .params
+                .iter()
+                .map(|&i| {
+                    let v = &self.vars[i];
+                    let output = matches!(v.kind, VarKind::Formal { output: true, .. });
+                    format!(
+                        "{}{} {} {}",
+                        if output { "output " } else { "" },
+                        v.detail.name(),
+                        v.ty,
+                        v.name
+                    )
+                })
+                .collect();
+            out.push_str(&format!(
+                "  function {} {} {}({})\n",
+                f.ret_detail.name(),
+                f.ret,
+                f.name,
+                params.join(", ")
+            ));
+            p.block(&f.body, 2, &mut out);
+        }
+        out.push_str("  body\n");
+        p.block(&self.body, 2, &mut out);
+        let list = |v: &[&str]| if v.is_empty() { "-".to_string() } else { v.join(" ") };
+        out.push_str(&format!(
+            "  reads {}; writes {}\n",
+            list(&self.globals_read),
+            list(&self.globals_written)
+        ));
+        out
+    }
+}
+
+struct Printer<'a> {
+    s: &'a CheckedShader,
+}
+
+impl Printer<'_> {
+    fn block(&self, stmts: &[Stmt], depth: usize, out: &mut String) {
+        for st in stmts {
+            self.stmt(st, depth, out);
+        }
+    }
+
+    fn line(&self, depth: usize, text: &str, out: &mut String) {
+        out.push_str(&"  ".repeat(depth));
+        out.push_str(text);
+        out.push('\n');
+    }
+
+    fn cone(&self, cone: &Option<(Expr, Expr)>) -> String {
+        match cone {
+            Some((a, b)) => format!(", {}, {}", self.expr(a), self.expr(b)),
+            None => String::new(),
+        }
+    }
+
+    fn stmt(&self, st: &Stmt, d: usize, out: &mut String) {
+        match st {
+            Stmt::Expr(e) => self.line(d, &self.expr(e), out),
+            Stmt::Local { var, init } => {
+                let v = &self.s.vars[*var];
+                let init = init.as_ref().map_or(String::new(), |e| format!(" = {}", self.expr(e)));
+                self.line(d, &format!("{} {} {}{init}", v.detail.name(), v.ty, v.name), out);
+            }
+            Stmt::Block(b) => {
+                self.line(d, "{", out);
+                self.block(b, d + 1, out);
+                self.line(d, "}", out);
+            }
+            Stmt::If { cond, then, els } => {
+                self.line(d, &format!("if {} {}", cond.detail.name(), self.expr(cond)), out);
+                self.block(then, d + 1, out);
+                if !els.is_empty() {
+                    self.line(d, "else", out);
+                    self.block(els, d + 1, out);
+                }
+            }
+            Stmt::Loop { cond, body, step, varying } => {
+                let kind = if *varying { "varying" } else { "uniform" };
+                let step =
+                    step.as_ref().map_or(String::new(), |e| format!(" step {}", self.expr(e)));
+                self.line(d, &format!("loop {kind} {}{step}", self.expr(cond)), out);
+                self.block(body, d + 1, out);
+            }
+            Stmt::Break(n) => self.line(d, &format!("break {n}"), out),
+            Stmt::Continue(n) => self.line(d, &format!("continue {n}"), out),
+            Stmt::Return(e) => {
+                let v = e.as_ref().map_or(String::new(), |e| format!(" {}", self.expr(e)));
+                self.line(d, &format!("return{v}"), out);
+            }
+            Stmt::Illuminance { category, position, cone, options, body } => {
+                let cat =
+                    category.as_ref().map_or(String::new(), |c| format!("{}, ", self.expr(c)));
+                let opts: String =
+                    options.iter().map(|(n, v)| format!(", \"{n}\", {}", self.expr(v))).collect();
+                self.line(
+                    d,
+                    &format!("illuminance({cat}{}{}{opts})", self.expr(position), self.cone(cone)),
+                    out,
+                );
+                self.block(body, d + 1, out);
+            }
+            Stmt::Illuminate { position, cone, body } => {
+                self.line(
+                    d,
+                    &format!("illuminate({}{})", self.expr(position), self.cone(cone)),
+                    out,
+                );
+                self.block(body, d + 1, out);
+            }
+            Stmt::Solar { cone, body } => {
+                let c = self.cone(cone);
+                self.line(d, &format!("solar({})", c.trim_start_matches(", ")), out);
+                self.block(body, d + 1, out);
+            }
+        }
+    }
+
+    fn expr(&self, e: &Expr) -> String {
+        let list = |v: &[Expr]| v.iter().map(|x| self.expr(x)).collect::<Vec<_>>().join(", ");
+        match &e.kind {
+            ExprKind::Float(v) => format!("{v}"),
+            ExprKind::Str(s) => crate::lexer::quote(s),
+            ExprKind::Var(id) => self.s.vars[*id].name.clone(),
+            ExprKind::Global(g) => (*g).to_string(),
+            ExprKind::Index(a, i) => format!("{}[{}]", self.expr(a), self.expr(i)),
+            ExprKind::Convert(x) => format!("({}){}", e.ty, self.expr(x)),
+            ExprKind::Unary(UnOp::Neg, x) => format!("-{}", self.expr(x)),
+            ExprKind::Unary(UnOp::Not, x) => format!("!{}", self.expr(x)),
+            ExprKind::Binary(op, a, b) => {
+                format!("({} {} {})", self.expr(a), op.as_str(), self.expr(b))
+            }
+            ExprKind::Assign { place, index, op, value } => {
+                let name = match place {
+                    Place::Var(id) => self.s.vars[*id].name.clone(),
+                    Place::Global(g) => (*g).to_string(),
+                };
+                let idx = index.as_ref().map_or(String::new(), |i| format!("[{}]", self.expr(i)));
+                format!("{name}{idx} {} {}", op.as_str(), self.expr(value))
+            }
+            ExprKind::Cond(c, a, b) => {
+                format!("({} ? {} : {})", self.expr(c), self.expr(a), self.expr(b))
+            }
+            ExprKind::Construct { parts, space } => {
+                let sp = space
+                    .as_ref()
+                    .map_or(String::new(), |s| format!(" {}", crate::lexer::quote(s)));
+                format!("{}{sp}({})", e.ty, list(parts))
+            }
+            ExprKind::SpaceCast { space, value } => {
+                format!("{} {} {}", e.ty, crate::lexer::quote(space), self.expr(value))
+            }
+            ExprKind::Call { callee, args, channel, options } => {
+                let name = match callee {
+                    Callee::Builtin { name, .. } => (*name).to_string(),
+                    Callee::User(f) => self.s.functions[*f].name.clone(),
+                };
+                let mut a: Vec<String> = args.iter().map(|x| self.expr(x)).collect();
+                if let (Some(c), Some(first)) = (channel, a.first_mut()) {
+                    first.push_str(&format!("[{}]", self.expr(c)));
+                }
+                for (n, v) in options {
+                    a.push(format!("\"{n}\", {}", self.expr(v)));
+                }
+                format!("{name}:{}({})", e.ty, a.join(", "))
+            }
+            ExprKind::Array(v) => format!("{{{}}}", list(v)),
+        }
+    }
+}

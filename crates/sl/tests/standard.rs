@@ -31,3 +31,13 @@ fn kinds_and_parameters() {
     assert_eq!(spot.param("from").unwrap().ty, Type::POINT);
     assert!(spot.globals_written.contains(&"Cl"));
 }
+
+#[test]
+fn standard_shaders_ir_snapshot() {
+    let text: String = STANDARD
+        .iter()
+        .map(|(name, src)| compile_str(&format!("{name}.sl"), src, &[]).unwrap().dump())
+        .collect::<Vec<_>>()
+        .join("\n");
+    insta::assert_snapshot!("standard_ir", text);
+}
