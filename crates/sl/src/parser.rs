@@ -735,8 +735,15 @@ impl<'a> Parser<'a> {
                 Ok(Expr { kind: ExprKind::Num(*v), pos })
             }
             Some(Tok::Str(s)) => {
+                // Adjacent string constants join, as in C ("a" "b" is "ab"; an extension PRMan
+                // has, and what a macro's # string next to a literal needs).
+                let mut text = s.clone();
                 self.i += 1;
-                Ok(Expr { kind: ExprKind::Str(s.clone()), pos })
+                while let Some(Tok::Str(more)) = self.peek() {
+                    text.push_str(more);
+                    self.i += 1;
+                }
+                Ok(Expr { kind: ExprKind::Str(text), pos })
             }
             Some(Tok::Ident(s))
                 if RESERVED.contains(&s.as_str())

@@ -390,3 +390,9 @@ fn geometric_results_have_their_own_types() {
     assert_eq!(call_ret(init(&s, "n")).1, Type::NORMAL);
     assert_eq!(call_ret(init(&s, "e")).1, Type::FLOAT);
 }
+
+#[test]
+fn adjacent_strings_join() {
+    let s = surface("string a = \"tex\" \"ture\" \".tx\";");
+    assert!(matches!(&init(&s, "a").kind, ExprKind::Str(t) if t == "texture.tx"));
+}

@@ -199,6 +199,19 @@ fn errors_in_headers_name_the_header() {
 }
 
 #[test]
+fn include_names_may_come_from_macros() {
+    let dir = tempfile::tempdir().unwrap();
+    fs::write(dir.path().join("h.h"), "float h() { return 2; }\n").unwrap();
+    let src = "#define HEADER \"h.h\"\n#include HEADER\nsurface s() { Ci = h(); }\n";
+    fs::write(dir.path().join("s.sl"), src).unwrap();
+    assert_eq!(compile_file(&dir.path().join("s.sl"), &[]).unwrap().functions[0].name, "h");
+    let src = "#define SYS <h.h>\n#include SYS\nsurface s() { Ci = h(); }\n";
+    fs::write(dir.path().join("t.sl"), src).unwrap();
+    let inc = vec![dir.path().to_path_buf()];
+    assert_eq!(compile_file(&dir.path().join("t.sl"), &inc).unwrap().functions[0].name, "h");
+}
+
+#[test]
 fn self_inclusion_is_stopped() {
     let dir = tempfile::tempdir().unwrap();
     fs::write(dir.path().join("loop.h"), "#include \"loop.h\"\n").unwrap();
