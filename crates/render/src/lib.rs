@@ -105,8 +105,11 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<Rendered, RenderErr
         if estimate.total() > limit {
             // Each part rounded up to whole MB, and the total their sum, so that the message
             // adds up (the rounded total of the bytes could be 1 or 2 MB less).
-            let (film, buckets, base) =
-                (budget::mb(estimate.film), budget::mb(estimate.buckets), budget::mb(estimate.base));
+            let (film, buckets, base) = (
+                budget::mb(estimate.film),
+                budget::mb(estimate.buckets),
+                budget::mb(estimate.base),
+            );
             return Err(RenderError::WontFit {
                 need: film + buckets + base,
                 film,
