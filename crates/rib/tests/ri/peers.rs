@@ -63,8 +63,7 @@ fn bench_files_render_from_rib_as_the_peers_render_them() {
     let mut report = Vec::new();
     for (name, rgb_min, peers_alpha) in cases {
         let ours = render_rib(name);
-        let aqsis =
-            reyes_film::read_exr(&peers().join(format!("aqsis/{name}.exr"))).unwrap();
+        let aqsis = reyes_film::read_exr(&peers().join(format!("aqsis/{name}.exr"))).unwrap();
         let (r, a) = (psnr(&aqsis, &ours, 0), psnr(&aqsis, &ours, 3));
         report.push(format!("{name}: R {r:.1} dB, alpha {a:.1} dB"));
         assert!(r >= rgb_min, "{name}: R channel {r:.1} dB < {rgb_min}");
