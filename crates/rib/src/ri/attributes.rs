@@ -88,8 +88,9 @@ impl Machine {
                     self.attributes.lights_on.push(index);
                 }
             }
-            // A light before WorldBegin is placed in camera space and shines in every frame
-            // that follows until the frame ends.
+            // A light before WorldBegin is placed in camera space and shines in every world
+            // block that follows: to the end of its frame if declared in one, else in every
+            // frame (FrameBegin saves the lights declared so far, FrameEnd restores them).
             None => self.pending_lights.push((h, light, r.at.clone())),
         }
         Ok(())

@@ -78,6 +78,10 @@ pub(crate) struct Machine {
     coordinate_systems: HashMap<String, (Xform, bool)>,
     /// Lights declared before `WorldBegin`, added to each world block.
     pub(super) pending_lights: Vec<(String, Light, Location)>,
+    /// The lights declared outside the frame, saved at `FrameBegin` and restored at
+    /// `FrameEnd`: like every option and attribute declared outside a frame, they hold for
+    /// every frame, while those declared inside one end with it.
+    saved_lights: Vec<Vec<(String, Light, Location)>>,
     /// The frame being built (from `WorldBegin` to `WorldEnd`).
     pub(super) build: Option<FrameBuild>,
     frame_number: Option<i32>,
@@ -124,6 +128,7 @@ impl Machine {
             motion: None,
             coordinate_systems: HashMap::new(),
             pending_lights: Vec::new(),
+            saved_lights: Vec::new(),
             build: None,
             frame_number: None,
             objects: HashMap::new(),
@@ -477,13 +482,14 @@ impl Machine {
         }
         self.frame_number = r.int(0);
         self.saved_options.push(self.frame_options.clone());
+        self.saved_lights.push(self.pending_lights.clone());
         self.push(Block::Frame, &r.at);
         Ok(())
     }
 
     fn frame_end(&mut self, r: &Request) -> Result<(), RibError> {
         self.pop(r, Block::Frame)?;
-        self.pending_lights.clear();
+        self.pending_lights = self.saved_lights.pop().unwrap_or_default();
         if let Some(o) = self.saved_options.pop() {
             self.frame_options = o;
         }
