@@ -148,6 +148,27 @@ impl Machine {
         }
     }
 
+    /// Input RenderMan renderers tolerate: a warning `Request: what: done` at `at`, or under
+    /// `--strict` the error `Request: what (--strict)`.
+    pub(super) fn tolerate(
+        &mut self,
+        at: &Location,
+        request: &'static str,
+        what: impl std::fmt::Display,
+        done: &str,
+    ) -> Result<(), RibError> {
+        if self.options.strict {
+            return Err(RibError::Request {
+                at: at.clone(),
+                request,
+                message: format!("{what} (--strict)"),
+            });
+        }
+        self.warnings
+            .push(Warning { at: at.clone(), message: format!("{request}: {what}: {done}") });
+        Ok(())
+    }
+
     /// Reads every request and returns the frames; on the first error, that error with the
     /// warnings gathered before it, so that a refused scene still says what it tolerated.
     /// Either way the warnings are in file order ([`in_file_order`]).

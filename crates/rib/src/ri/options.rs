@@ -1,8 +1,8 @@
 //! Option requests of the RI state machine (Spec 3.2, 4.1): camera, display and hider
 //! options, each kept in the frame's [`FrameOptions`](super::state::FrameOptions) with where it was set.
 //!
-//! Invariant: options are refused inside the world block, where the Specification freezes
-//! them; every value is checked where the model needs it checked first (sizes, counts, names).
+//! Invariant: options never change inside the world block, where the Specification freezes
+//! them (there they are ignored with a warning, an error under `--strict`); every value is checked where the model needs it checked first (sizes, counts, names).
 
 use reyes_scene::{Aov, AovFilter, AovSource, FilterKind, HiderMethod};
 
@@ -11,10 +11,17 @@ use super::state::{Display, Projection};
 use crate::{Request, RequestKind as K, RibError, Warning};
 
 impl Machine {
-    /// Options: only outside the world block.
+    /// Options: only outside the world block. Inside it (exporters write `Display` or
+    /// `Imager` there) the option is ignored with a warning, as RenderMan renderers do; an
+    /// error under `--strict`.
     pub(super) fn option(&mut self, r: &Request) -> Result<(), RibError> {
         if self.in_world() {
-            return Err(r.error("options must be set before WorldBegin"));
+            return self.tolerate(
+                &r.at,
+                r.name(),
+                "options cannot change inside the world block",
+                "ignored for this frame",
+            );
         }
         let mut warnings = Vec::new();
         self.set_option(r, &mut warnings)?;

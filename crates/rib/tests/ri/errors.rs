@@ -9,7 +9,6 @@ fn cases() -> Vec<(&'static str, String)> {
     let w = world;
     vec![
         ("geometry outside the world", "Sphere 1 -1 1 360".into()),
-        ("option inside the world", w("Format 10 10 1")),
         ("AttributeEnd without AttributeBegin", w("AttributeEnd")),
         ("TransformEnd closing an attribute block", w("AttributeBegin TransformEnd")),
         ("WorldEnd without WorldBegin", "WorldEnd".into()),

@@ -9,6 +9,7 @@ mod lookdev;
 mod mapping;
 mod peers;
 mod renderman;
+mod tolerance;
 
 use reyes_rib::{Loaded, RiOptions, RibError, Source, load};
 

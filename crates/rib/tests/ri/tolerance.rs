@@ -1,0 +1,62 @@
+//! Exporter noise that RenderMan renderers tolerate: each is a warning at the request (or
+//! parameter) at fault naming what was done, and the model shows it done; `--strict` makes
+//! each the error `file:line:col: Request: what (--strict)`.
+
+use reyes_rib::{Loaded, RiOptions, Source, load};
+
+/// Loads `text` as `test.rib`, with or without `--strict`.
+fn load_as(text: &str, strict: bool) -> Result<Loaded, String> {
+    let options = RiOptions { strict, ..RiOptions::default() };
+    load(Source::from_bytes("test.rib", text.as_bytes().to_vec()), &options)
+        .map_err(|e| e.to_string())
+}
+
+/// The warnings of `text`, which must load, as shown (`file:line:col: warning: ...`).
+fn warnings(text: &str) -> (Loaded, Vec<String>) {
+    let loaded = load_as(text, false).unwrap_or_else(|e| panic!("{e}"));
+    let shown = loaded.warnings.iter().map(ToString::to_string).collect();
+    (loaded, shown)
+}
+
+/// The one-line error `text` gives under `--strict`.
+fn strict_error(text: &str) -> String {
+    match load_as(text, true) {
+        Ok(_) => panic!("loaded under --strict"),
+        Err(e) => {
+            assert_eq!(e.lines().count(), 1, "{e}");
+            e
+        }
+    }
+}
+
+#[test]
+fn options_inside_the_world_are_ignored_for_the_frame() {
+    // As exporters write it: the display and an imager after WorldBegin.
+    let text = "Format 32 24 1
+Projection \"perspective\"
+WorldBegin
+Display \"+beauty.exr\" \"openexr\" \"rgba\"
+Imager \"background\" \"color bgcolor\" [1 1 1]
+Format 640 480 1
+Translate 0 0 5
+Sphere 1 -1 1 360
+WorldEnd
+";
+    let (loaded, shown) = warnings(text);
+    assert_eq!(
+        shown,
+        [
+            "test.rib:4:1: warning: Display: options cannot change inside the world block: ignored for this frame",
+            "test.rib:5:1: warning: Imager: options cannot change inside the world block: ignored for this frame",
+            "test.rib:6:1: warning: Format: options cannot change inside the world block: ignored for this frame",
+        ]
+    );
+    let frame = &loaded.frames[0];
+    assert_eq!((frame.scene.image.width, frame.scene.image.height), (32, 24));
+    assert!(frame.displays.is_empty(), "{:?}", frame.displays);
+    assert_eq!(frame.scene.objects.len(), 1);
+    assert_eq!(
+        strict_error(text),
+        "test.rib:4:1: Display: options cannot change inside the world block (--strict)"
+    );
+}
