@@ -276,7 +276,7 @@ impl Machine {
                 Ok(())
             }
             K::Transform => {
-                self.ctm = Xform::still(xform::from_rib(r.floats(0).unwrap_or(&[0.0; 16])));
+                self.ctm = Xform::still(self.matrix_of(&r)?);
                 Ok(())
             }
             K::ConcatTransform | K::Translate | K::Rotate | K::Scale | K::Skew | K::Perspective => {
@@ -553,11 +553,35 @@ impl Machine {
         Ok(())
     }
 
-    /// The matrix of a transformation request.
-    fn matrix_of(&self, r: &Request) -> Result<DMat4, RibError> {
+    /// The matrix of a transformation request. A `Transform` or `ConcatTransform` whose
+    /// projective terms are (0, 0, 0, 1) but for exporters' rounding noise is snapped to it,
+    /// with a warning (an error under `--strict`).
+    fn matrix_of(&mut self, r: &Request) -> Result<DMat4, RibError> {
         let v = |i| r.float(i).unwrap_or(0.0);
         Ok(match r.kind {
-            K::ConcatTransform | K::Transform => xform::from_rib(r.floats(0).unwrap_or(&[0.0; 16])),
+            K::ConcatTransform | K::Transform => {
+                let m = r.floats(0).unwrap_or(&[0.0; 16]);
+                match xform::projective(m) {
+                    xform::Projective::Near(terms) => {
+                        let [a, b, c, d] = terms.map(xform::show);
+                        self.tolerate(
+                            &r.at,
+                            r.name(),
+                            format!(
+                                "the matrix's projective terms (its numbers 4, 8, 12 and 16) are \
+                                 ({a}, {b}, {c}, {d}), not (0, 0, 0, 1)"
+                            ),
+                            &format!(
+                                "snapped to (0, 0, 0, 1), being within {} of it relative to the \
+                                 matrix's scale",
+                                xform::show(xform::SNAP)
+                            ),
+                        )?;
+                        xform::from_rib(&xform::snapped(m))
+                    }
+                    _ => xform::from_rib(m),
+                }
+            }
             K::Translate => xform::translate([v(0), v(1), v(2)]),
             K::Rotate => xform::rotate(v(0), [v(1), v(2), v(3)]),
             K::Scale => xform::scale([v(0), v(1), v(2)]),
@@ -626,8 +650,10 @@ impl Machine {
                     ),
                 });
             }
-            let ms: Vec<DMat4> =
-                m.requests.iter().map(|q| self.matrix_of(q)).collect::<Result<_, _>>()?;
+            let mut ms: Vec<DMat4> = Vec::with_capacity(n);
+            for q in &m.requests {
+                ms.push(self.matrix_of(q)?);
+            }
             self.ctm = if first.kind == K::Transform {
                 Xform { keys: m.times.iter().copied().zip(ms).collect() }
             } else {

@@ -3,6 +3,7 @@
 //! each the error `file:line:col: Request: what (--strict)`.
 
 use reyes_rib::{Loaded, RiOptions, Source, load};
+use reyes_scene::Transform;
 
 /// Loads `text` as `test.rib`, with or without `--strict`.
 fn load_as(text: &str, strict: bool) -> Result<Loaded, String> {
@@ -58,5 +59,48 @@ WorldEnd
     assert_eq!(
         strict_error(text),
         "test.rib:4:1: Display: options cannot change inside the world block (--strict)"
+    );
+}
+
+#[test]
+fn matrices_with_rounding_noise_in_their_projective_terms_are_snapped() {
+    // A DCC's matrices: 1e-10 and -2.5e-17 where RenderMan wants 0, and 1e-26.
+    let text = "Projection \"perspective\"
+WorldBegin
+Transform [1 0 0 1e-10  0 1 0 -2.5e-17  0 0 1 0  0 0 5 1]
+ConcatTransform [2 0 0 0  0 2 0 0  0 0 2 1e-26  0 0 0 1]
+Sphere 1 -1 1 360
+WorldEnd
+";
+    let (loaded, shown) = warnings(text);
+    assert_eq!(
+        shown,
+        [
+            "test.rib:3:1: warning: Transform: the matrix's projective terms (its numbers 4, 8, 12 and 16) are (1e-10, -2.5e-17, 0, 1), not (0, 0, 0, 1): snapped to (0, 0, 0, 1), being within 1e-6 of it relative to the matrix's scale",
+            "test.rib:4:1: warning: ConcatTransform: the matrix's projective terms (its numbers 4, 8, 12 and 16) are (0, 0, 1e-26, 1), not (0, 0, 0, 1): snapped to (0, 0, 0, 1), being within 1e-6 of it relative to the matrix's scale",
+        ]
+    );
+    // Exactly the affine matrix: a scale by 2, then 5 along z.
+    let o = &loaded.frames[0].scene.objects[0];
+    assert_eq!(
+        o.transform,
+        [Transform::Matrix([
+            [2.0, 0.0, 0.0, 0.0],
+            [0.0, 2.0, 0.0, 0.0],
+            [0.0, 0.0, 2.0, 5.0],
+            [0.0, 0.0, 0.0, 1.0]
+        ])]
+    );
+    assert_eq!(
+        strict_error(text),
+        "test.rib:3:1: Transform: the matrix's projective terms (its numbers 4, 8, 12 and 16) are (1e-10, -2.5e-17, 0, 1), not (0, 0, 0, 1) (--strict)"
+    );
+    // A projective term of 0.5 is no noise: the matrix stays as written, and the model
+    // refuses it at the primitive, as before.
+    let projective = text.replace("1e-26", "0.5");
+    let e = load_as(&projective, false).err().unwrap_or_else(|| panic!("loaded"));
+    assert!(
+        e.starts_with("test.rib:5:1: Sphere: objects[0].transform[0][3]: the last row must be"),
+        "{e}"
     );
 }
