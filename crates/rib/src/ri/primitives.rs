@@ -70,9 +70,33 @@ impl Machine {
             }
         };
         let Some(shape) = shape else { return Ok(()) };
-        let wanted = self.build.as_ref().is_some_and(|b| b.wanted);
-        if !wanted {
+        self.emit(r, shape, deform)
+    }
+
+    /// The object of `shape` (with its deformation keys), made by the request `r` under the
+    /// current attributes and transformation, added to the frame. A primitive under a
+    /// singular transformation (`Scale 0 1 1`) has no surface to render: it is skipped with
+    /// a warning (an error under `--strict`).
+    fn emit(
+        &mut self,
+        r: &Request,
+        shape: Shape,
+        deform: Vec<(f32, Vec<[f32; 3]>)>,
+    ) -> Result<(), RibError> {
+        let Some(shutter) = self.build.as_ref().filter(|b| b.wanted).map(|b| b.options.shutter)
+        else {
             return Ok(());
+        };
+        if let Some(det) = singular(&self.to_world(), shutter) {
+            return self.tolerate(
+                &r.at,
+                r.name(),
+                format!(
+                    "the transformation is singular (determinant {})",
+                    super::xform::show(det as f32)
+                ),
+                "the primitive is skipped",
+            );
         }
         let a = self.attributes.clone();
         let (cs, colors_constant) = match &shape {
@@ -375,6 +399,17 @@ impl Machine {
         }
         Ok(shape)
     }
+}
+
+/// The determinant of the first singular matrix of `to_world` over the shutter `(open,
+/// close)`, if any: the keys the object will carry, taken as the scene model stores them
+/// (single precision) and judged by the model's own rule (|determinant| <= 1e-12).
+fn singular(to_world: &super::xform::Xform, (open, close): (f32, f32)) -> Option<f64> {
+    super::build::fit_keys(&to_world.keys, open, close).iter().find_map(|(_, m)| {
+        let stored = glam::DMat4::from_cols_array(&m.to_cols_array().map(|x| f64::from(x as f32)));
+        let det = stored.determinant();
+        (det.abs() <= 1e-12).then_some(det)
+    })
 }
 
 /// The vertex count of a `Polygon`: its `P` (or `Pw`) values per point.

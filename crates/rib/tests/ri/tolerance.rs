@@ -3,7 +3,7 @@
 //! each the error `file:line:col: Request: what (--strict)`.
 
 use reyes_rib::{Loaded, RiOptions, Source, load};
-use reyes_scene::Transform;
+use reyes_scene::{Shape, Transform};
 
 /// Loads `text` as `test.rib`, with or without `--strict`.
 fn load_as(text: &str, strict: bool) -> Result<Loaded, String> {
@@ -102,5 +102,33 @@ WorldEnd
     assert!(
         e.starts_with("test.rib:5:1: Sphere: objects[0].transform[0][3]: the last row must be"),
         "{e}"
+    );
+}
+
+#[test]
+fn a_primitive_under_a_singular_transformation_is_skipped() {
+    let text = "Projection \"perspective\"
+WorldBegin
+Translate 0 0 5
+AttributeBegin
+Scale 0 1 1
+Sphere 1 -1 1 360
+AttributeEnd
+Disk 0 1 360
+WorldEnd
+";
+    let (loaded, shown) = warnings(text);
+    assert_eq!(
+        shown,
+        [
+            "test.rib:6:1: warning: Sphere: the transformation is singular (determinant 0): the primitive is skipped"
+        ]
+    );
+    let objects = &loaded.frames[0].scene.objects;
+    assert_eq!(objects.len(), 1);
+    assert_eq!(objects[0].shape, Shape::Disk { height: 0.0, radius: 1.0, thetamax: 360.0 });
+    assert_eq!(
+        strict_error(text),
+        "test.rib:6:1: Sphere: the transformation is singular (determinant 0) (--strict)"
     );
 }
