@@ -380,7 +380,37 @@ impl Machine {
     ) -> Result<Shape, RibError> {
         let mut mesh: PolyMesh = geometry::poly_mesh(r, nloops, nvertices, vertices)?;
         geometry::check_primvars(r, &mesh)?;
-        let (normals, st) = geometry::vertex_normals_and_st(r, &mesh)?;
+        let (mut normals, st) = geometry::vertex_normals_and_st(r, &mesh)?;
+        // N dropped after its own warning: not reported again as unused.
+        let mut n_dropped = false;
+        if let (Some(n), Some(p)) = (normals.as_mut(), r.param("N")) {
+            let at = r.param_location(p);
+            let what = |count: usize, first: usize| {
+                let s = if count == 1 { "" } else { "s" };
+                format!("\"N\": {count} normal{s} zero or not finite (the first at point {first})")
+            };
+            match geometry::repair_normals(&mesh, n) {
+                geometry::NormalRepair::Sound => {}
+                geometry::NormalRepair::Recomputed { count, first } => {
+                    self.tolerate(
+                        &at,
+                        r.name(),
+                        what(count, first),
+                        "recomputed from the faces around their points",
+                    )?;
+                }
+                geometry::NormalRepair::Dropped { count, first } => {
+                    self.tolerate(
+                        &at,
+                        r.name(),
+                        what(count, first),
+                        "the faces around a point have no area to take a normal from: N is dropped for this mesh, which shades by its faces' own normals",
+                    )?;
+                    normals = None;
+                    n_dropped = true;
+                }
+            }
+        }
         let (_, colors) = geometry::mesh_colors(r, &mut mesh)?;
         // Per-face colours unweld the points; the vertex normals and st do not follow them.
         let unwelded = geometry::colors_unweld(r);
@@ -391,7 +421,8 @@ impl Machine {
             (None, Some(_), false) => &["P", "Pw", "Cs", "st"],
             (None, None, false) => &["P", "Pw", "Cs"],
         };
-        geometry::unused_primvars(r, used, &mut self.warnings);
+        let used: Vec<&str> = used.iter().copied().chain(n_dropped.then_some("N")).collect();
+        geometry::unused_primvars(r, &used, &mut self.warnings);
         let mut shape = geometry::to_model_mesh(r, mesh, colors)?;
         if !unwelded && let Shape::Mesh { normals: n, st: s, .. } = &mut shape {
             *n = normals;

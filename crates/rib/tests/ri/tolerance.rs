@@ -30,6 +30,12 @@ fn strict_error(text: &str) -> String {
     }
 }
 
+/// The 1-based column of the first `needle` on line `line` (1-based) of `text`.
+fn col(text: &str, line: usize, needle: &str) -> usize {
+    let l = text.lines().nth(line - 1).unwrap_or_else(|| panic!("no line {line}"));
+    l.find(needle).unwrap_or_else(|| panic!("no {needle:?} on line {line}")) + 1
+}
+
 #[test]
 fn options_inside_the_world_are_ignored_for_the_frame() {
     // As exporters write it: the display and an imager after WorldBegin.
@@ -131,4 +137,74 @@ WorldEnd
         strict_error(text),
         "test.rib:6:1: Sphere: the transformation is singular (determinant 0) (--strict)"
     );
+}
+
+#[test]
+fn zero_normals_are_recomputed_from_the_faces_around_their_points() {
+    // Two unit quads folded at x = 0: one in z = 0 (its normals +z), one in x = 0 (its
+    // normals +x, against its winding, whose normal is -x). Points 1 and 4 sit on the fold
+    // with a zero normal and one too short to square in single precision.
+    let text = "Projection \"perspective\"
+WorldBegin
+Translate 0 0 5
+PointsPolygons [4 4] [0 1 4 3  1 2 5 4]
+  \"P\" [-1 0 0  0 0 0  0 0 1  -1 1 0  0 1 0  0 1 1]
+  \"N\" [0 0 1  0 0 0  1 0 0  0 0 1  1e-30 1e-30 1e-30  1 0 0]
+WorldEnd
+";
+    let (loaded, shown) = warnings(text);
+    assert_eq!(
+        shown,
+        [format!(
+            "test.rib:6:{}: warning: PointsPolygons: \"N\": 2 normals zero or not finite (the first at point 1): recomputed from the faces around their points",
+            col(text, 6, "\"N\"")
+        )]
+    );
+    // Each face's area-weighted normal, turned to agree with the normals it carries: +z
+    // and +x, so the fold's points get their bisector.
+    let h = 0.5f64.sqrt() as f32;
+    match &loaded.frames[0].scene.objects[0].shape {
+        Shape::Mesh { normals: Some(n), .. } => assert_eq!(
+            n,
+            &[
+                [0.0, 0.0, 1.0],
+                [h, 0.0, h],
+                [1.0, 0.0, 0.0],
+                [0.0, 0.0, 1.0],
+                [h, 0.0, h],
+                [1.0, 0.0, 0.0]
+            ]
+        ),
+        other => panic!("{other:?}"),
+    }
+    assert_eq!(
+        strict_error(text),
+        format!(
+            "test.rib:6:{}: PointsPolygons: \"N\": 2 normals zero or not finite (the first at point 1) (--strict)",
+            col(text, 6, "\"N\"")
+        )
+    );
+}
+
+#[test]
+fn normals_that_no_face_can_replace_are_dropped_for_the_mesh() {
+    // Point 3's only face, (1, 3, 4), has no area: nothing to take its normal from.
+    let text = "Projection \"perspective\"
+WorldBegin
+Translate 0 0 5
+PointsPolygons [3 3] [0 1 2  1 3 4]
+  \"P\" [0 0 0  1 0 0  0 1 0  2 0 0  3 0 0]
+  \"N\" [0 0 1  0 0 1  0 0 1  0 0 0  0 0 1]
+WorldEnd
+";
+    let (loaded, shown) = warnings(text);
+    assert_eq!(
+        shown,
+        [format!(
+            "test.rib:6:{}: warning: PointsPolygons: \"N\": 1 normal zero or not finite (the first at point 3): the faces around a point have no area to take a normal from: N is dropped for this mesh, which shades by its faces' own normals",
+            col(text, 6, "\"N\"")
+        )]
+    );
+    assert!(matches!(&loaded.frames[0].scene.objects[0].shape, Shape::Mesh { normals: None, .. }));
+    assert!(strict_error(text).ends_with("(the first at point 3) (--strict)"));
 }
