@@ -3,7 +3,7 @@
 //! each the error `file:line:col: Request: what (--strict)`.
 
 use reyes_rib::{Loaded, RiOptions, Source, load};
-use reyes_scene::{Shape, Transform};
+use reyes_scene::{Light, Shape, Transform};
 
 /// Loads `text` as `test.rib`, with or without `--strict`.
 fn load_as(text: &str, strict: bool) -> Result<Loaded, String> {
@@ -207,4 +207,107 @@ WorldEnd
     );
     assert!(matches!(&loaded.frames[0].scene.objects[0].shape, Shape::Mesh { normals: None, .. }));
     assert!(strict_error(text).ends_with("(the first at point 3) (--strict)"));
+}
+
+#[test]
+fn lights_without_a_direction_take_the_specification_default() {
+    let text = "Projection \"perspective\"
+WorldBegin
+LightSource \"distantlight\" 1 \"from\" [0 0 0] \"to\" [0 0 0] \"intensity\" [0.5]
+Translate 1 2 3
+LightSource \"spotlight\" 2 \"from\" [1 1 1] \"to\" [1 1 1]
+Translate 0 0 5
+Sphere 1 -1 1 360
+WorldEnd
+";
+    let (loaded, shown) = warnings(text);
+    assert_eq!(
+        shown,
+        [
+            format!(
+                "test.rib:3:{}: warning: LightSource: distantlight: \"from\" and \"to\" are the same point (0, 0, 0): the Specification's default direction, from (0, 0, 0) toward (0, 0, 1), is used",
+                col(text, 3, "\"to\"")
+            ),
+            format!(
+                "test.rib:5:{}: warning: LightSource: spotlight: \"from\" and \"to\" are the same point (1, 1, 1): the Specification's default direction, from (0, 0, 0) toward (0, 0, 1), is used",
+                col(text, 5, "\"to\"")
+            ),
+        ]
+    );
+    let lights = &loaded.frames[0].scene.lights;
+    assert_eq!(
+        lights[0],
+        Light::Distant {
+            from: [0.0; 3],
+            to: [0.0, 0.0, 1.0],
+            color: [1.0; 3],
+            intensity: 0.5,
+            shadows: false
+        }
+    );
+    // The spotlight keeps its place (moved by Translate 1 2 3) and shines down +z.
+    match &lights[1] {
+        Light::Spot { from, to, .. } => {
+            assert_eq!((*from, *to), ([2.0, 3.0, 4.0], [2.0, 3.0, 5.0]))
+        }
+        other => panic!("{other:?}"),
+    }
+    assert_eq!(
+        strict_error(text),
+        format!(
+            "test.rib:3:{}: LightSource: distantlight: \"from\" and \"to\" are the same point (0, 0, 0) (--strict)",
+            col(text, 3, "\"to\"")
+        )
+    );
+}
+
+#[test]
+fn spotlight_angles_above_pi_are_read_as_degrees() {
+    let text = "Projection \"perspective\"
+WorldBegin
+LightSource \"spotlight\" 1 \"coneangle\" [40] \"conedeltaangle\" [2]
+LightSource \"spotlight\" 2 \"coneangle\" [0.5] \"conedeltaangle\" [10]
+LightSource \"spotlight\" 3 \"coneangle\" [0.5] \"conedeltaangle\" [0.1]
+Translate 0 0 5
+Sphere 1 -1 1 360
+WorldEnd
+";
+    let (loaded, shown) = warnings(text);
+    assert_eq!(
+        shown,
+        [
+            format!(
+                "test.rib:3:{}: warning: LightSource: spotlight: \"coneangle\" 40 is more than pi radians: read as 40 degrees",
+                col(text, 3, "\"coneangle\"")
+            ),
+            format!(
+                "test.rib:3:{}: warning: LightSource: spotlight: \"conedeltaangle\" 2 comes with a cone angle in degrees: read as 2 degrees",
+                col(text, 3, "\"conedeltaangle\"")
+            ),
+            format!(
+                "test.rib:4:{}: warning: LightSource: spotlight: \"conedeltaangle\" 10 is more than pi radians: read as 10 degrees",
+                col(text, 4, "\"conedeltaangle\"")
+            ),
+        ]
+    );
+    let angles: Vec<(f32, f32)> = loaded.frames[0]
+        .scene
+        .lights
+        .iter()
+        .map(|l| match l {
+            Light::Spot { cone_angle, cone_delta, .. } => (*cone_angle, *cone_delta),
+            other => panic!("{other:?}"),
+        })
+        .collect();
+    assert_eq!(
+        angles,
+        [(40.0, 2.0), (0.5f32.to_degrees(), 10.0), (0.5f32.to_degrees(), 0.1f32.to_degrees())]
+    );
+    assert_eq!(
+        strict_error(text),
+        format!(
+            "test.rib:3:{}: LightSource: spotlight: \"coneangle\" 40 is more than pi radians (--strict)",
+            col(text, 3, "\"coneangle\"")
+        )
+    );
 }
