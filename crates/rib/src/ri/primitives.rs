@@ -264,7 +264,7 @@ impl Machine {
                     })
                 };
                 let (nu, nv) = (count(1)?, count(3)?);
-                let (uwrap, vwrap) = (wrap(r, 2)?, wrap(r, 4)?);
+                let (uwrap, vwrap) = (self.wrap(r, 2)?, self.wrap(r, 4)?);
                 let points = self.patch_points(r, nu as usize * nv as usize)?;
                 self.patch_mesh(kind, nu, uwrap, nv, vwrap, points)
             }
@@ -337,6 +337,29 @@ impl Machine {
         let points = geometry::positions(r, n)?;
         geometry::unused_primvars(r, &["P", "Pw"], &mut self.warnings);
         Ok(points)
+    }
+
+    /// `PatchMesh`'s wrap argument `i`. Exporters write `"nowrap"`, which is no mode of the
+    /// Specification: it is read as `"nonperiodic"`, with a warning (an error under
+    /// `--strict`).
+    fn wrap(&mut self, r: &Request, i: usize) -> Result<Wrap, RibError> {
+        let which = if i == 2 { "uwrap" } else { "vwrap" };
+        match r.string(i).unwrap_or_default() {
+            "nonperiodic" => Ok(Wrap::Nonperiodic),
+            "periodic" => Ok(Wrap::Periodic),
+            "nowrap" => {
+                self.tolerate(
+                    &r.at,
+                    r.name(),
+                    format!("{which} \"nowrap\" is not a wrap mode of the Specification"),
+                    "read as \"nonperiodic\"",
+                )?;
+                Ok(Wrap::Nonperiodic)
+            }
+            other => Err(r.error(format!(
+                "{which} must be \"periodic\" or \"nonperiodic\", got \"{other}\""
+            ))),
+        }
     }
 
     /// A patch mesh under the current `Basis`.
@@ -465,18 +488,6 @@ fn patch_type(r: &Request, i: usize) -> Result<PatchType, RibError> {
         "bilinear" => Ok(PatchType::Bilinear),
         "bicubic" => Ok(PatchType::Bicubic),
         other => Err(r.error(format!("type must be \"bilinear\" or \"bicubic\", got \"{other}\""))),
-    }
-}
-
-/// `PatchMesh`'s wrap arguments.
-fn wrap(r: &Request, i: usize) -> Result<Wrap, RibError> {
-    match r.string(i).unwrap_or_default() {
-        "nonperiodic" => Ok(Wrap::Nonperiodic),
-        "periodic" => Ok(Wrap::Periodic),
-        other => Err(r.error(format!(
-            "{} must be \"periodic\" or \"nonperiodic\", got \"{other}\"",
-            if i == 2 { "uwrap" } else { "vwrap" }
-        ))),
     }
 }
 

@@ -3,7 +3,7 @@
 //! each the error `file:line:col: Request: what (--strict)`.
 
 use reyes_rib::{Loaded, RiOptions, Source, load};
-use reyes_scene::{Light, Shape, Transform};
+use reyes_scene::{Light, Shape, Transform, Wrap};
 
 /// Loads `text` as `test.rib`, with or without `--strict`.
 fn load_as(text: &str, strict: bool) -> Result<Loaded, String> {
@@ -309,5 +309,32 @@ WorldEnd
             "test.rib:3:{}: LightSource: spotlight: \"coneangle\" 40 is more than pi radians (--strict)",
             col(text, 3, "\"coneangle\"")
         )
+    );
+}
+
+#[test]
+fn patch_mesh_nowrap_is_nonperiodic() {
+    let text = "Projection \"perspective\"
+WorldBegin
+Translate 0 0 5
+PatchMesh \"bilinear\" 2 \"nowrap\" 3 \"nowrap\" \"P\" [0 0 0  1 0 0  0 1 0  1 1 0  0 2 0  1 2 0]
+WorldEnd
+";
+    let (loaded, shown) = warnings(text);
+    let warning = |which: &str| {
+        format!(
+            "test.rib:4:1: warning: PatchMesh: {which} \"nowrap\" is not a wrap mode of the Specification: read as \"nonperiodic\""
+        )
+    };
+    assert_eq!(shown, [warning("uwrap"), warning("vwrap")]);
+    match &loaded.frames[0].scene.objects[0].shape {
+        Shape::PatchMesh { nu, nv, uwrap, vwrap, .. } => {
+            assert_eq!((*nu, *nv, *uwrap, *vwrap), (2, 3, Wrap::Nonperiodic, Wrap::Nonperiodic));
+        }
+        other => panic!("{other:?}"),
+    }
+    assert_eq!(
+        strict_error(text),
+        "test.rib:4:1: PatchMesh: uwrap \"nowrap\" is not a wrap mode of the Specification (--strict)"
     );
 }
