@@ -519,8 +519,23 @@ impl Machine {
     }
 
     fn world_begin(&mut self, r: &Request) -> Result<(), RibError> {
-        if self.in_world() || self.blocks.iter().any(|(b, _)| *b != Block::Frame) {
+        if self.in_world()
+            || self.blocks.iter().any(|(b, _)| matches!(b, Block::World | Block::Solid))
+        {
             return Err(r.error("WorldBegin must be outside every block but a frame"));
+        }
+        // Houdini writes the world inside an attribute or transformation block; RenderMan
+        // renderers take it, the transformation at WorldBegin being the camera's.
+        if let Some((b, at)) =
+            self.blocks.iter().find(|(b, _)| matches!(b, Block::Attribute | Block::Transform))
+        {
+            let what = format!("opened inside the {} block of {}", b.begin(), at.pos);
+            self.tolerate(
+                &r.at,
+                r.name(),
+                what,
+                "allowed, as RenderMan renderers allow it: the transformation at WorldBegin is the camera's",
+            )?;
         }
         // The transformation so far is the camera's: world to camera.
         self.frame_options.camera = self.ctm.clone();

@@ -2,8 +2,9 @@
 //! parameter) at fault naming what was done, and the model shows it done; `--strict` makes
 //! each the error `file:line:col: Request: what (--strict)`.
 
+use glam::Vec3;
 use reyes_rib::{Loaded, RiOptions, Source, load};
-use reyes_scene::{Light, Shape, Transform, Wrap};
+use reyes_scene::{Light, Shape, Transform, Wrap, object_to_world};
 
 /// Loads `text` as `test.rib`, with or without `--strict`.
 fn load_as(text: &str, strict: bool) -> Result<Loaded, String> {
@@ -336,5 +337,38 @@ WorldEnd
     assert_eq!(
         strict_error(text),
         "test.rib:4:1: PatchMesh: uwrap \"nowrap\" is not a wrap mode of the Specification (--strict)"
+    );
+}
+
+#[test]
+fn a_world_inside_an_attribute_block_takes_the_camera_from_its_transformation() {
+    // Houdini's layout: the camera transformation and the world in one attribute block.
+    let text = "FrameBegin 1
+Format 32 24 1
+Projection \"perspective\" \"fov\" [40]
+AttributeBegin
+TransformBegin
+Translate 0 0 5
+WorldBegin
+Sphere 1 -1 1 360
+WorldEnd
+TransformEnd
+AttributeEnd
+FrameEnd
+";
+    let (loaded, shown) = warnings(text);
+    assert_eq!(
+        shown,
+        [
+            "test.rib:7:1: warning: WorldBegin: opened inside the AttributeBegin block of 4:1: allowed, as RenderMan renderers allow it: the transformation at WorldBegin is the camera's"
+        ]
+    );
+    // The CTM at WorldBegin is the camera's: world to camera, 5 along z.
+    let o = &loaded.frames[0].scene.objects[0];
+    let p = object_to_world(&o.transform).project_point3(Vec3::ZERO);
+    assert_eq!(p, Vec3::new(0.0, 0.0, 5.0));
+    assert_eq!(
+        strict_error(text),
+        "test.rib:7:1: WorldBegin: opened inside the AttributeBegin block of 4:1 (--strict)"
     );
 }
