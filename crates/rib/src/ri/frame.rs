@@ -89,6 +89,13 @@ pub(crate) struct Machine {
     pub(super) objects: HashMap<String, Vec<Request>>,
     /// The object definition being recorded.
     pub(super) recording: Option<(String, Vec<Request>, usize)>,
+    /// Inline archives (`ArchiveBegin`/`ArchiveEnd`): name -> requests to replay.
+    pub(super) archives: HashMap<String, Vec<Request>>,
+    /// The inline archive being recorded: its name, requests, `ArchiveBegin`s open inside it,
+    /// and where it began.
+    pub(super) archive_recording: Option<(String, Vec<Request>, usize, Location)>,
+    /// Inline archives replaying now, one inside the other.
+    pub(super) archive_replaying: Vec<String>,
     /// `ObjectInstance`s replaying now, one inside the other.
     pub(super) instancing: usize,
     /// Requests replayed by object instances in this world block.
@@ -133,6 +140,9 @@ impl Machine {
             frame_number: None,
             objects: HashMap::new(),
             recording: None,
+            archives: HashMap::new(),
+            archive_recording: None,
+            archive_replaying: Vec::new(),
             instancing: 0,
             instanced: 0,
             warnings: Vec::new(),
@@ -195,6 +205,13 @@ impl Machine {
                 message: "no MotionEnd before the end of the input".into(),
             });
         }
+        if let Some((_, _, _, at)) = &self.archive_recording {
+            return Err(RibError::Request {
+                at: at.clone(),
+                request: "ArchiveBegin",
+                message: "no ArchiveEnd before the end of the input".into(),
+            });
+        }
         if let Some((b, at)) = self.blocks.last() {
             return Err(RibError::Request {
                 at: at.clone(),
@@ -209,8 +226,24 @@ impl Machine {
         self.build.is_some()
     }
 
-    /// One request, in or out of a motion block or an object definition.
+    /// One request, in or out of a motion block, an object definition or an inline archive.
     pub(super) fn request(&mut self, r: Request) -> Result<(), RibError> {
+        // An inline archive's body is recorded as written, ReadArchive included.
+        if let Some((_, recorded, depth, _)) = &mut self.archive_recording {
+            match r.kind {
+                K::ArchiveBegin => *depth += 1,
+                K::ArchiveEnd if *depth == 0 => return self.archive_end(),
+                K::ArchiveEnd => *depth -= 1,
+                _ => {}
+            }
+            recorded.push(r);
+            return Ok(());
+        }
+        // Elsewhere an archive is read where it stands, even in an object definition or a
+        // motion block, so that its requests are recorded or gathered in their place.
+        if r.kind == K::ReadArchive {
+            return self.read_archive(&r);
+        }
         if let Some((_, recorded, depth)) = &mut self.recording {
             match r.kind {
                 K::ObjectBegin => *depth += 1,
@@ -455,7 +488,9 @@ impl Machine {
                 self.primitive(&r, None)
             }
             K::Procedural => self.procedural(&r),
-            K::ReadArchive => self.reader.read_archive(&r),
+            K::ReadArchive => self.read_archive(&r),
+            K::ArchiveBegin => self.archive_begin(&r),
+            K::ArchiveEnd => Err(r.error("no ArchiveBegin is open")),
 
             // Accepted and ignored, with a warning.
             _ => {

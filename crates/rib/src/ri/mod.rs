@@ -11,12 +11,14 @@
 //! [`reyes_scene::validate`], and a validation failure is reported at the RIB request that
 //! produced the offending value.
 
+mod archives;
 mod attributes;
 mod build;
 mod frame;
 pub(crate) mod geometry;
 mod options;
 mod primitives;
+mod search;
 mod shaders;
 mod solids;
 pub(crate) mod state;
@@ -28,7 +30,7 @@ use reyes_scene::Scene;
 
 pub use state::Display;
 
-use crate::{Reader, ReaderOptions, RibError, Source, Warning};
+use crate::{Reader, RibError, Source, Warning};
 
 /// How to read a RIB file.
 #[derive(Debug, Clone, Default)]
@@ -84,9 +86,7 @@ pub(crate) fn load_reporting(
     source: Source,
     options: &RiOptions,
 ) -> Result<Loaded, (RibError, Vec<Warning>)> {
-    let reader = Reader::with_options(
-        source,
-        ReaderOptions { follow_archives: true, ..ReaderOptions::default() },
-    );
-    frame::Machine::new(reader, options.clone()).run()
+    // The machine follows ReadArchive itself: an inline archive (ArchiveBegin) is replayed,
+    // a file is looked up along the archive search path and read in place.
+    frame::Machine::new(Reader::new(source), options.clone()).run()
 }

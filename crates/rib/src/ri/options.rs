@@ -7,6 +7,7 @@
 use reyes_scene::{Aov, AovFilter, AovSource, FilterKind, HiderMethod};
 
 use super::frame::Machine;
+use super::search::Kind;
 use super::state::{Display, Projection};
 use crate::{Request, RequestKind as K, RibError, Warning};
 
@@ -216,6 +217,14 @@ impl Machine {
                                 }
                                 _ => return Err(r.param_error(p, "must be one size of at least 1")),
                             }
+                        }
+                        ("searchpath", kind) if Kind::of(kind).is_some() => {
+                            let Some(kind) = Kind::of(kind) else { continue };
+                            let Some([value]) = p.strings() else {
+                                return Err(r.param_error(p, "must be one string of directories"));
+                            };
+                            let reader = &self.reader;
+                            o.search.set(kind, value, |d| reader.resolve_archive(d, &r.at));
                         }
                         ("statistics", _) | ("searchpath", _) => {}
                         _ => {

@@ -134,16 +134,24 @@ impl Machine {
             }
         };
         let mut object = Object::new(shape, mat);
-        let reader = &self.reader;
+        let (reader, search) = (&self.reader, &self.frame_options.search);
+        let not_found = std::cell::RefCell::new(Vec::new());
         let looks = super::shaders::lookdev(
             &a.surface,
             &a.displacement,
             a.displacement_bound,
             a.repeat,
-            |name, at| reader.resolve_archive(name, at).to_string_lossy().into_owned(),
+            |name, at, request| {
+                let w = &mut not_found.borrow_mut();
+                super::archives::texture_path(search, reader, name, at, request, w)
+            },
             &mut self.warnings,
             report,
         );
+        for w in not_found.into_inner() {
+            let key = w.to_string();
+            self.warn_once(key, w);
+        }
         match looks {
             Ok((maps, displacement)) => {
                 object.maps = maps;

@@ -317,14 +317,15 @@ fn string<'p>(params: &'p [Param], name: &str) -> Option<&'p str> {
 /// `repeat`), and the standard displacement
 /// shader `bumpy` (`P += Km * texture(texturename) * normalize(N)`, the map read as linear
 /// data) as true displacement with the block's `displacementbound`. `resolve` turns a
-/// texture name into a file name (relative to the RIB file). Other displacement shaders
+/// texture name into a file name (along the texture search path), given where and by which
+/// request it is named. Other displacement shaders
 /// are unknown: reported through `unknown`, and no displacement.
 pub(crate) fn lookdev(
     surface: &SurfaceShader,
     displacement: &SurfaceShader,
     bound: Option<f32>,
     repeat: (f32, f32),
-    resolve: impl Fn(&str, &Location) -> String,
+    resolve: impl Fn(&str, &Location, &str) -> String,
     warnings: &mut Vec<Warning>,
     report: bool,
 ) -> Result<(Maps, Option<Displacement>), String> {
@@ -340,7 +341,7 @@ pub(crate) fn lookdev(
         && let (Some(name), Some(at)) = (string(&surface.params, "texturename"), &surface.at)
         && !name.is_empty()
     {
-        maps.color = Some(map(resolve(name, at), ColorSpace::Srgb));
+        maps.color = Some(map(resolve(name, at, "Surface"), ColorSpace::Srgb));
     }
     let displace = match (displacement.name.as_deref(), &displacement.at) {
         (Some("bumpy"), Some(at)) => {
@@ -356,7 +357,10 @@ pub(crate) fn lookdev(
             let km = float(&displacement.params, "Km").unwrap_or(1.0);
             match string(&displacement.params, "texturename").filter(|n| !n.is_empty()) {
                 Some(name) => Some(Displacement {
-                    source: Scalar::Texture(map(resolve(name, at), ColorSpace::Linear)),
+                    source: Scalar::Texture(map(
+                        resolve(name, at, "Displacement"),
+                        ColorSpace::Linear,
+                    )),
                     amount: km,
                     center: 0.0,
                     bound,

@@ -86,8 +86,8 @@ impl Machine {
             let Some(file) = r.strings(1).and_then(|a| a.first()) else {
                 return Err(r.error("DelayedReadArchive needs a file name"));
             };
-            let path = self.reader.resolve_archive(file, &r.at);
-            return self.reader.push_archive(&path, &r.at);
+            let path = self.archive_path(file, &r.at)?;
+            return self.read_file_in_place(&path, &r.at);
         }
         let w = r.warning(format!("procedural \"{name}\" is not supported: ignored"));
         self.warn_once(format!("procedural {name}"), w);

@@ -4,6 +4,7 @@
 
 mod deep;
 mod errors;
+mod extensions;
 mod frames;
 mod lookdev;
 mod mapping;

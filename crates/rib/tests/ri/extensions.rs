@@ -1,0 +1,170 @@
+//! Requests of later RenderMan than the 3.2 Specification, and its corners: inline archives,
+//! search paths, RIS requests told once, DynamicLoad refused, height-field patches, and the
+//! built-in teapot.
+
+use std::fs;
+use std::path::Path;
+
+use glam::Vec3;
+use reyes_rib::{RiOptions, load_scene_file};
+use reyes_scene::{Material, Shape, object_to_world};
+
+use super::rib;
+
+#[test]
+fn inline_archives_are_recorded_and_replayed_by_read_archive() {
+    // Run in place, the sphere would be geometry outside the world: an error.
+    let text = "ArchiveBegin \"ball\"
+  AttributeBegin
+    Color [1 0 0]
+    Sphere 1 -1 1 360
+  AttributeEnd
+ArchiveEnd
+ArchiveBegin \"pair\"
+  ReadArchive \"ball\"
+  Translate 0 3 0
+  ReadArchive \"ball\"
+ArchiveEnd
+Projection \"perspective\"
+WorldBegin
+Translate 0 0 5
+ReadArchive \"ball\"
+Translate 2 0 0
+ReadArchive \"pair\"
+WorldEnd
+";
+    let loaded = rib(text).unwrap_or_else(|e| panic!("{e}"));
+    assert!(loaded.warnings.is_empty(), "{:?}", loaded.warnings);
+    let s = &loaded.frames[0].scene;
+    let centres: Vec<Vec3> = s
+        .objects
+        .iter()
+        .map(|o| object_to_world(&o.transform).project_point3(Vec3::ZERO))
+        .collect();
+    assert_eq!(
+        centres,
+        [Vec3::new(0.0, 0.0, 5.0), Vec3::new(2.0, 0.0, 5.0), Vec3::new(2.0, 3.0, 5.0)]
+    );
+    for o in &s.objects {
+        assert!(matches!(o.material, Material::DefaultSurface { color: [1.0, 0.0, 0.0], .. }));
+    }
+}
+
+#[test]
+fn inline_archives_report_at_their_own_lines_and_catch_cycles() {
+    let text = "ArchiveBegin \"a\"
+  Attribute \"user\" \"float frobs\" [1]
+  ReadArchive \"b\"
+ArchiveEnd
+ArchiveBegin \"b\"
+  ReadArchive \"a\"
+ArchiveEnd
+WorldBegin
+ReadArchive \"a\"
+WorldEnd
+";
+    assert_eq!(
+        rib(text).err().map(|e| e.to_string()).as_deref(),
+        Some(
+            "test.rib:6:3: ReadArchive: inline archives read each other in a cycle: \"a\" -> \"b\" -> \"a\""
+        )
+    );
+    let refused = load_scene_file_text(text).expect_err("a cycle");
+    // The warning raised while replaying "a" is at the request's own line in "a".
+    let shown: Vec<String> = refused.warnings.iter().map(ToString::to_string).collect();
+    assert_eq!(
+        shown,
+        ["test.rib:2:20: warning: Attribute: \"user\" \"frobs\" is not supported: ignored"]
+            .map(|w| w.replace("test.rib", &refused_file(&refused)))
+    );
+    assert_eq!(
+        rib("ArchiveBegin \"open\"\nSphere 1 -1 1 360\n").err().map(|e| e.to_string()).as_deref(),
+        Some("test.rib:1:1: ArchiveBegin: no ArchiveEnd before the end of the input")
+    );
+    assert_eq!(
+        rib("ArchiveEnd\n").err().map(|e| e.to_string()).as_deref(),
+        Some("test.rib:1:1: ArchiveEnd: no ArchiveBegin is open")
+    );
+}
+
+/// Loads `text` from a file `test.rib` in a temporary folder through `load_scene_file`.
+fn load_scene_file_text(text: &str) -> Result<reyes_rib::Loaded, reyes_rib::Refusal> {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("test.rib");
+    fs::write(&path, text).unwrap();
+    load_scene_file(&path, &RiOptions::default())
+}
+
+/// The file name a refusal's warnings carry (the temporary file's path).
+fn refused_file(refused: &reyes_rib::Refusal) -> String {
+    refused.warnings.first().map(|w| w.at.file.to_string()).unwrap_or_default()
+}
+
+fn write(dir: &Path, name: &str, text: &str) {
+    let path = dir.join(name);
+    fs::create_dir_all(path.parent().unwrap()).unwrap();
+    fs::write(path, text).unwrap();
+}
+
+#[test]
+fn search_paths_find_archives_and_textures_with_ampersand_and_at() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path();
+    write(d, "other/deep.rib", "Disk 0 1 360\n");
+    write(d, "parts/ball.rib", "Sphere 1 -1 1 360\n");
+    write(d, "maps/wood.png", "not read at load time");
+    write(d, "beside.png", "not read at load time");
+    // The archive path: "other", then "parts" before it (& is the previous path). The
+    // texture path: "maps", then @ (the naming file's folder). Shader and procedural paths
+    // are taken without a word.
+    let main = "Option \"searchpath\" \"archive\" [\"other\"]
+Option \"searchpath\" \"archive\" [\"parts:&\"]
+Option \"searchpath\" \"string texture\" [\"maps:@\"]
+Option \"searchpath\" \"shader\" [\"shaders:&\"] \"procedural\" [\"@\"]
+Projection \"perspective\"
+WorldBegin
+Translate 0 0 5
+ReadArchive \"ball.rib\"
+ReadArchive \"deep.rib\"
+Surface \"paintedplastic\" \"texturename\" \"wood.png\"
+Sphere 1 -1 1 360
+Surface \"paintedplastic\" \"texturename\" \"beside.png\"
+Sphere 1 -1 1 360
+Surface \"paintedplastic\" \"texturename\" \"lost.png\"
+Sphere 1 -1 1 360
+WorldEnd
+";
+    write(d, "main.rib", main);
+    let path = d.join("main.rib");
+    let loaded = load_scene_file(&path, &RiOptions::default()).unwrap_or_else(|e| panic!("{e}"));
+    let s = &loaded.frames[0].scene;
+    assert!(matches!(s.objects[0].shape, Shape::Sphere { .. }), "parts/ball.rib");
+    assert!(matches!(s.objects[1].shape, Shape::Disk { .. }), "other/deep.rib");
+    let map = |i: usize| s.objects[i].maps.color.as_ref().map(|m| m.file.clone());
+    assert_eq!(map(2), Some(d.join("maps/wood.png").display().to_string()));
+    assert_eq!(map(3), Some(d.join("beside.png").display().to_string()));
+    // Found nowhere: the default resolution, with a warning naming the path.
+    assert_eq!(map(4), Some(d.join("lost.png").display().to_string()));
+    let shown: Vec<String> = loaded.warnings.iter().map(ToString::to_string).collect();
+    assert_eq!(
+        shown,
+        [format!(
+            "{}:14:1: warning: Surface: texture \"lost.png\" is not found along the texture search path {:?}: {:?} is used",
+            path.display(),
+            format!("{}:@", d.join("maps").display()),
+            d.join("lost.png").display().to_string()
+        )]
+    );
+    // An archive found nowhere along its path is the error of an unreadable archive.
+    write(d, "lost.rib", &main.replace("\"deep.rib\"", "\"beside.rib\""));
+    let refused = load_scene_file(&d.join("lost.rib"), &RiOptions::default()).expect_err("lost");
+    assert_eq!(
+        refused.to_string(),
+        format!(
+            "{}:9:1: ReadArchive: cannot read \"beside.rib\": not found along the archive search path {:?}",
+            d.join("lost.rib").display(),
+            format!("{}:{}", d.join("parts").display(), d.join("other").display())
+        )
+    );
+    assert_eq!(refused.exit_code(), 1);
+}
