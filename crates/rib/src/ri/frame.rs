@@ -492,6 +492,20 @@ impl Machine {
             K::ArchiveBegin => self.archive_begin(&r),
             K::ArchiveEnd => Err(r.error("no ArchiveBegin is open")),
 
+            // RIS: once per request name.
+            k if k.is_ris() => {
+                let name = r.name();
+                let what = format!(
+                    "RenderMan's RIS requests are not supported (this renderer runs the shading of the \
+                     RenderMan Interface 3.2); every {name} request is ignored"
+                );
+                if self.options.strict {
+                    return Err(r.error(format!("{what} (--strict)")));
+                }
+                let w = r.warning(what);
+                self.warn_once(format!("ris {name}"), w);
+                Ok(())
+            }
             // Accepted and ignored, with a warning.
             _ => {
                 let w = r.warning("not supported: ignored");

@@ -6,7 +6,7 @@ use std::fs;
 use std::path::Path;
 
 use glam::Vec3;
-use reyes_rib::{RiOptions, load_scene_file};
+use reyes_rib::{RiOptions, Source, load, load_scene_file};
 use reyes_scene::{Material, Shape, object_to_world};
 
 use super::rib;
@@ -167,4 +167,44 @@ WorldEnd
         )
     );
     assert_eq!(refused.exit_code(), 1);
+}
+
+#[test]
+fn ris_requests_are_told_once_per_request_name() {
+    let text = "Integrator \"PxrPathTracer\" \"pt\" \"int maxPathLength\" [10]
+Projection \"perspective\"
+WorldBegin
+Pattern \"PxrTexture\" \"tex\" \"string filename\" [\"wood.tex\"]
+Bxdf \"PxrSurface\" \"a\" \"reference color diffuseColor\" [\"tex:resultRGB\"]
+Light \"PxrDomeLight\" \"dome\" \"float intensity\" [1]
+Bxdf \"PxrDisney\" \"b\" \"color baseColor\" [0.8 0.2 0.1]
+Light \"PxrRectLight\" \"key\"
+Translate 0 0 5
+Sphere 1 -1 1 360
+WorldEnd
+";
+    let loaded = rib(text).unwrap_or_else(|e| panic!("{e}"));
+    let shown: Vec<String> = loaded.warnings.iter().map(ToString::to_string).collect();
+    let told = |at: &str, name: &str| {
+        format!(
+            "test.rib:{at}: warning: {name}: RenderMan's RIS requests are not supported (this renderer runs the shading of the RenderMan Interface 3.2); every {name} request is ignored"
+        )
+    };
+    assert_eq!(
+        shown,
+        [
+            told("1:1", "Integrator"),
+            told("4:1", "Pattern"),
+            told("5:1", "Bxdf"),
+            told("6:1", "Light")
+        ]
+    );
+    assert_eq!(loaded.frames[0].scene.lights.len(), 0);
+    let strict = RiOptions { strict: true, ..RiOptions::default() };
+    let e = load(Source::from_bytes("test.rib", text.as_bytes().to_vec()), &strict)
+        .expect_err("strict");
+    assert_eq!(
+        e.to_string(),
+        "test.rib:1:1: Integrator: RenderMan's RIS requests are not supported (this renderer runs the shading of the RenderMan Interface 3.2); every Integrator request is ignored (--strict)"
+    );
 }
