@@ -208,3 +208,14 @@ WorldEnd
         "test.rib:1:1: Integrator: RenderMan's RIS requests are not supported (this renderer runs the shading of the RenderMan Interface 3.2); every Integrator request is ignored (--strict)"
     );
 }
+
+#[test]
+fn dynamic_load_is_refused_in_one_line() {
+    let text = "WorldBegin\nProcedural \"DynamicLoad\" [\"sphere.so\" \"1 2\"] [-1 1 -1 1 -1 1]\nWorldEnd\n";
+    assert_eq!(
+        rib(text).err().map(|e| e.to_string()).as_deref(),
+        Some(
+            "test.rib:2:1: Procedural: \"DynamicLoad\" runs the native plug-in \"sphere.so\", and native plug-ins are not loaded: write its geometry as RIB (DelayedReadArchive reads it)"
+        )
+    );
+}
