@@ -252,7 +252,8 @@ impl Machine {
             K::Patch => {
                 let kind = patch_type(r, 0)?;
                 let n = if kind == PatchType::Bilinear { 2 } else { 4 };
-                let points = self.patch_points(r, n * n)?;
+                let points =
+                    self.patch_points(r, (n, Wrap::Nonperiodic), (n, Wrap::Nonperiodic))?;
                 if kind == PatchType::Bilinear {
                     Shape::BilinearPatch { points: [points[0], points[1], points[2], points[3]] }
                 } else {
@@ -273,7 +274,7 @@ impl Machine {
                 };
                 let (nu, nv) = (count(1)?, count(3)?);
                 let (uwrap, vwrap) = (self.wrap(r, 2)?, self.wrap(r, 4)?);
-                let points = self.patch_points(r, nu as usize * nv as usize)?;
+                let points = self.patch_points(r, (nu as usize, uwrap), (nv as usize, vwrap))?;
                 self.patch_mesh(kind, nu, uwrap, nv, vwrap, points)
             }
             K::NuPatch => {
@@ -328,9 +329,18 @@ impl Machine {
         Ok(Some(shape))
     }
 
-    /// The control points of a patch request: `P`, or `Pw` of weight 1 (rational patch
-    /// meshes are not in the model).
-    fn patch_points(&mut self, r: &Request, n: usize) -> Result<Vec<[f32; 3]>, RibError> {
+    /// The control points of a patch request of `nu` by `nv` points, each with its wrap
+    /// mode: `P`, `Pw` of weight 1 (rational patch meshes are not in the model), or the
+    /// height field `Pz`, whose x and y are the mesh's surface parameters: point `(i, j)` at
+    /// `(i / (nu - 1), j / (nv - 1))`, spread uniformly over [0, 1] (`i / nu` along a
+    /// periodic direction, whose last point comes back to the first).
+    fn patch_points(
+        &mut self,
+        r: &Request,
+        (nu, uwrap): (usize, Wrap),
+        (nv, vwrap): (usize, Wrap),
+    ) -> Result<Vec<[f32; 3]>, RibError> {
+        let n = nu * nv;
         if let Some(p) = r.param("Pw")
             && p.floats().is_some_and(|v| v.chunks_exact(4).any(|c| c[3] != 1.0))
         {
@@ -339,11 +349,22 @@ impl Machine {
                 "rational patches are not supported (weights other than 1); use NuPatch",
             ));
         }
-        if let Some(p) = r.param("Pz") {
-            return Err(r.param_error(p, "height-field patches are not supported; give \"P\""));
-        }
-        let points = geometry::positions(r, n)?;
-        geometry::unused_primvars(r, &["P", "Pw"], &mut self.warnings);
+        let points = match (r.param("P"), r.param("Pw"), r.param("Pz")) {
+            (None, None, Some(pz)) => {
+                let counts = geometry::Counts { uniform: 1, vertex: n, facevarying: n };
+                let (_, z) = geometry::groups(r, pz, 1, counts)?;
+                let spread = |k: usize, count: usize, wrap: Wrap| match wrap {
+                    Wrap::Periodic => k as f32 / count as f32,
+                    Wrap::Nonperiodic => k as f32 / (count - 1).max(1) as f32,
+                };
+                z.iter()
+                    .enumerate()
+                    .map(|(k, &z)| [spread(k % nu, nu, uwrap), spread(k / nu, nv, vwrap), z])
+                    .collect()
+            }
+            _ => geometry::positions(r, n)?,
+        };
+        geometry::unused_primvars(r, &["P", "Pw", "Pz"], &mut self.warnings);
         Ok(points)
     }
 

@@ -7,9 +7,9 @@ use std::path::Path;
 
 use glam::Vec3;
 use reyes_rib::{RiOptions, Source, load, load_scene_file};
-use reyes_scene::{Material, Shape, object_to_world};
+use reyes_scene::{Basis, Material, Shape, Wrap, object_to_world};
 
-use super::rib;
+use super::{rib, scene};
 
 #[test]
 fn inline_archives_are_recorded_and_replayed_by_read_archive() {
@@ -218,4 +218,43 @@ fn dynamic_load_is_refused_in_one_line() {
             "test.rib:2:1: Procedural: \"DynamicLoad\" runs the native plug-in \"sphere.so\", and native plug-ins are not loaded: write its geometry as RIB (DelayedReadArchive reads it)"
         )
     );
+}
+
+#[test]
+fn height_field_patches_spread_x_and_y_over_the_surface_parameters() {
+    let z7x4: Vec<String> = (0..28).map(|k| format!("{}", k as f32 * 0.5 - 3.0)).collect();
+    let s = scene(&super::world(&format!(
+        "Patch \"bilinear\" \"Pz\" [1 2 3 4]
+         Patch \"bicubic\" \"Pz\" [0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15]
+         PatchMesh \"bicubic\" 7 \"nonperiodic\" 4 \"nonperiodic\" \"Pz\" [{}]
+         Basis \"b-spline\" 1 \"b-spline\" 1
+         PatchMesh \"bilinear\" 4 \"periodic\" 2 \"nonperiodic\" \"Pz\" [0 0 0 0 1 1 1 1]",
+        z7x4.join(" ")
+    )));
+    assert_eq!(
+        s.objects[0].shape,
+        Shape::BilinearPatch {
+            points: [[0.0, 0.0, 1.0], [1.0, 0.0, 2.0], [0.0, 1.0, 3.0], [1.0, 1.0, 4.0]]
+        }
+    );
+    let points = |i: usize| match &s.objects[i].shape {
+        Shape::PatchMesh { points, .. } => points.clone(),
+        other => panic!("{other:?}"),
+    };
+    let want = |nu: usize, du: f32, dv: f32, z: &dyn Fn(usize) -> f32, n: usize| -> Vec<[f32; 3]> {
+        (0..n).map(|k| [(k % nu) as f32 / du, (k / nu) as f32 / dv, z(k)]).collect()
+    };
+    assert_eq!(points(1), want(4, 3.0, 3.0, &|k| k as f32, 16));
+    assert_eq!(points(2), want(7, 6.0, 3.0, &|k| k as f32 * 0.5 - 3.0, 28));
+    // Along a periodic direction the last point comes back to the first: i / nu.
+    assert_eq!(points(3), want(4, 4.0, 1.0, &|k| if k < 4 { 0.0 } else { 1.0 }, 8));
+    match &s.objects[3].shape {
+        Shape::PatchMesh { uwrap, vwrap, .. } => {
+            assert_eq!((*uwrap, *vwrap), (Wrap::Periodic, Wrap::Nonperiodic))
+        }
+        other => panic!("{other:?}"),
+    }
+    // One height per point.
+    let e = rib(&super::world("Patch \"bilinear\" \"Pz\" [1 2 3]")).expect_err("3 heights");
+    assert!(e.to_string().contains("parameter \"Pz\""), "{e}");
 }
