@@ -23,6 +23,7 @@ mod shaders;
 mod solids;
 pub(crate) mod state;
 mod subdivision;
+pub mod teapot;
 mod triangulate;
 pub(crate) mod xform;
 

@@ -27,6 +27,10 @@ impl Machine {
         r: &Request,
         motion: Option<(&[f32], &[Request])>,
     ) -> Result<(), RibError> {
+        if r.kind == K::Geometry {
+            // Built-in geometry has no parameters to move: one shape over the shutter.
+            return self.geometry(r);
+        }
         let (shape, deform) = match motion {
             None => (self.shape(r)?, Vec::new()),
             Some((times, requests)) => {
@@ -71,6 +75,40 @@ impl Machine {
         };
         let Some(shape) = shape else { return Ok(()) };
         self.emit(r, shape, deform)
+    }
+
+    /// `Geometry "teapot"`: PRMan's and BMRT's built-in teapot, 32 bicubic Bezier patches
+    /// ([`super::teapot`]) under the current transformation and attributes (not the current
+    /// `Basis`: the data are Bezier nets). Other types are skipped with a warning.
+    fn geometry(&mut self, r: &Request) -> Result<(), RibError> {
+        match r.string(0).unwrap_or_default() {
+            "teapot" => {
+                for net in super::teapot::patches() {
+                    let shape = Shape::PatchMesh {
+                        kind: PatchType::Bicubic,
+                        nu: 4,
+                        nv: 4,
+                        uwrap: Wrap::Nonperiodic,
+                        vwrap: Wrap::Nonperiodic,
+                        points: net.to_vec(),
+                        ubasis: reyes_scene::Basis::Bezier,
+                        ustep: Some(3),
+                        vbasis: reyes_scene::Basis::Bezier,
+                        vstep: Some(3),
+                    };
+                    self.emit(r, shape, Vec::new())?;
+                }
+                Ok(())
+            }
+            other => {
+                let w = r.warning(format!(
+                    "geometry type {} is not supported (\"teapot\" is): skipped",
+                    crate::error::quote(other)
+                ));
+                self.warn_once(format!("geometry {other}"), w);
+                Ok(())
+            }
+        }
     }
 
     /// The object of `shape` (with its deformation keys), made by the request `r` under the
@@ -368,9 +406,6 @@ impl Machine {
         Ok(points)
     }
 
-    /// `PatchMesh`'s wrap argument `i`. Exporters write `"nowrap"`, which is no mode of the
-    /// Specification: it is read as `"nonperiodic"`, with a warning (an error under
-    /// `--strict`).
     fn wrap(&mut self, r: &Request, i: usize) -> Result<Wrap, RibError> {
         let which = if i == 2 { "uwrap" } else { "vwrap" };
         match r.string(i).unwrap_or_default() {

@@ -5,7 +5,9 @@
 use std::fs;
 use std::path::Path;
 
-use glam::Vec3;
+use glam::{DVec3, Vec3};
+use reyes_render::{RenderOptions, render};
+use reyes_rib::ri::teapot;
 use reyes_rib::{RiOptions, Source, load, load_scene_file};
 use reyes_scene::{Basis, Material, Shape, Wrap, object_to_world};
 
@@ -257,4 +259,94 @@ fn height_field_patches_spread_x_and_y_over_the_surface_parameters() {
     // One height per point.
     let e = rib(&super::world("Patch \"bilinear\" \"Pz\" [1 2 3]")).expect_err("3 heights");
     assert!(e.to_string().contains("parameter \"Pz\""), "{e}");
+}
+
+/// The teapot stood up for a y-up view, as RIB files do, the spout to the right.
+fn teapot_view(body: &str) -> String {
+    format!(
+        "Format 64 48 1 ScreenWindow -4 4 -3 3 PixelSamples 4 4 PixelFilter \"box\" 1 1
+         WorldBegin Translate 0 -1.5 10 Rotate -90 1 0 0 {body} WorldEnd"
+    )
+}
+
+#[test]
+fn the_teapot_is_the_newell_data_set_in_its_own_orientation_and_size() {
+    // The current Basis is not the teapot's: its nets are Bezier.
+    let s = scene(&teapot_view("Basis \"b-spline\" 1 \"b-spline\" 1 Geometry \"teapot\""));
+    assert_eq!(s.objects.len(), 32);
+    let (mut lo, mut hi) = (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN));
+    for (o, net) in s.objects.iter().zip(teapot::patches()) {
+        match &o.shape {
+            Shape::PatchMesh {
+                nu: 4,
+                nv: 4,
+                ubasis: Basis::Bezier,
+                vbasis: Basis::Bezier,
+                points,
+                ..
+            } => {
+                assert_eq!(points[..], net[..]);
+                for p in points {
+                    lo = lo.min(Vec3::from(*p));
+                    hi = hi.max(Vec3::from(*p));
+                }
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+    // The bound of its control points: z up from the base on z = 0 to the knob at 3.15,
+    // the handle to x = -3, the spout to x = 3.525, y within 2.
+    assert_eq!((lo, hi), (Vec3::new(-3.0, -2.0, 0.0), Vec3::new(3.525, 2.0, 3.15)));
+    // The surface reaches the bound where patch corners lie on it: the bottom's centre, the
+    // knob, the handle's outer edge and the body's widest ring.
+    let corners: Vec<DVec3> = s
+        .objects
+        .iter()
+        .flat_map(|o| reyes_scene::patches::bezier_patches(&o.shape, None))
+        .flat_map(|b| [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)].map(|(u, v)| b.eval(u, v).p))
+        .collect();
+    for p in [
+        DVec3::ZERO,
+        DVec3::new(0.0, 0.0, 3.15),
+        DVec3::new(-3.0, 0.0, 1.8),
+        DVec3::new(0.0, -2.0, 0.9),
+    ] {
+        assert!(corners.iter().any(|c| (*c - p).length() < 1e-6), "{p}");
+    }
+}
+
+/// The alpha of a render, row by row from the top.
+fn alpha(text: &str) -> Vec<f32> {
+    render(&scene(text), &RenderOptions::default())
+        .unwrap()
+        .film
+        .rgba()
+        .iter()
+        .map(|p| p[3])
+        .collect()
+}
+
+#[test]
+fn the_teapot_renders_as_its_patches_given_as_patch_requests() {
+    let geometry = alpha(&teapot_view("Geometry \"teapot\""));
+    let patches: String = teapot::patches()
+        .iter()
+        .map(|net| {
+            let p: Vec<String> = net.iter().flatten().map(|x| x.to_string()).collect();
+            format!("Patch \"bicubic\" \"P\" [{}]\n", p.join(" "))
+        })
+        .collect();
+    let as_patches = alpha(&teapot_view(&patches));
+    assert_eq!(geometry, as_patches, "the silhouettes differ");
+    // Seen from the front, 8 pixels a unit: handle at x = -3 (column 8), spout to the right,
+    // base on row 36, knob at y = 1.65 (row 10.8); the covered area lies inside that box.
+    let covered: Vec<(usize, usize)> =
+        (0..64 * 48).filter(|&k| geometry[k] > 0.0).map(|k| (k % 64, k / 64)).collect();
+    let columns = (covered.iter().map(|c| c.0).min(), covered.iter().map(|c| c.0).max());
+    let rows = (covered.iter().map(|c| c.1).min(), covered.iter().map(|c| c.1).max());
+    assert_eq!(columns.0, Some(8), "the handle's outer edge");
+    assert!(columns.1.is_some_and(|c| (56..=59).contains(&c)), "the spout's tip: {columns:?}");
+    assert_eq!(rows, (Some(10), Some(35)), "knob and base");
+    let area: f32 = geometry.iter().sum();
+    assert!(area > 0.5 * 6.525 * 3.15 * 64.0 && area < 6.525 * 3.15 * 64.0, "{area}");
 }
