@@ -20,6 +20,15 @@ fn warnings(text: &str) -> (Loaded, Vec<String>) {
     (loaded, shown)
 }
 
+const DOC: &str = include_str!("../../../../docs/rib.md");
+
+/// Checks that docs/rib.md's table of what is tolerated shows the warning `shown` as given
+/// (without its `file:line:col: warning: `), so the document cannot drift from the code.
+fn documented(shown: &str) {
+    let message = shown.split_once(": warning: ").map_or(shown, |(_, m)| m);
+    assert!(DOC.contains(&format!("`{message}`")), "docs/rib.md does not show {message:?}");
+}
+
 /// The one-line error `text` gives under `--strict`.
 fn strict_error(text: &str) -> String {
     match load_as(text, true) {
@@ -51,6 +60,7 @@ Sphere 1 -1 1 360
 WorldEnd
 ";
     let (loaded, shown) = warnings(text);
+    documented(&shown[0]);
     assert_eq!(
         shown,
         [
@@ -80,6 +90,7 @@ Sphere 1 -1 1 360
 WorldEnd
 ";
     let (loaded, shown) = warnings(text);
+    documented(&shown[0]);
     assert_eq!(
         shown,
         [
@@ -125,6 +136,7 @@ Disk 0 1 360
 WorldEnd
 ";
     let (loaded, shown) = warnings(text);
+    documented(&shown[0]);
     assert_eq!(
         shown,
         [
@@ -154,6 +166,7 @@ PointsPolygons [4 4] [0 1 4 3  1 2 5 4]
 WorldEnd
 ";
     let (loaded, shown) = warnings(text);
+    documented(&shown[0]);
     assert_eq!(
         shown,
         [format!(
@@ -199,6 +212,7 @@ PointsPolygons [3 3] [0 1 2  1 3 4]
 WorldEnd
 ";
     let (loaded, shown) = warnings(text);
+    documented(&shown[0]);
     assert_eq!(
         shown,
         [format!(
@@ -222,6 +236,7 @@ Sphere 1 -1 1 360
 WorldEnd
 ";
     let (loaded, shown) = warnings(text);
+    documented(&shown[0]);
     assert_eq!(
         shown,
         [
@@ -274,6 +289,7 @@ Sphere 1 -1 1 360
 WorldEnd
 ";
     let (loaded, shown) = warnings(text);
+    documented(&shown[0]);
     assert_eq!(
         shown,
         [
@@ -322,6 +338,7 @@ PatchMesh \"bilinear\" 2 \"nowrap\" 3 \"nowrap\" \"P\" [0 0 0  1 0 0  0 1 0  1 1
 WorldEnd
 ";
     let (loaded, shown) = warnings(text);
+    documented(&shown[0]);
     let warning = |which: &str| {
         format!(
             "test.rib:4:1: warning: PatchMesh: {which} \"nowrap\" is not a wrap mode of the Specification: read as \"nonperiodic\""
@@ -357,6 +374,7 @@ AttributeEnd
 FrameEnd
 ";
     let (loaded, shown) = warnings(text);
+    documented(&shown[0]);
     assert_eq!(
         shown,
         [
