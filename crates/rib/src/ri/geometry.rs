@@ -319,8 +319,9 @@ fn unusable(n: &[f32; 3]) -> bool {
 
 /// Replaces the unusable per-point normals of `mesh` (zero or not finite: exporters write
 /// them at degenerate points) by the normal the geometry gives: the sum of the normals of
-/// the faces around the point, each weighted by its area (Newell's method over the face's
-/// outline) and turned to agree with the usable normals the face's other points carry. A
+/// the faces around the point (on their outline or one of their holes), each weighted by
+/// its area (Newell's method over the face's outline) and turned to agree with the usable
+/// normals the face's other points carry. A
 /// point on no face gets (0, 0, 1), which nothing reads. When the faces around a point have
 /// no area, no normal can be taken from them: the result says the mesh's normals are to be
 /// dropped.
@@ -336,8 +337,15 @@ pub(crate) fn repair_normals(mesh: &PolyMesh, normals: &mut [[f32; 3]]) -> Norma
     };
     let mut sums = vec![[0.0f64; 3]; normals.len()];
     let mut on_a_face = vec![false; normals.len()];
-    for face in mesh.faces.iter() {
-        if !face.iter().any(|&k| unusable(&normals[k as usize])) {
+    let mut holes = mesh.holes.iter().peekable();
+    for (f, face) in mesh.faces.iter().enumerate() {
+        // The face's points: its outline's and its holes'.
+        let face_holes = match holes.peek() {
+            Some((hf, _)) if *hf == f => holes.next().map(|(_, h)| h.as_slice()).unwrap_or(&[]),
+            _ => &[],
+        };
+        let around: Vec<u32> = face.iter().chain(face_holes.iter().flatten()).copied().collect();
+        if !around.iter().any(|&k| unusable(&normals[k as usize])) {
             continue;
         }
         // Newell's normal: twice the face's area along its normal, in the winding's sense.
@@ -348,14 +356,14 @@ pub(crate) fn repair_normals(mesh: &PolyMesh, normals: &mut [[f32; 3]]) -> Norma
             n[1] += (a[2] - b[2]) * (a[0] + b[0]);
             n[2] += (a[0] - b[0]) * (a[1] + b[1]);
         }
-        let given: [f64; 3] = face
+        let given: [f64; 3] = around
             .iter()
             .map(|&k| normals[k as usize])
             .filter(|g| !unusable(g))
             .fold([0.0; 3], |s, g| std::array::from_fn(|c| s[c] + f64::from(g[c])));
         let sense =
             if n[0] * given[0] + n[1] * given[1] + n[2] * given[2] < 0.0 { -1.0 } else { 1.0 };
-        for &k in face {
+        for &k in &around {
             let k = k as usize;
             on_a_face[k] = true;
             for c in 0..3 {

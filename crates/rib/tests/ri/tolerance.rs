@@ -201,6 +201,27 @@ WorldEnd
 }
 
 #[test]
+fn a_zero_normal_on_a_hole_is_recomputed_from_its_face() {
+    // A square with a triangular hole, its normals -z (against the outline's winding, +z);
+    // a point of the hole has none.
+    let text = "Projection \"perspective\"
+WorldBegin
+Translate 0 0 5
+GeneralPolygon [4 3]
+  \"P\" [-2 -2 0  2 -2 0  2 2 0  -2 2 0  -1 -1 0  0 1 0  1 -1 0]
+  \"N\" [0 0 -1  0 0 -1  0 0 -1  0 0 -1  0 0 -1  0 0 0  0 0 -1]
+WorldEnd
+";
+    let (loaded, shown) = warnings(text);
+    assert_eq!(shown.len(), 1, "{shown:?}");
+    assert!(shown[0].contains("(the first at point 5): recomputed"), "{shown:?}");
+    match &loaded.frames[0].scene.objects[0].shape {
+        Shape::Mesh { normals: Some(n), .. } => assert_eq!(n[5], [0.0, 0.0, -1.0]),
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
 fn normals_that_no_face_can_replace_are_dropped_for_the_mesh() {
     // Point 3's only face, (1, 3, 4), has no area: nothing to take its normal from.
     let text = "Projection \"perspective\"
