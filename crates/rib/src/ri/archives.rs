@@ -7,12 +7,13 @@
 //! archive of its name before a file; an archive, inline or a file, is read to its end where
 //! it stands, before the next request of what included it, in the current graphics state
 //! and with no block of its own; an archive
-//! that reads itself, directly or not, is an error naming the cycle; replays in one world
-//! block add up to at most [`MAX_INSTANCED_REQUESTS`] requests.
+//! that reads itself, directly or not, is an error naming the cycle; replays nest at most
+//! [`MAX_INSTANCE_NESTING`] deep and add up to at most [`MAX_INSTANCED_REQUESTS`] requests in
+//! one world block.
 
 use std::path::{Path, PathBuf};
 
-use super::frame::{MAX_INSTANCED_REQUESTS, Machine};
+use super::frame::{MAX_INSTANCE_NESTING, MAX_INSTANCED_REQUESTS, Machine};
 use super::search::{Kind, Lookup, SearchPaths};
 use crate::error::quote;
 use crate::{Location, Reader, Request, RibError, Warning};
@@ -48,6 +49,11 @@ impl Machine {
         let Some(requests) = self.archives.get(&name).cloned() else {
             return self.read_archive_file(r);
         };
+        if self.archive_replaying.len() >= MAX_INSTANCE_NESTING {
+            return Err(
+                r.error(format!("inline archives nested more than {MAX_INSTANCE_NESTING} deep"))
+            );
+        }
         self.instanced = self.instanced.saturating_add(requests.len());
         if self.instanced > MAX_INSTANCED_REQUESTS {
             return Err(r.error(format!(

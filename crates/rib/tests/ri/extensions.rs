@@ -79,6 +79,16 @@ WorldEnd
         ["test.rib:2:20: warning: Attribute: \"user\" \"frobs\" is not supported: ignored"]
             .map(|w| w.replace("test.rib", &refused_file(&refused)))
     );
+    // Seventy archives, each reading the next: deeper than replays nest.
+    let mut deep: String = (0..70)
+        .map(|k| format!("ArchiveBegin \"a{k}\" ReadArchive \"a{}\" ArchiveEnd\n", k + 1))
+        .collect();
+    deep.push_str("ArchiveBegin \"a70\" Sphere 1 -1 1 360 ArchiveEnd\nWorldBegin\nReadArchive \"a0\"\nWorldEnd\n");
+    let e = rib(&deep).expect_err("too deep");
+    assert_eq!(
+        e.to_string(),
+        "test.rib:64:20: ReadArchive: inline archives nested more than 64 deep"
+    );
     assert_eq!(
         rib("ArchiveBegin \"open\"\nSphere 1 -1 1 360\n").err().map(|e| e.to_string()).as_deref(),
         Some("test.rib:1:1: ArchiveBegin: no ArchiveEnd before the end of the input")
