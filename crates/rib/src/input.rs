@@ -51,9 +51,10 @@ impl InputError {
 #[derive(Debug, thiserror::Error)]
 #[error("{error}")]
 pub struct Refusal {
-    /// The error that stopped the load.
+    /// The error that stopped the load (boxed: a RON error is large, and a refusal travels
+    /// up the `Result` of every load).
     #[source]
-    pub error: InputError,
+    pub error: Box<InputError>,
     /// The warnings raised before it.
     pub warnings: Vec<Warning>,
 }
@@ -67,7 +68,7 @@ impl Refusal {
 
 impl From<InputError> for Refusal {
     fn from(error: InputError) -> Self {
-        Refusal { error, warnings: Vec::new() }
+        Refusal { error: Box::new(error), warnings: Vec::new() }
     }
 }
 
@@ -148,7 +149,7 @@ pub fn load_scene_file(path: &Path, options: &RiOptions) -> Result<Loaded, Refus
 
 fn load_rib(source: Source, options: &RiOptions) -> Result<Loaded, Refusal> {
     crate::ri::load_reporting(source, options)
-        .map_err(|(e, warnings)| Refusal { error: e.into(), warnings })
+        .map_err(|(e, warnings)| Refusal { error: Box::new(e.into()), warnings })
 }
 
 /// The frames of the RON scene `text`: one without a number, unless frames are chosen

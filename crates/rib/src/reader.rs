@@ -151,12 +151,37 @@ impl Reader {
     /// Unknown requests are skipped with a warning. After a recoverable error (see
     /// [`RibError::is_recoverable`]) the next call goes on at the next request name.
     pub fn next_request(&mut self) -> Result<Option<Request>, RibError> {
-        let result = self.next_inner();
+        let result = self.next_inner(0);
         self.drain();
         result
     }
 
-    fn next_inner(&mut self) -> Result<Option<Request>, RibError> {
+    /// The next request of the sources from `depth` up ([`Reader::depth`] counts the root
+    /// 1), `Ok(None)` when the source at `depth` ends (it is then closed): reads an archive
+    /// pushed at `depth` to its end, in place, without going on in the file that included
+    /// it.
+    ///
+    /// ```
+    /// use reyes_rib::{Reader, Source};
+    /// let mut r = Reader::new(Source::from_bytes("main.rib", "WorldBegin WorldEnd"));
+    /// let at = r.next_request().unwrap().unwrap().at;
+    /// r.push_source(Source::from_bytes("part.rib", "Sphere 1 -1 1 360"), &at).unwrap();
+    /// assert_eq!(r.next_request_within(2).unwrap().unwrap().name(), "Sphere");
+    /// assert!(r.next_request_within(2).unwrap().is_none());
+    /// assert_eq!(r.next_request().unwrap().unwrap().name(), "WorldEnd");
+    /// ```
+    pub fn next_request_within(&mut self, depth: usize) -> Result<Option<Request>, RibError> {
+        if self.frames.len() < depth {
+            return Ok(None);
+        }
+        let result = self.next_inner(depth);
+        self.drain();
+        result
+    }
+
+    /// The next request; `Ok(None)` at the end of the root, or when the source at `floor`
+    /// (if above 0) ends.
+    fn next_inner(&mut self, floor: usize) -> Result<Option<Request>, RibError> {
         loop {
             let Some(frame) = self.frames.last_mut() else { return Ok(None) };
             if let Some(e) = frame.pending.take() {
@@ -166,6 +191,9 @@ impl Reader {
             if frame.done {
                 self.drain();
                 self.frames.pop();
+                if self.frames.len() < floor {
+                    return Ok(None);
+                }
                 continue;
             }
             let (pos, tok) = match frame.next() {

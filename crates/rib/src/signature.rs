@@ -305,13 +305,28 @@ requests! {
     Resource (s handle, s type) [params];
     ResourceBegin ();
     ResourceEnd ();
+    // RenderMan's RIS (PRMan 19 on): read so each is told once, not run.
+    Bxdf (s name, h handle) [params];
+    Pattern (s name, h handle) [params];
+    Integrator (s name, h handle) [params];
+    Light (s name, h handle) [params];
+    LightFilter (s name, h handle) [params];
+    DisplayFilter (s name, h handle) [params];
+    SampleFilter (s name, h handle) [params];
 }
 
 impl RequestKind {
     /// True for the requests of later specifications than 3.2 ([`RequestKind::ArchiveBegin`]
-    /// onwards).
+    /// onwards, RIS's included).
     pub fn is_extension(self) -> bool {
         self >= RequestKind::ArchiveBegin
+    }
+
+    /// True for RenderMan's RIS requests (`Bxdf`, `Pattern`, `Integrator`, `Light`,
+    /// `LightFilter`, `DisplayFilter`, `SampleFilter`): a shading model other than the
+    /// Specification's, which this renderer does not run.
+    pub fn is_ris(self) -> bool {
+        self >= RequestKind::Bxdf
     }
 
     /// The synopsis, e.g. `Sphere radius zmin zmax thetamax ...` (`[...]` around optional
@@ -375,8 +390,10 @@ mod tests {
 
     #[test]
     fn spec_table_size() {
-        // Spec 3.2's 98 RIB requests plus `version`, then the 11 later ones.
-        assert_eq!(RequestKind::ALL.len(), 110);
-        assert_eq!(RequestKind::ALL.iter().filter(|k| k.is_extension()).count(), 11);
+        // Spec 3.2's 98 RIB requests plus `version`, then the 11 later ones and RIS's 7.
+        assert_eq!(RequestKind::ALL.len(), 117);
+        assert_eq!(RequestKind::ALL.iter().filter(|k| k.is_extension()).count(), 18);
+        assert_eq!(RequestKind::ALL.iter().filter(|k| k.is_ris()).count(), 7);
+        assert!(!RequestKind::ResourceEnd.is_ris());
     }
 }

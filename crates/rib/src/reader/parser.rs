@@ -346,9 +346,14 @@ impl Parser<'_> {
         }
     }
 
-    /// Reads the value of the parameter whose token string `token` was at `pos`.
+    /// Reads the value of the parameter whose token string `token` was at `pos`. The
+    /// parameters of RenderMan's RIS requests (`"reference color baseColor"`, `"bxdf"`...)
+    /// are not interpreted: they are read as written, unchecked and untold (the request
+    /// itself is told once by the state machine).
     fn param(&mut self, pos: Pos, token: String) -> Result<Param, RibError> {
+        let ris = self.kind.is_ris();
         let (inline, name) = match decl::parse_token(&token) {
+            _ if ris => (None, token),
             Ok((inline, None)) => (inline, token),
             Ok((inline, Some(name))) => (inline, name),
             Err(m) => {
@@ -358,7 +363,7 @@ impl Parser<'_> {
                 ));
             }
         };
-        let decl = inline.or_else(|| self.decls.get(&name).copied());
+        let decl = if ris { None } else { inline.or_else(|| self.decls.get(&name).copied()) };
         self.param_name = name;
         self.param_decl = decl;
         self.context = Context::Param;
@@ -409,14 +414,16 @@ impl Parser<'_> {
                         }
                     }
                 };
-                self.warnings.push(Warning {
-                    at: self.frame.loc(pos),
-                    message: format!(
-                        "{}: {} is not declared; kept as written",
-                        self.kind.name(),
-                        self.label()
-                    ),
-                });
+                if !ris {
+                    self.warnings.push(Warning {
+                        at: self.frame.loc(pos),
+                        message: format!(
+                            "{}: {} is not declared; kept as written",
+                            self.kind.name(),
+                            self.label()
+                        ),
+                    });
+                }
                 data
             }
         };

@@ -56,7 +56,15 @@ impl Machine {
         let name = r.string(0).unwrap_or_default().to_string();
         let h = handle(r, 1).ok_or_else(|| r.error("expected a light handle"))?;
         let to_world = self.to_world();
-        let made = super::shaders::light(&name, &r.params, &to_world, &r.at, &mut self.warnings);
+        let mut tolerated = Vec::new();
+        let made = super::shaders::light(
+            &name,
+            &r.params,
+            &to_world,
+            &r.at,
+            &mut self.warnings,
+            &mut tolerated,
+        );
         let light = match made {
             super::shaders::LightResult::Light(l) => l,
             super::shaders::LightResult::Unknown(n) => {
@@ -73,6 +81,7 @@ impl Machine {
                     &to_world,
                     &r.at,
                     &mut Vec::new(),
+                    &mut Vec::new(),
                 ) {
                     super::shaders::LightResult::Light(l) => l,
                     super::shaders::LightResult::Unknown(_) => {
@@ -81,6 +90,9 @@ impl Machine {
                 }
             }
         };
+        for t in tolerated {
+            self.tolerate(&t.at, r.name(), t.what, &t.done)?;
+        }
         match &mut self.build {
             Some(b) => {
                 let index = b.add_light(h, light, r.at.clone());
@@ -88,8 +100,9 @@ impl Machine {
                     self.attributes.lights_on.push(index);
                 }
             }
-            // A light before WorldBegin is placed in camera space and shines in every frame
-            // that follows until the frame ends.
+            // A light before WorldBegin is placed in camera space and shines in every world
+            // block that follows: to the end of its frame if declared in one, else in every
+            // frame (FrameBegin saves the lights declared so far, FrameEnd restores them).
             None => self.pending_lights.push((h, light, r.at.clone())),
         }
         Ok(())

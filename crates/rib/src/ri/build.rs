@@ -466,7 +466,7 @@ impl FrameBuild {
 /// The keys of a transformation seen through the shutter `[open, close]`: interpolated at the
 /// shutter's ends where the keys reach past them, keys outside dropped; one key when the
 /// shutter is closed or the transformation still.
-fn fit_keys(keys: &[(f32, DMat4)], open: f32, close: f32) -> Vec<(f32, DMat4)> {
+pub(super) fn fit_keys(keys: &[(f32, DMat4)], open: f32, close: f32) -> Vec<(f32, DMat4)> {
     let x = Xform { keys: keys.to_vec() };
     if keys.len() == 1 {
         return keys.to_vec();

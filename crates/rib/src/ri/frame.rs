@@ -78,6 +78,10 @@ pub(crate) struct Machine {
     coordinate_systems: HashMap<String, (Xform, bool)>,
     /// Lights declared before `WorldBegin`, added to each world block.
     pub(super) pending_lights: Vec<(String, Light, Location)>,
+    /// The lights declared outside the frame, saved at `FrameBegin` and restored at
+    /// `FrameEnd`: like every option and attribute declared outside a frame, they hold for
+    /// every frame, while those declared inside one end with it.
+    saved_lights: Vec<Vec<(String, Light, Location)>>,
     /// The frame being built (from `WorldBegin` to `WorldEnd`).
     pub(super) build: Option<FrameBuild>,
     frame_number: Option<i32>,
@@ -85,6 +89,13 @@ pub(crate) struct Machine {
     pub(super) objects: HashMap<String, Vec<Request>>,
     /// The object definition being recorded.
     pub(super) recording: Option<(String, Vec<Request>, usize)>,
+    /// Inline archives (`ArchiveBegin`/`ArchiveEnd`): name -> requests to replay.
+    pub(super) archives: HashMap<String, Vec<Request>>,
+    /// The inline archive being recorded: its name, requests, `ArchiveBegin`s open inside it,
+    /// and where it began.
+    pub(super) archive_recording: Option<(String, Vec<Request>, usize, Location)>,
+    /// Inline archives replaying now, one inside the other.
+    pub(super) archive_replaying: Vec<String>,
     /// `ObjectInstance`s replaying now, one inside the other.
     pub(super) instancing: usize,
     /// Requests replayed by object instances in this world block.
@@ -124,10 +135,14 @@ impl Machine {
             motion: None,
             coordinate_systems: HashMap::new(),
             pending_lights: Vec::new(),
+            saved_lights: Vec::new(),
             build: None,
             frame_number: None,
             objects: HashMap::new(),
             recording: None,
+            archives: HashMap::new(),
+            archive_recording: None,
+            archive_replaying: Vec::new(),
             instancing: 0,
             instanced: 0,
             warnings: Vec::new(),
@@ -141,6 +156,27 @@ impl Machine {
         if self.warned.insert(key.into()) {
             self.warnings.push(w);
         }
+    }
+
+    /// Input RenderMan renderers tolerate: a warning `Request: what: done` at `at`, or under
+    /// `--strict` the error `Request: what (--strict)`.
+    pub(super) fn tolerate(
+        &mut self,
+        at: &Location,
+        request: &'static str,
+        what: impl std::fmt::Display,
+        done: &str,
+    ) -> Result<(), RibError> {
+        if self.options.strict {
+            return Err(RibError::Request {
+                at: at.clone(),
+                request,
+                message: format!("{what} (--strict)"),
+            });
+        }
+        self.warnings
+            .push(Warning { at: at.clone(), message: format!("{request}: {what}: {done}") });
+        Ok(())
     }
 
     /// Reads every request and returns the frames; on the first error, that error with the
@@ -169,6 +205,13 @@ impl Machine {
                 message: "no MotionEnd before the end of the input".into(),
             });
         }
+        if let Some((_, _, _, at)) = &self.archive_recording {
+            return Err(RibError::Request {
+                at: at.clone(),
+                request: "ArchiveBegin",
+                message: "no ArchiveEnd before the end of the input".into(),
+            });
+        }
         if let Some((b, at)) = self.blocks.last() {
             return Err(RibError::Request {
                 at: at.clone(),
@@ -183,8 +226,24 @@ impl Machine {
         self.build.is_some()
     }
 
-    /// One request, in or out of a motion block or an object definition.
+    /// One request, in or out of a motion block, an object definition or an inline archive.
     pub(super) fn request(&mut self, r: Request) -> Result<(), RibError> {
+        // An inline archive's body is recorded as written, ReadArchive included.
+        if let Some((_, recorded, depth, _)) = &mut self.archive_recording {
+            match r.kind {
+                K::ArchiveBegin => *depth += 1,
+                K::ArchiveEnd if *depth == 0 => return self.archive_end(),
+                K::ArchiveEnd => *depth -= 1,
+                _ => {}
+            }
+            recorded.push(r);
+            return Ok(());
+        }
+        // Elsewhere an archive is read where it stands, even in an object definition or a
+        // motion block, so that its requests are recorded or gathered in their place.
+        if r.kind == K::ReadArchive {
+            return self.read_archive(&r);
+        }
         if let Some((_, recorded, depth)) = &mut self.recording {
             match r.kind {
                 K::ObjectBegin => *depth += 1,
@@ -250,7 +309,7 @@ impl Machine {
                 Ok(())
             }
             K::Transform => {
-                self.ctm = Xform::still(xform::from_rib(r.floats(0).unwrap_or(&[0.0; 16])));
+                self.ctm = Xform::still(self.matrix_of(&r)?);
                 Ok(())
             }
             K::ConcatTransform | K::Translate | K::Rotate | K::Scale | K::Skew | K::Perspective => {
@@ -429,8 +488,24 @@ impl Machine {
                 self.primitive(&r, None)
             }
             K::Procedural => self.procedural(&r),
-            K::ReadArchive => self.reader.read_archive(&r),
+            K::ReadArchive => self.read_archive(&r),
+            K::ArchiveBegin => self.archive_begin(&r),
+            K::ArchiveEnd => Err(r.error("no ArchiveBegin is open")),
 
+            // RIS: once per request name.
+            k if k.is_ris() => {
+                let name = r.name();
+                let what = format!(
+                    "RenderMan's RIS requests are not supported (this renderer runs the shading of the \
+                     RenderMan Interface 3.2); every {name} request is ignored"
+                );
+                if self.options.strict {
+                    return Err(r.error(format!("{what} (--strict)")));
+                }
+                let w = r.warning(what);
+                self.warn_once(format!("ris {name}"), w);
+                Ok(())
+            }
             // Accepted and ignored, with a warning.
             _ => {
                 let w = r.warning("not supported: ignored");
@@ -477,13 +552,14 @@ impl Machine {
         }
         self.frame_number = r.int(0);
         self.saved_options.push(self.frame_options.clone());
+        self.saved_lights.push(self.pending_lights.clone());
         self.push(Block::Frame, &r.at);
         Ok(())
     }
 
     fn frame_end(&mut self, r: &Request) -> Result<(), RibError> {
         self.pop(r, Block::Frame)?;
-        self.pending_lights.clear();
+        self.pending_lights = self.saved_lights.pop().unwrap_or_default();
         if let Some(o) = self.saved_options.pop() {
             self.frame_options = o;
         }
@@ -492,8 +568,23 @@ impl Machine {
     }
 
     fn world_begin(&mut self, r: &Request) -> Result<(), RibError> {
-        if self.in_world() || self.blocks.iter().any(|(b, _)| *b != Block::Frame) {
+        if self.in_world()
+            || self.blocks.iter().any(|(b, _)| matches!(b, Block::World | Block::Solid))
+        {
             return Err(r.error("WorldBegin must be outside every block but a frame"));
+        }
+        // Houdini writes the world inside an attribute or transformation block; RenderMan
+        // renderers take it, the transformation at WorldBegin being the camera's.
+        if let Some((b, at)) =
+            self.blocks.iter().find(|(b, _)| matches!(b, Block::Attribute | Block::Transform))
+        {
+            let what = format!("opened inside the {} block of {}", b.begin(), at.pos);
+            self.tolerate(
+                &r.at,
+                r.name(),
+                what,
+                "allowed, as RenderMan renderers allow it: the transformation at WorldBegin is the camera's",
+            )?;
         }
         // The transformation so far is the camera's: world to camera.
         self.frame_options.camera = self.ctm.clone();
@@ -526,11 +617,35 @@ impl Machine {
         Ok(())
     }
 
-    /// The matrix of a transformation request.
-    fn matrix_of(&self, r: &Request) -> Result<DMat4, RibError> {
+    /// The matrix of a transformation request. A `Transform` or `ConcatTransform` whose
+    /// projective terms are (0, 0, 0, 1) but for exporters' rounding noise is snapped to it,
+    /// with a warning (an error under `--strict`).
+    fn matrix_of(&mut self, r: &Request) -> Result<DMat4, RibError> {
         let v = |i| r.float(i).unwrap_or(0.0);
         Ok(match r.kind {
-            K::ConcatTransform | K::Transform => xform::from_rib(r.floats(0).unwrap_or(&[0.0; 16])),
+            K::ConcatTransform | K::Transform => {
+                let m = r.floats(0).unwrap_or(&[0.0; 16]);
+                match xform::projective(m) {
+                    xform::Projective::Near(terms) => {
+                        let [a, b, c, d] = terms.map(xform::show);
+                        self.tolerate(
+                            &r.at,
+                            r.name(),
+                            format!(
+                                "the matrix's projective terms (its numbers 4, 8, 12 and 16) are \
+                                 ({a}, {b}, {c}, {d}), not (0, 0, 0, 1)"
+                            ),
+                            &format!(
+                                "snapped to (0, 0, 0, 1), being within {} of it relative to the \
+                                 matrix's scale",
+                                xform::show(xform::SNAP)
+                            ),
+                        )?;
+                        xform::from_rib(&xform::snapped(m))
+                    }
+                    _ => xform::from_rib(m),
+                }
+            }
             K::Translate => xform::translate([v(0), v(1), v(2)]),
             K::Rotate => xform::rotate(v(0), [v(1), v(2), v(3)]),
             K::Scale => xform::scale([v(0), v(1), v(2)]),
@@ -599,8 +714,10 @@ impl Machine {
                     ),
                 });
             }
-            let ms: Vec<DMat4> =
-                m.requests.iter().map(|q| self.matrix_of(q)).collect::<Result<_, _>>()?;
+            let mut ms: Vec<DMat4> = Vec::with_capacity(n);
+            for q in &m.requests {
+                ms.push(self.matrix_of(q)?);
+            }
             self.ctm = if first.kind == K::Transform {
                 Xform { keys: m.times.iter().copied().zip(ms).collect() }
             } else {

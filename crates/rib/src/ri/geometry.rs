@@ -297,6 +297,96 @@ pub(crate) fn vertex_normals_and_st(
     Ok((normals, st))
 }
 
+/// What [`repair_normals`] did.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum NormalRepair {
+    /// Every normal was usable.
+    Sound,
+    /// `count` normals (the first at point `first`) were zero or not finite and were
+    /// recomputed from the faces around their points.
+    Recomputed { count: usize, first: usize },
+    /// As above, but a point's faces have no area to take a normal from: the mesh's normals
+    /// are to be dropped (it shades by its faces' own normals).
+    Dropped { count: usize, first: usize },
+}
+
+/// True for a normal that cannot be normalised: zero, too short to square in single
+/// precision, or not finite.
+fn unusable(n: &[f32; 3]) -> bool {
+    let l2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    !(l2.is_finite() && l2 >= f32::MIN_POSITIVE)
+}
+
+/// Replaces the unusable per-point normals of `mesh` (zero or not finite: exporters write
+/// them at degenerate points) by the normal the geometry gives: the sum of the normals of
+/// the faces around the point (on their outline or one of their holes), each weighted by
+/// its area (Newell's method over the face's outline) and turned to agree with the usable
+/// normals the face's other points carry. A
+/// point on no face gets (0, 0, 1), which nothing reads. When the faces around a point have
+/// no area, no normal can be taken from them: the result says the mesh's normals are to be
+/// dropped.
+pub(crate) fn repair_normals(mesh: &PolyMesh, normals: &mut [[f32; 3]]) -> NormalRepair {
+    let bad: Vec<usize> = (0..normals.len()).filter(|&i| unusable(&normals[i])).collect();
+    let (count, first) = match bad.first() {
+        None => return NormalRepair::Sound,
+        Some(&first) => (bad.len(), first),
+    };
+    let p = |k: u32| {
+        let q = mesh.points[k as usize];
+        [f64::from(q[0]), f64::from(q[1]), f64::from(q[2])]
+    };
+    let mut sums = vec![[0.0f64; 3]; normals.len()];
+    let mut on_a_face = vec![false; normals.len()];
+    let mut holes = mesh.holes.iter().peekable();
+    for (f, face) in mesh.faces.iter().enumerate() {
+        // The face's points: its outline's and its holes'.
+        let face_holes = match holes.peek() {
+            Some((hf, _)) if *hf == f => holes.next().map(|(_, h)| h.as_slice()).unwrap_or(&[]),
+            _ => &[],
+        };
+        let around: Vec<u32> = face.iter().chain(face_holes.iter().flatten()).copied().collect();
+        if !around.iter().any(|&k| unusable(&normals[k as usize])) {
+            continue;
+        }
+        // Newell's normal: twice the face's area along its normal, in the winding's sense.
+        let mut n = [0.0f64; 3];
+        for (i, &k) in face.iter().enumerate() {
+            let (a, b) = (p(k), p(face[(i + 1) % face.len()]));
+            n[0] += (a[1] - b[1]) * (a[2] + b[2]);
+            n[1] += (a[2] - b[2]) * (a[0] + b[0]);
+            n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+        }
+        let given: [f64; 3] = around
+            .iter()
+            .map(|&k| normals[k as usize])
+            .filter(|g| !unusable(g))
+            .fold([0.0; 3], |s, g| std::array::from_fn(|c| s[c] + f64::from(g[c])));
+        let sense =
+            if n[0] * given[0] + n[1] * given[1] + n[2] * given[2] < 0.0 { -1.0 } else { 1.0 };
+        for &k in &around {
+            let k = k as usize;
+            on_a_face[k] = true;
+            for c in 0..3 {
+                sums[k][c] += sense * n[c];
+            }
+        }
+    }
+    for &i in &bad {
+        if !on_a_face[i] {
+            normals[i] = [0.0, 0.0, 1.0];
+            continue;
+        }
+        let s = sums[i];
+        let len = (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]).sqrt();
+        let n = s.map(|c| (c / len) as f32);
+        if len == 0.0 || len.is_nan() || unusable(&n) {
+            return NormalRepair::Dropped { count, first };
+        }
+        normals[i] = n;
+    }
+    NormalRepair::Recomputed { count, first }
+}
+
 /// True if the mesh's `Cs` is per face or per face-vertex, so [`mesh_colors`] unwelds its
 /// points (and per-point `N` and `st` are dropped, with the warning of an unused variable).
 pub(crate) fn colors_unweld(r: &Request) -> bool {

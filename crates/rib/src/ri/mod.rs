@@ -11,16 +11,19 @@
 //! [`reyes_scene::validate`], and a validation failure is reported at the RIB request that
 //! produced the offending value.
 
+mod archives;
 mod attributes;
 mod build;
 mod frame;
 pub(crate) mod geometry;
 mod options;
 mod primitives;
+mod search;
 mod shaders;
 mod solids;
 pub(crate) mod state;
 mod subdivision;
+pub mod teapot;
 mod triangulate;
 pub(crate) mod xform;
 
@@ -28,7 +31,7 @@ use reyes_scene::Scene;
 
 pub use state::Display;
 
-use crate::{Reader, ReaderOptions, RibError, Source, Warning};
+use crate::{Reader, RibError, Source, Warning};
 
 /// How to read a RIB file.
 #[derive(Debug, Clone, Default)]
@@ -84,9 +87,7 @@ pub(crate) fn load_reporting(
     source: Source,
     options: &RiOptions,
 ) -> Result<Loaded, (RibError, Vec<Warning>)> {
-    let reader = Reader::with_options(
-        source,
-        ReaderOptions { follow_archives: true, ..ReaderOptions::default() },
-    );
-    frame::Machine::new(reader, options.clone()).run()
+    // The machine follows ReadArchive itself: an inline archive (ArchiveBegin) is replayed,
+    // a file is looked up along the archive search path and read in place.
+    frame::Machine::new(Reader::new(source), options.clone()).run()
 }

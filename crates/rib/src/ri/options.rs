@@ -1,20 +1,28 @@
 //! Option requests of the RI state machine (Spec 3.2, 4.1): camera, display and hider
 //! options, each kept in the frame's [`FrameOptions`](super::state::FrameOptions) with where it was set.
 //!
-//! Invariant: options are refused inside the world block, where the Specification freezes
-//! them; every value is checked where the model needs it checked first (sizes, counts, names).
+//! Invariant: options never change inside the world block, where the Specification freezes
+//! them (there they are ignored with a warning, an error under `--strict`); every value is checked where the model needs it checked first (sizes, counts, names).
 
 use reyes_scene::{Aov, AovFilter, AovSource, FilterKind, HiderMethod};
 
 use super::frame::Machine;
+use super::search::Kind;
 use super::state::{Display, Projection};
 use crate::{Request, RequestKind as K, RibError, Warning};
 
 impl Machine {
-    /// Options: only outside the world block.
+    /// Options: only outside the world block. Inside it (exporters write `Display` or
+    /// `Imager` there) the option is ignored with a warning, as RenderMan renderers do; an
+    /// error under `--strict`.
     pub(super) fn option(&mut self, r: &Request) -> Result<(), RibError> {
         if self.in_world() {
-            return Err(r.error("options must be set before WorldBegin"));
+            return self.tolerate(
+                &r.at,
+                r.name(),
+                "options cannot change inside the world block",
+                "ignored for this frame",
+            );
         }
         let mut warnings = Vec::new();
         self.set_option(r, &mut warnings)?;
@@ -209,6 +217,14 @@ impl Machine {
                                 }
                                 _ => return Err(r.param_error(p, "must be one size of at least 1")),
                             }
+                        }
+                        ("searchpath", kind) if Kind::of(kind).is_some() => {
+                            let Some(kind) = Kind::of(kind) else { continue };
+                            let Some([value]) = p.strings() else {
+                                return Err(r.param_error(p, "must be one string of directories"));
+                            };
+                            let reader = &self.reader;
+                            o.search.set(kind, value, |d| reader.resolve_archive(d, &r.at));
                         }
                         ("statistics", _) | ("searchpath", _) => {}
                         _ => {

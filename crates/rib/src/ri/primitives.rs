@@ -27,6 +27,10 @@ impl Machine {
         r: &Request,
         motion: Option<(&[f32], &[Request])>,
     ) -> Result<(), RibError> {
+        if r.kind == K::Geometry {
+            // Built-in geometry has no parameters to move: one shape over the shutter.
+            return self.geometry(r);
+        }
         let (shape, deform) = match motion {
             None => (self.shape(r)?, Vec::new()),
             Some((times, requests)) => {
@@ -70,9 +74,67 @@ impl Machine {
             }
         };
         let Some(shape) = shape else { return Ok(()) };
-        let wanted = self.build.as_ref().is_some_and(|b| b.wanted);
-        if !wanted {
+        self.emit(r, shape, deform)
+    }
+
+    /// `Geometry "teapot"`: PRMan's and BMRT's built-in teapot, 32 bicubic Bezier patches
+    /// ([`super::teapot`]) under the current transformation and attributes (not the current
+    /// `Basis`: the data are Bezier nets). Other types are skipped with a warning.
+    fn geometry(&mut self, r: &Request) -> Result<(), RibError> {
+        match r.string(0).unwrap_or_default() {
+            "teapot" => {
+                for net in super::teapot::patches() {
+                    let shape = Shape::PatchMesh {
+                        kind: PatchType::Bicubic,
+                        nu: 4,
+                        nv: 4,
+                        uwrap: Wrap::Nonperiodic,
+                        vwrap: Wrap::Nonperiodic,
+                        points: net.to_vec(),
+                        ubasis: reyes_scene::Basis::Bezier,
+                        ustep: Some(3),
+                        vbasis: reyes_scene::Basis::Bezier,
+                        vstep: Some(3),
+                    };
+                    self.emit(r, shape, Vec::new())?;
+                }
+                Ok(())
+            }
+            other => {
+                let w = r.warning(format!(
+                    "geometry type {} is not supported (\"teapot\" is): skipped",
+                    crate::error::quote(other)
+                ));
+                self.warn_once(format!("geometry {other}"), w);
+                Ok(())
+            }
+        }
+    }
+
+    /// The object of `shape` (with its deformation keys), made by the request `r` under the
+    /// current attributes and transformation, added to the frame. A primitive under a
+    /// singular transformation (`Scale 0 1 1`) has no surface to render: it is skipped with
+    /// a warning (an error under `--strict`).
+    fn emit(
+        &mut self,
+        r: &Request,
+        shape: Shape,
+        deform: Vec<(f32, Vec<[f32; 3]>)>,
+    ) -> Result<(), RibError> {
+        let Some(shutter) = self.build.as_ref().filter(|b| b.wanted).map(|b| b.options.shutter)
+        else {
             return Ok(());
+        };
+        if let Some(det) = singular(&self.to_world(), shutter) {
+            return self.tolerate(
+                &r.at,
+                r.name(),
+                format!(
+                    "the transformation is singular (determinant {})",
+                    super::xform::show(det as f32)
+                ),
+                "the primitive is skipped",
+            );
         }
         let a = self.attributes.clone();
         let (cs, colors_constant) = match &shape {
@@ -110,16 +172,24 @@ impl Machine {
             }
         };
         let mut object = Object::new(shape, mat);
-        let reader = &self.reader;
+        let (reader, search) = (&self.reader, &self.frame_options.search);
+        let not_found = std::cell::RefCell::new(Vec::new());
         let looks = super::shaders::lookdev(
             &a.surface,
             &a.displacement,
             a.displacement_bound,
             a.repeat,
-            |name, at| reader.resolve_archive(name, at).to_string_lossy().into_owned(),
+            |name, at, request| {
+                let w = &mut not_found.borrow_mut();
+                super::archives::texture_path(search, reader, name, at, request, w)
+            },
             &mut self.warnings,
             report,
         );
+        for w in not_found.into_inner() {
+            let key = w.to_string();
+            self.warn_once(key, w);
+        }
         match looks {
             Ok((maps, displacement)) => {
                 object.maps = maps;
@@ -220,7 +290,8 @@ impl Machine {
             K::Patch => {
                 let kind = patch_type(r, 0)?;
                 let n = if kind == PatchType::Bilinear { 2 } else { 4 };
-                let points = self.patch_points(r, n * n)?;
+                let points =
+                    self.patch_points(r, (n, Wrap::Nonperiodic), (n, Wrap::Nonperiodic))?;
                 if kind == PatchType::Bilinear {
                     Shape::BilinearPatch { points: [points[0], points[1], points[2], points[3]] }
                 } else {
@@ -240,8 +311,8 @@ impl Machine {
                     })
                 };
                 let (nu, nv) = (count(1)?, count(3)?);
-                let (uwrap, vwrap) = (wrap(r, 2)?, wrap(r, 4)?);
-                let points = self.patch_points(r, nu as usize * nv as usize)?;
+                let (uwrap, vwrap) = (self.wrap(r, 2)?, self.wrap(r, 4)?);
+                let points = self.patch_points(r, (nu as usize, uwrap), (nv as usize, vwrap))?;
                 self.patch_mesh(kind, nu, uwrap, nv, vwrap, points)
             }
             K::NuPatch => {
@@ -296,9 +367,18 @@ impl Machine {
         Ok(Some(shape))
     }
 
-    /// The control points of a patch request: `P`, or `Pw` of weight 1 (rational patch
-    /// meshes are not in the model).
-    fn patch_points(&mut self, r: &Request, n: usize) -> Result<Vec<[f32; 3]>, RibError> {
+    /// The control points of a patch request of `nu` by `nv` points, each with its wrap
+    /// mode: `P`, `Pw` of weight 1 (rational patch meshes are not in the model), or the
+    /// height field `Pz`, whose x and y are the mesh's surface parameters: point `(i, j)` at
+    /// `(i / (nu - 1), j / (nv - 1))`, spread uniformly over [0, 1] (`i / nu` along a
+    /// periodic direction, whose last point comes back to the first).
+    fn patch_points(
+        &mut self,
+        r: &Request,
+        (nu, uwrap): (usize, Wrap),
+        (nv, vwrap): (usize, Wrap),
+    ) -> Result<Vec<[f32; 3]>, RibError> {
+        let n = nu * nv;
         if let Some(p) = r.param("Pw")
             && p.floats().is_some_and(|v| v.chunks_exact(4).any(|c| c[3] != 1.0))
         {
@@ -307,12 +387,43 @@ impl Machine {
                 "rational patches are not supported (weights other than 1); use NuPatch",
             ));
         }
-        if let Some(p) = r.param("Pz") {
-            return Err(r.param_error(p, "height-field patches are not supported; give \"P\""));
-        }
-        let points = geometry::positions(r, n)?;
-        geometry::unused_primvars(r, &["P", "Pw"], &mut self.warnings);
+        let points = match (r.param("P"), r.param("Pw"), r.param("Pz")) {
+            (None, None, Some(pz)) => {
+                let counts = geometry::Counts { uniform: 1, vertex: n, facevarying: n };
+                let (_, z) = geometry::groups(r, pz, 1, counts)?;
+                let spread = |k: usize, count: usize, wrap: Wrap| match wrap {
+                    Wrap::Periodic => k as f32 / count as f32,
+                    Wrap::Nonperiodic => k as f32 / (count - 1).max(1) as f32,
+                };
+                z.iter()
+                    .enumerate()
+                    .map(|(k, &z)| [spread(k % nu, nu, uwrap), spread(k / nu, nv, vwrap), z])
+                    .collect()
+            }
+            _ => geometry::positions(r, n)?,
+        };
+        geometry::unused_primvars(r, &["P", "Pw", "Pz"], &mut self.warnings);
         Ok(points)
+    }
+
+    fn wrap(&mut self, r: &Request, i: usize) -> Result<Wrap, RibError> {
+        let which = if i == 2 { "uwrap" } else { "vwrap" };
+        match r.string(i).unwrap_or_default() {
+            "nonperiodic" => Ok(Wrap::Nonperiodic),
+            "periodic" => Ok(Wrap::Periodic),
+            "nowrap" => {
+                self.tolerate(
+                    &r.at,
+                    r.name(),
+                    format!("{which} \"nowrap\" is not a wrap mode of the Specification"),
+                    "read as \"nonperiodic\"",
+                )?;
+                Ok(Wrap::Nonperiodic)
+            }
+            other => Err(r.error(format!(
+                "{which} must be \"periodic\" or \"nonperiodic\", got \"{other}\""
+            ))),
+        }
     }
 
     /// A patch mesh under the current `Basis`.
@@ -356,7 +467,37 @@ impl Machine {
     ) -> Result<Shape, RibError> {
         let mut mesh: PolyMesh = geometry::poly_mesh(r, nloops, nvertices, vertices)?;
         geometry::check_primvars(r, &mesh)?;
-        let (normals, st) = geometry::vertex_normals_and_st(r, &mesh)?;
+        let (mut normals, st) = geometry::vertex_normals_and_st(r, &mesh)?;
+        // N dropped after its own warning: not reported again as unused.
+        let mut n_dropped = false;
+        if let (Some(n), Some(p)) = (normals.as_mut(), r.param("N")) {
+            let at = r.param_location(p);
+            let what = |count: usize, first: usize| {
+                let s = if count == 1 { "" } else { "s" };
+                format!("\"N\": {count} normal{s} zero or not finite (the first at point {first})")
+            };
+            match geometry::repair_normals(&mesh, n) {
+                geometry::NormalRepair::Sound => {}
+                geometry::NormalRepair::Recomputed { count, first } => {
+                    self.tolerate(
+                        &at,
+                        r.name(),
+                        what(count, first),
+                        "recomputed from the faces around their points",
+                    )?;
+                }
+                geometry::NormalRepair::Dropped { count, first } => {
+                    self.tolerate(
+                        &at,
+                        r.name(),
+                        what(count, first),
+                        "the faces around a point have no area to take a normal from: N is dropped for this mesh, which shades by its faces' own normals",
+                    )?;
+                    normals = None;
+                    n_dropped = true;
+                }
+            }
+        }
         let (_, colors) = geometry::mesh_colors(r, &mut mesh)?;
         // Per-face colours unweld the points; the vertex normals and st do not follow them.
         let unwelded = geometry::colors_unweld(r);
@@ -367,7 +508,8 @@ impl Machine {
             (None, Some(_), false) => &["P", "Pw", "Cs", "st"],
             (None, None, false) => &["P", "Pw", "Cs"],
         };
-        geometry::unused_primvars(r, used, &mut self.warnings);
+        let used: Vec<&str> = used.iter().copied().chain(n_dropped.then_some("N")).collect();
+        geometry::unused_primvars(r, &used, &mut self.warnings);
         let mut shape = geometry::to_model_mesh(r, mesh, colors)?;
         if !unwelded && let Shape::Mesh { normals: n, st: s, .. } = &mut shape {
             *n = normals;
@@ -375,6 +517,17 @@ impl Machine {
         }
         Ok(shape)
     }
+}
+
+/// The determinant of the first singular matrix of `to_world` over the shutter `(open,
+/// close)`, if any: the keys the object will carry, taken as the scene model stores them
+/// (single precision) and judged by the model's own rule (|determinant| <= 1e-12).
+fn singular(to_world: &super::xform::Xform, (open, close): (f32, f32)) -> Option<f64> {
+    super::build::fit_keys(&to_world.keys, open, close).iter().find_map(|(_, m)| {
+        let stored = glam::DMat4::from_cols_array(&m.to_cols_array().map(|x| f64::from(x as f32)));
+        let det = stored.determinant();
+        (det.abs() <= 1e-12).then_some(det)
+    })
 }
 
 /// The vertex count of a `Polygon`: its `P` (or `Pw`) values per point.
@@ -399,18 +552,6 @@ fn patch_type(r: &Request, i: usize) -> Result<PatchType, RibError> {
         "bilinear" => Ok(PatchType::Bilinear),
         "bicubic" => Ok(PatchType::Bicubic),
         other => Err(r.error(format!("type must be \"bilinear\" or \"bicubic\", got \"{other}\""))),
-    }
-}
-
-/// `PatchMesh`'s wrap arguments.
-fn wrap(r: &Request, i: usize) -> Result<Wrap, RibError> {
-    match r.string(i).unwrap_or_default() {
-        "nonperiodic" => Ok(Wrap::Nonperiodic),
-        "periodic" => Ok(Wrap::Periodic),
-        other => Err(r.error(format!(
-            "{} must be \"periodic\" or \"nonperiodic\", got \"{other}\"",
-            if i == 2 { "uwrap" } else { "vwrap" }
-        ))),
     }
 }
 

@@ -166,13 +166,77 @@ pub(crate) enum LightResult {
     Unknown(String),
 }
 
-/// The light of `LightSource name params` under `to_world` at shutter open.
+/// Input a light shader tolerates, as RenderMan renderers do: where, what is wrong, and what
+/// was done instead (the caller warns, or refuses under `--strict`).
+pub(crate) struct Tolerated {
+    pub at: Location,
+    pub what: String,
+    pub done: String,
+}
+
+/// The `"from"` and `"to"` of a light in its own space, with the Specification's defaults;
+/// when they are the same point (no direction), the default direction (0, 0, 1) from
+/// `"from"`, noted in `tolerated`.
+fn direction(
+    shader: &str,
+    params: &[Param],
+    at: &Location,
+    tolerated: &mut Vec<Tolerated>,
+) -> ([f32; 3], [f32; 3]) {
+    let from = point_param(params, "from").unwrap_or([0.0; 3]);
+    let to = point_param(params, "to").unwrap_or([0.0, 0.0, 1.0]);
+    if from != to {
+        return (from, to);
+    }
+    let place = params.iter().find(|p| p.name == "to").map_or(at.clone(), |p| at.at(p.at));
+    let [x, y, z] = from;
+    tolerated.push(Tolerated {
+        at: place,
+        what: format!("{shader}: \"from\" and \"to\" are the same point ({x}, {y}, {z})"),
+        done: "the Specification's default direction, from (0, 0, 0) toward (0, 0, 1), is used"
+            .into(),
+    });
+    (from, [x, y, z + 1.0])
+}
+
+/// A spotlight's `"coneangle"` and `"conedeltaangle"` in degrees (the model's unit). The
+/// Specification gives them in radians; exporters often write degrees, and no cone reaches
+/// pi radians, so an angle above pi is read as degrees, noted in `tolerated`. A cone angle
+/// read as degrees takes its delta with it: they come from one writer.
+fn cone_angles(params: &[Param], at: &Location, tolerated: &mut Vec<Tolerated>) -> (f32, f32) {
+    let mut degrees_seen = false;
+    let mut angle = |name: &str, default: f32| -> f32 {
+        let Some(p) = params.iter().find(|p| p.name == name) else { return default };
+        let Some(v) = float(params, name) else { return default };
+        let why = if v > std::f32::consts::PI {
+            format!("spotlight: \"{name}\" {v} is more than pi radians")
+        } else if degrees_seen {
+            format!("spotlight: \"{name}\" {v} comes with a cone angle in degrees")
+        } else {
+            return v.to_degrees();
+        };
+        degrees_seen = true;
+        tolerated.push(Tolerated {
+            at: at.at(p.at),
+            what: why,
+            done: format!("read as {v} degrees"),
+        });
+        v
+    };
+    let cone = angle("coneangle", 30.0);
+    let delta = angle("conedeltaangle", 5.0);
+    (cone, delta)
+}
+
+/// The light of `LightSource name params` under `to_world` at shutter open; what it
+/// tolerates goes to `tolerated`.
 pub(crate) fn light(
     name: &str,
     params: &[Param],
     to_world: &Xform,
     at: &Location,
     warnings: &mut Vec<Warning>,
+    tolerated: &mut Vec<Tolerated>,
 ) -> LightResult {
     let m = to_world.at(f32::NEG_INFINITY);
     let intensity = float(params, "intensity").unwrap_or(1.0);
@@ -190,8 +254,8 @@ pub(crate) fn light(
                 at,
                 warnings,
             );
-            let from = point(&m, point_param(params, "from").unwrap_or([0.0; 3]));
-            let to = point(&m, point_param(params, "to").unwrap_or([0.0, 0.0, 1.0]));
+            let (from, to) = direction(name, params, at, tolerated);
+            let (from, to) = (point(&m, from), point(&m, to));
             LightResult::Light(Light::Distant {
                 from,
                 to,
@@ -221,18 +285,17 @@ pub(crate) fn light(
                 at,
                 warnings,
             );
-            let from = point(&m, point_param(params, "from").unwrap_or([0.0; 3]));
-            let to = point(&m, point_param(params, "to").unwrap_or([0.0, 0.0, 1.0]));
+            let (from, to) = direction(name, params, at, tolerated);
+            let (from, to) = (point(&m, from), point(&m, to));
             // The Specification's angles are radians (defaults 30 and 5 degrees).
-            let degrees =
-                |name: &str, default: f32| float(params, name).map_or(default, |r| r.to_degrees());
+            let (cone_angle, cone_delta) = cone_angles(params, at, tolerated);
             LightResult::Light(Light::Spot {
                 from,
                 to,
                 color: lightcolor,
                 intensity,
-                cone_angle: degrees("coneangle", 30.0),
-                cone_delta: degrees("conedeltaangle", 5.0),
+                cone_angle,
+                cone_delta,
                 beam_distribution: float(params, "beamdistribution").unwrap_or(2.0),
                 shadows: false,
             })
@@ -254,14 +317,15 @@ fn string<'p>(params: &'p [Param], name: &str) -> Option<&'p str> {
 /// `repeat`), and the standard displacement
 /// shader `bumpy` (`P += Km * texture(texturename) * normalize(N)`, the map read as linear
 /// data) as true displacement with the block's `displacementbound`. `resolve` turns a
-/// texture name into a file name (relative to the RIB file). Other displacement shaders
+/// texture name into a file name (along the texture search path), given where and by which
+/// request it is named. Other displacement shaders
 /// are unknown: reported through `unknown`, and no displacement.
 pub(crate) fn lookdev(
     surface: &SurfaceShader,
     displacement: &SurfaceShader,
     bound: Option<f32>,
     repeat: (f32, f32),
-    resolve: impl Fn(&str, &Location) -> String,
+    resolve: impl Fn(&str, &Location, &str) -> String,
     warnings: &mut Vec<Warning>,
     report: bool,
 ) -> Result<(Maps, Option<Displacement>), String> {
@@ -277,7 +341,7 @@ pub(crate) fn lookdev(
         && let (Some(name), Some(at)) = (string(&surface.params, "texturename"), &surface.at)
         && !name.is_empty()
     {
-        maps.color = Some(map(resolve(name, at), ColorSpace::Srgb));
+        maps.color = Some(map(resolve(name, at, "Surface"), ColorSpace::Srgb));
     }
     let displace = match (displacement.name.as_deref(), &displacement.at) {
         (Some("bumpy"), Some(at)) => {
@@ -293,7 +357,10 @@ pub(crate) fn lookdev(
             let km = float(&displacement.params, "Km").unwrap_or(1.0);
             match string(&displacement.params, "texturename").filter(|n| !n.is_empty()) {
                 Some(name) => Some(Displacement {
-                    source: Scalar::Texture(map(resolve(name, at), ColorSpace::Linear)),
+                    source: Scalar::Texture(map(
+                        resolve(name, at, "Displacement"),
+                        ColorSpace::Linear,
+                    )),
                     amount: km,
                     center: 0.0,
                     bound,

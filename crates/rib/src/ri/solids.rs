@@ -86,8 +86,16 @@ impl Machine {
             let Some(file) = r.strings(1).and_then(|a| a.first()) else {
                 return Err(r.error("DelayedReadArchive needs a file name"));
             };
-            let path = self.reader.resolve_archive(file, &r.at);
-            return self.reader.push_archive(&path, &r.at);
+            let path = self.archive_path(file, &r.at)?;
+            return self.read_file_in_place(&path, &r.at);
+        }
+        if name == "DynamicLoad" {
+            let library = r.strings(1).and_then(|a| a.first()).map_or("", String::as_str);
+            return Err(r.error(format!(
+                "\"DynamicLoad\" runs the native plug-in {}, and native plug-ins are not \
+                 loaded: write its geometry as RIB (DelayedReadArchive reads it)",
+                crate::error::quote(library)
+            )));
         }
         let w = r.warning(format!("procedural \"{name}\" is not supported: ignored"));
         self.warn_once(format!("procedural {name}"), w);

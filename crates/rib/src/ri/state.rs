@@ -65,6 +65,8 @@ pub(crate) struct FrameOptions {
     pub max_grid_size: Option<u32>,
     /// World to camera, set by the transformations before `WorldBegin`.
     pub camera: Xform,
+    /// `Option "searchpath"`.
+    pub search: crate::ri::search::SearchPaths,
     /// Where each option family was last set, for messages about the values it produced.
     pub origins: Vec<(&'static str, Location, &'static str)>,
 }
@@ -95,6 +97,7 @@ impl Default for FrameOptions {
             bucket_size: None,
             max_grid_size: None,
             camera: Xform::default(),
+            search: Default::default(),
             origins: Vec::new(),
         }
     }

@@ -102,6 +102,55 @@ pub(crate) fn from_rib(m: &[f32]) -> DMat4 {
     DMat4::from_cols_array(&std::array::from_fn(|i| f64::from(m[i])))
 }
 
+/// How far a RIB matrix is from an affine one: its projective terms (its 4th, 8th, 12th and
+/// 16th numbers, the last row of our matrix) against (0, 0, 0, 1).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Projective {
+    /// Exactly (0, 0, 0, 1).
+    Affine,
+    /// Within [`SNAP`] of it, relative to the matrix's scale: exporters' rounding noise
+    /// (1e-10 to 1e-26 in the zeros), to be snapped.
+    Near([f32; 4]),
+    /// A projective matrix (`Perspective`, or a homogeneous scale): kept as given.
+    Far,
+}
+
+/// How close to (0, 0, 0, 1) the projective terms must be, times the matrix's scale (its
+/// largest entry, at least 1), to be taken as it.
+pub(crate) const SNAP: f32 = 1e-6;
+
+/// Classifies the projective terms of the RIB matrix `m` (16 numbers).
+pub(crate) fn projective(m: &[f32]) -> Projective {
+    let terms = [m[3], m[7], m[11], m[15]];
+    if terms == [0.0, 0.0, 0.0, 1.0] {
+        return Projective::Affine;
+    }
+    let scale = m.iter().fold(1.0f32, |a, x| a.max(x.abs()));
+    let off = [terms[0], terms[1], terms[2], terms[3] - 1.0];
+    if off.iter().all(|d| d.abs() <= SNAP * scale) {
+        Projective::Near(terms)
+    } else {
+        Projective::Far
+    }
+}
+
+/// A number for a message: as written for ordinary magnitudes (`0`, `1`, `0.25`), in
+/// exponent form for tiny and huge ones (`1e-10`, `-2.5e-17`), never a run of zeros.
+pub(crate) fn show(x: f32) -> String {
+    if x == 0.0 || !x.is_finite() || (1e-4..1e7).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
+/// `m` with its projective terms set to (0, 0, 0, 1).
+pub(crate) fn snapped(m: &[f32]) -> Vec<f32> {
+    let mut m = m.to_vec();
+    (m[3], m[7], m[11], m[15]) = (0.0, 0.0, 0.0, 1.0);
+    m
+}
+
 /// `Translate dx dy dz`.
 pub(crate) fn translate(d: [f32; 3]) -> DMat4 {
     DMat4::from_translation(dvec(d))
@@ -218,6 +267,27 @@ mod tests {
         assert_eq!(c.times(), vec![0.0, 0.5, 1.0]);
         let p = c.at(1.0).transform_point3(DVec3::X);
         assert!((p - DVec3::new(4.0, 0.0, 0.0)).length() < 1e-12, "{p}");
+    }
+
+    #[test]
+    fn projective_terms_near_the_affine_ones_are_told_apart_from_projective_ones() {
+        let mut m = [0.0f32; 16];
+        (m[0], m[5], m[10], m[15]) = (1.0, 1.0, 1.0, 1.0);
+        assert_eq!(projective(&m), Projective::Affine);
+        m[3] = 1e-20;
+        m[15] = 1.0 + 1e-7;
+        assert_eq!(projective(&m), Projective::Near([1e-20, 0.0, 0.0, 1.0 + 1e-7]));
+        // Relative to the matrix's scale: 1e-4 is noise beside a translation of 1000.
+        m[12] = 1000.0;
+        m[7] = 1e-4;
+        assert!(matches!(projective(&m), Projective::Near(_)));
+        m[12] = 10.0;
+        assert_eq!(projective(&m), Projective::Far);
+        let s = snapped(&m);
+        assert_eq!((s[3], s[7], s[11], s[15], s[12]), (0.0, 0.0, 0.0, 1.0, 10.0));
+        // Perspective's matrix stays projective.
+        let p = perspective(90.0).unwrap().to_cols_array().map(|x| x as f32);
+        assert_eq!(projective(&p), Projective::Far);
     }
 
     #[test]

@@ -9,7 +9,6 @@ fn cases() -> Vec<(&'static str, String)> {
     let w = world;
     vec![
         ("geometry outside the world", "Sphere 1 -1 1 360".into()),
-        ("option inside the world", w("Format 10 10 1")),
         ("AttributeEnd without AttributeBegin", w("AttributeEnd")),
         ("TransformEnd closing an attribute block", w("AttributeBegin TransformEnd")),
         ("WorldEnd without WorldBegin", "WorldEnd".into()),
@@ -119,7 +118,7 @@ fn a_refused_scene_keeps_the_warnings_raised_before_its_error() {
     // An unknown request and an unused parameter are tolerated; then the file is refused.
     let text = "Projection \"perspective\"\nWorldBegin\nFrobnicate 1\n\
                 Sphere 1 -1 1 360 \"bogus\" [1]\nIlluminate 3 1\nWorldEnd\n";
-    let refused = load_file(text).err().expect("refused");
+    let refused = load_file(text).expect_err("refused");
     assert!(refused.to_string().contains("Illuminate"), "{refused}");
     assert_eq!(refused.exit_code(), 2);
     assert_eq!(refused.warnings.len(), 2, "{:?}", refused.warnings);

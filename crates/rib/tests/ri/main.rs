@@ -4,10 +4,13 @@
 
 mod deep;
 mod errors;
+mod extensions;
+mod frames;
 mod lookdev;
 mod mapping;
 mod peers;
 mod renderman;
+mod tolerance;
 
 use reyes_rib::{Loaded, RiOptions, RibError, Source, load};
 
