@@ -141,7 +141,7 @@ fn measure_main(args: impl Iterator<Item = OsString>) -> Result<(), Exit> {
 /// `reyes-render merge TILE... -o OUT`: `args` starts at `merge`.
 fn merge_main(args: impl Iterator<Item = OsString>) -> Result<(), Exit> {
     let args: MergeArgs = parse(args, true, "reyes-render merge --help")?;
-    reyes_farm::output::check_output(&args.output)?;
+    reyes_farm::output::check_output(&args.output, true)?;
     let written = reyes_farm::merge(&args.tiles, &args.output, &WriteOptions::default());
     written.map_err(|e| match signals::received() {
         Some(stop) => Exit::stopped(stop, &args.output),

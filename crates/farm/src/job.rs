@@ -20,7 +20,9 @@ use reyes_render::{BucketResult, RenderOptions, Rendered};
 use reyes_rib::RiOptions;
 use reyes_scene::Scene;
 
-use crate::output::{FramePicture, check_output, extra_path, frame_path, is_exr};
+use crate::output::{
+    FramePicture, check_output, create_directory_of, extra_path, frame_path, is_exr,
+};
 use crate::piece::{Header, write_piece};
 use crate::tile::buckets_of;
 use crate::{Checkpoint, FarmError, FrameList, Tile, one_line};
@@ -149,7 +151,7 @@ pub struct FramePlan {
 /// other places of a RIB file once, with the count of the others).
 pub fn plan(request: &Request, warn: &mut dyn FnMut(String)) -> Result<Vec<FramePlan>, FarmError> {
     let r = request;
-    check_output(&r.output)?;
+    check_output(&r.output, r.tile.is_some())?;
     if r.tile.is_some() && !is_exr(&r.output) {
         return Err(FarmError::invalid(format_args!(
             "{}: --tile: a tile is written as .exr",
@@ -361,8 +363,8 @@ impl<'a> FrameJob<'a> {
     }
 
     /// Write the rendered frame to each of its [`FrameJob::outputs`] in turn, atomically: a
-    /// tile file, or the frame's picture; the time it took and the peak memory go into its
-    /// statistics.
+    /// tile file (its directory made if missing), or the frame's picture; the time it took
+    /// and the peak memory go into its statistics.
     pub fn write(&self, frame: &mut RenderedFrame, hooks: &WriteHooks) -> Result<(), FarmError> {
         let started = Instant::now();
         let scene = &self.frame.scene;
@@ -380,6 +382,7 @@ impl<'a> FrameJob<'a> {
                 named_temporary: hooks.named_temporary,
             };
             if let (Some(_), Some(header)) = (self.request.tile, &self.header) {
+                create_directory_of(path)?;
                 let header = Header { render_time, ..header.clone() };
                 write_piece(path, &header, &rendered.buckets, &opts)?;
             } else {

@@ -14,14 +14,14 @@ use std::path::{Path, PathBuf};
 use reyes_film::WriteOptions;
 use reyes_render::BucketResult;
 
-use crate::output::write_assembled;
+use crate::output::{create_directory_of, write_assembled};
 use crate::piece::{Piece, read_piece};
 use crate::tile::buckets_of;
 use crate::{FarmError, Tile, one_line};
 
 /// Merge the tile files `tiles` (every tile of one frame, each once, in any order) into
-/// `output` (.exr or .png): exit 2 for tiles that do not make one frame, 1 for a file that
-/// cannot be read or written.
+/// `output` (.exr or .png, its directory made if missing): exit 2 for tiles that do not make
+/// one frame, 1 for a file that cannot be read or written.
 pub fn merge(tiles: &[PathBuf], output: &Path, opts: &WriteOptions) -> Result<(), FarmError> {
     let pieces = tiles.iter().map(|p| read_piece(p)).collect::<Result<Vec<_>, _>>()?;
     let Some(first) = pieces.first() else {
@@ -46,6 +46,7 @@ pub fn merge(tiles: &[PathBuf], output: &Path, opts: &WriteOptions) -> Result<()
         }
     }
     let render_time = pieces.iter().map(|p| p.header.render_time).sum::<Option<f32>>();
+    create_directory_of(output)?;
     write_assembled(scene, &h0.scene_path, &results, render_time, output, opts)?;
     Ok(())
 }

@@ -5,7 +5,9 @@
 //! Invariants: names depend only on the output path, the frame number and whether the file
 //! has several frames, so a frame renders to the same name whichever frames are chosen. A
 //! whole render and a merge write through the same [`FramePicture::write`], so their files
-//! agree byte for byte. Files are written atomically ([`reyes_film`]).
+//! agree byte for byte. Files are written atomically ([`reyes_film`]): a directory made for
+//! an output is made only when its file is about to be written, never for a render that
+//! fails, and never holds a partial file.
 
 use std::borrow::Cow;
 use std::collections::BTreeMap;
@@ -76,8 +78,10 @@ pub fn directory_of(path: &Path) -> PathBuf {
 }
 
 /// Check the output `output` before any work is done: its format (.exr or .png, exit 2),
-/// and that its directory exists (exit 1).
-pub fn check_output(output: &Path) -> Result<(), FarmError> {
+/// and its directory (exit 1): that it exists or, with `create` (a tile's, a merge's, a
+/// farm's output), that it can be made ([`create_directory_of`]): its nearest existing
+/// ancestor is a directory.
+pub fn check_output(output: &Path, create: bool) -> Result<(), FarmError> {
     let shown = one_line(output.display());
     let ext = output.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
     if !matches!(ext.as_deref(), Some("exr" | "png")) {
@@ -85,10 +89,38 @@ pub fn check_output(output: &Path) -> Result<(), FarmError> {
             "{shown}: output: unknown image format, use .exr or .png"
         )));
     }
-    if !directory_of(output).is_dir() {
+    let dir = directory_of(output);
+    if dir.is_dir() {
+        return Ok(());
+    }
+    if !create {
         return Err(FarmError::failed(format_args!("{shown}: output directory does not exist")));
     }
-    Ok(())
+    // The nearest of it and its ancestors that exists must be a directory to make it in.
+    let nearest = dir
+        .ancestors()
+        .map(|a| if a.as_os_str().is_empty() { Path::new(".") } else { a })
+        .find(|a| a.exists());
+    match nearest {
+        Some(a) if !a.is_dir() => Err(FarmError::failed(format_args!(
+            "{shown}: output directory: {} is not a directory",
+            one_line(a.display())
+        ))),
+        _ => Ok(()),
+    }
+}
+
+/// Make the directory `path` goes to, and any missing above it (`mkdir -p`): a tile, a
+/// merge or a farm writes where it is told without the directory made first.
+pub fn create_directory_of(path: &Path) -> Result<(), FarmError> {
+    let dir = directory_of(path);
+    std::fs::create_dir_all(&dir).map_err(|e| {
+        FarmError::failed(format_args!(
+            "{}: cannot create the output directory {}: {e}",
+            one_line(path.display()),
+            one_line(dir.display())
+        ))
+    })
 }
 
 /// A frame's pictures as the scene asks them written: its crop window's pixels only, the AOV
@@ -178,5 +210,33 @@ mod tests {
         let e = |d: &str| extra_path(Path::new("dir/main.exr"), d, Some(5), true);
         assert_eq!(e("depth.exr").unwrap().display().to_string(), "dir/depth.0005.exr");
         assert_eq!(e("depth.tif"), None);
+    }
+
+    #[test]
+    fn missing_output_directories_are_refused_or_made() {
+        let tmp = tempfile::tempdir().expect("tempdir");
+        let out = tmp.path().join("tiles/deep/t1.exr");
+        let e = check_output(&out, false).expect_err("no directory");
+        assert_eq!(e.exit_code(), 1);
+        assert!(e.to_string().ends_with("t1.exr: output directory does not exist"), "{e}");
+        check_output(&out, true).expect("can be made");
+        assert!(!tmp.path().join("tiles").exists(), "a check makes nothing");
+        create_directory_of(&out).expect("made");
+        assert!(tmp.path().join("tiles/deep").is_dir());
+        check_output(&out, false).expect("there now");
+        create_directory_of(&out).expect("made again: nothing to do");
+        // A file where a directory would go: refused before any work, by either check.
+        std::fs::write(tmp.path().join("file"), b"x").expect("file");
+        let under = tmp.path().join("file/sub/t.exr");
+        let e = check_output(&under, true).expect_err("a file in the way");
+        assert!(e.to_string().ends_with("file is not a directory"), "{e}");
+        assert!(create_directory_of(&under).is_err());
+        let e = check_output(&tmp.path().join("file/t.exr"), true).expect_err("a file");
+        assert!(e.to_string().ends_with("file is not a directory"), "{e}");
+        // The format is checked first, with its own exit code.
+        assert_eq!(
+            check_output(Path::new("nowhere/x.tiff"), true).map_err(|e| e.exit_code()),
+            Err(2)
+        );
     }
 }

@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::{Duration, Instant};
 
-use crate::output::{check_output, frame_path};
+use crate::output::{check_output, create_directory_of, frame_path};
 use crate::tile::buckets_of;
 use crate::{FarmError, FrameList, Tile, one_line};
 
@@ -116,7 +116,7 @@ impl SlurmJob {
     /// output that is not .exr or .png, a scene that does not load, a frame it does not have,
     /// more tiles than buckets. The frame numbers, in order.
     pub fn check(&self) -> Result<Vec<i32>, FarmError> {
-        check_output(&self.output)?;
+        check_output(&self.output, true)?;
         let options = reyes_rib::RiOptions { strict: false, frames: Some(self.frames.0.clone()) };
         let loaded = reyes_rib::load_scene_file(&self.scene, &options)?;
         let scene = one_line(self.scene.display());
@@ -221,7 +221,7 @@ impl SlurmJob {
     }
 
     /// Check the job ([`SlurmJob::check`]), make its directory (with `tiles/`, `logs/` and
-    /// `checkpoint/`), and write the two scripts.
+    /// `checkpoint/`) and the merged frames' directory, and write the two scripts.
     pub fn write(&self) -> Result<Scripts, FarmError> {
         let frames = self.check()?;
         let cwd = std::env::current_dir()
@@ -230,6 +230,7 @@ impl SlurmJob {
         for sub in ["tiles", "logs", "checkpoint"] {
             std::fs::create_dir_all(dir.join(sub)).map_err(|e| io(&dir.join(sub), e))?;
         }
+        create_directory_of(&self.output)?;
         let (render, merge) = (dir.join("render.sbatch"), dir.join("merge.sbatch"));
         std::fs::write(&render, self.render_script(&dir, &cwd, &frames))
             .map_err(|e| io(&render, e))?;
