@@ -5,7 +5,7 @@
 //! Exit codes: 0 success; 2 usage or scene errors (including bad overrides and an unknown
 //! output format); 1 render or I/O errors (a full disk, a file too large, a full standard
 //! output); 130 and 143 when SIGINT or SIGTERM stopped it. Every error is one line on stderr,
-//! usage errors included, and no partial
+//! usage errors included (control characters in it escaped, [`term::say`]), and no partial
 //! output file is ever left behind (the film stage writes atomically, through an unnamed
 //! temporary file where the system allows, and interrupted writes remove theirs). Scene
 //! warnings (RIB requests or features not supported) go to stderr, one line each, before

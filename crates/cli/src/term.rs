@@ -36,9 +36,11 @@ pub(crate) fn stdout_failed(e: std::io::Error) -> Result<(), Exit> {
     }
 }
 
-/// One line `reyes-render: LINE` on standard error, if it can be written at all.
+/// One line `reyes-render: LINE` on standard error, if it can be written at all; one line
+/// whatever a path in it holds: control characters are written escaped
+/// ([`reyes_farm::one_line`]).
 pub(crate) fn say(line: impl Display) {
-    let _ = writeln!(std::io::stderr().lock(), "reyes-render: {line}");
+    let _ = writeln!(std::io::stderr().lock(), "reyes-render: {}", reyes_farm::one_line(line));
 }
 
 /// How a frame shows its progress: nothing (`--quiet`), a bar on a terminal, or plain lines.
