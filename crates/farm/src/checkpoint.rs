@@ -2,7 +2,7 @@
 //! a run with the same arguments renders only the rest (docs/farm.md).
 //!
 //! Layout: `ROOT/FINGERPRINT/bucket.N.exr`, one bucket file ([`reyes_film::tiles`]) per
-//! finished bucket, in a folder named by the render's [`fingerprint`](crate::fingerprint),
+//! finished bucket, in a folder named by the render's [`fingerprint`](crate::fingerprint()),
 //! so a checkpoint of other arguments or another scene lies in another folder and is never
 //! read. Every file's header is checked again on reading: one that names another render is
 //! refused (exit 2), never mixed in. The folder is removed once the frame's output is

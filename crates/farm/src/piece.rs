@@ -3,7 +3,7 @@
 //! a multi-part OpenEXR file) is [`reyes_film::tiles`].
 //!
 //! Invariant: a piece holds every one of its buckets' windows whole, border included, bit for
-//! bit, and its header names the render it belongs to ([`fingerprint`]) and carries the
+//! bit, and its header names the render it belongs to ([`fingerprint()`]) and carries the
 //! scene settings the merge needs, so a piece is never mixed into another render.
 
 use std::path::{Path, PathBuf};
@@ -20,7 +20,7 @@ use crate::{FarmError, Tile, VERSION, fingerprint, one_line};
 pub struct Header {
     /// The renderer's version: pieces of different versions are never mixed.
     pub version: String,
-    /// [`fingerprint`] of the render.
+    /// [`fingerprint()`] of the render.
     pub fingerprint: String,
     /// `(i, n)`: tile i of n; `(0, 0)` for a checkpoint's bucket file.
     pub tile: (usize, usize),
