@@ -1,8 +1,11 @@
-//! The command line: the arguments of `reyes-render` and `reyes-render measure`.
+//! The command line: the arguments of `reyes-render`, `reyes-render merge` and `reyes-render
+//! measure` (those of `reyes-render farm` are in [`crate::farm`]).
 
 use std::path::PathBuf;
+use std::time::Duration;
 
 use clap::Parser;
+use reyes_farm::{FrameList, Tile, job, progress};
 use reyes_measure::DEFAULT_SAMPLES;
 
 /// Render a scene (RON or RenderMan RIB) with a REYES micropolygon renderer and the stochastic
@@ -25,9 +28,9 @@ pub(crate) struct Args {
     /// extension or else its content; - reads standard input.
     pub scene: PathBuf,
     /// Output image: .exr (RGBA plus Z, and the scene's AOVs as layers) or .png (8-bit sRGB
-    /// with alpha, dithered; docs/outputs.md). Several
-    /// frames (RIB FrameBegin) go to numbered files: a run of # or a %0Nd in the name takes
-    /// the frame number, else it is inserted before the extension (out.0001.exr).
+    /// with alpha, dithered; docs/outputs.md). Several frames (RIB FrameBegin) go to numbered
+    /// files: a run of # or a %0Nd in the name takes the frame number, else it is inserted
+    /// before the extension (out.0001.exr).
     #[arg(short, long, value_name = "FILE")]
     pub output: PathBuf,
     /// Worker threads (default: one per core).
@@ -37,7 +40,7 @@ pub(crate) struct Args {
     #[arg(long, value_name = "N")]
     pub seed: Option<u64>,
     /// Override the scene's pixel samples, as NxM (each 1 to 64).
-    #[arg(long, value_name = "NxM", value_parser = parse_samples)]
+    #[arg(long, value_name = "NxM", value_parser = job::parse_samples)]
     pub samples: Option<(u32, u32)>,
     /// Print statistics (hits, misses, lerps, visible points, micropolygons, time per stage).
     #[arg(long)]
@@ -48,7 +51,7 @@ pub(crate) struct Args {
     /// Frames to render, e.g. 1-100 or 1,3,5-9: RIB FrameBegin blocks (default: every
     /// frame), or the frame numbers a RON scene's ${...} expressions take
     /// (docs/scene-format.md, "Animation"; needed when it has any).
-    #[arg(long, value_name = "LIST", value_parser = parse_frames)]
+    #[arg(long, value_name = "LIST")]
     pub frames: Option<FrameList>,
     /// Unknown RIB shaders are errors instead of warnings.
     #[arg(long)]
@@ -65,20 +68,20 @@ pub(crate) struct Args {
     /// Render only part of the frame: RenderMan's CropWindow, in screen fractions (0 left and
     /// top, 1 right and bottom). Each pixel gets exactly its value in the whole frame; the
     /// EXR's data window is the crop's pixels, its display window the whole frame.
-    #[arg(long, value_name = "X0,X1,Y0,Y1", value_parser = parse_crop)]
-    pub crop: Option<Crop>,
+    #[arg(long, value_name = "X0,X1,Y0,Y1", value_parser = job::parse_crop)]
+    pub crop: Option<[f32; 4]>,
     /// Render tile I of N (1 <= I <= N) of the frame's buckets (of the crop window's, with
     /// --crop): a tile file (.exr) for `reyes-render merge` (docs/farm.md).
-    #[arg(long, value_name = "I/N", value_parser = parse_tile)]
-    pub tile: Option<(usize, usize)>,
+    #[arg(long, value_name = "I/N")]
+    pub tile: Option<Tile>,
     /// Write each finished bucket to DIR as it completes; run again with the same arguments
     /// to skip those already done (docs/farm.md).
     #[arg(long, value_name = "DIR")]
     pub checkpoint: Option<PathBuf>,
     /// Seconds between progress lines when standard error is not a terminal (0: every
     /// bucket).
-    #[arg(long, value_name = "SECS", default_value_t = 5.0, value_parser = parse_seconds)]
-    pub progress_every: f64,
+    #[arg(long, value_name = "SECS", default_value = "5", value_parser = progress::parse_every)]
+    pub progress_every: Duration,
 }
 
 /// `reyes-render merge TILE... -o OUT`.
@@ -91,35 +94,6 @@ pub(crate) struct MergeArgs {
     /// The frame's output: .exr or .png, as the whole render would write it.
     #[arg(short, long, value_name = "FILE")]
     pub output: PathBuf,
-}
-
-/// A crop window `[x0, x1, y0, y1]`.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Crop(pub [f32; 4]);
-
-pub(crate) fn parse_crop(s: &str) -> Result<Crop, String> {
-    let bad = || format!("expected X0,X1,Y0,Y1, four numbers from 0 to 1, got '{s}'");
-    let v: Vec<f32> = s
-        .split(',')
-        .map(|p| p.trim().parse::<f32>())
-        .collect::<Result<_, _>>()
-        .map_err(|_| bad())?;
-    <[f32; 4]>::try_from(v).map(Crop).map_err(|_| bad())
-}
-
-pub(crate) fn parse_tile(s: &str) -> Result<(usize, usize), String> {
-    let bad = || format!("expected I/N with 1 <= I <= N, got '{s}'");
-    let (i, n) = s.split_once('/').ok_or_else(bad)?;
-    let (i, n): (usize, usize) =
-        (i.trim().parse().map_err(|_| bad())?, n.trim().parse().map_err(|_| bad())?);
-    if i == 0 || i > n { Err(bad()) } else { Ok((i, n)) }
-}
-
-pub(crate) fn parse_seconds(s: &str) -> Result<f64, String> {
-    match s.parse::<f64>() {
-        Ok(v) if v.is_finite() && (0.0..=86400.0).contains(&v) => Ok(v),
-        _ => Err(format!("expected seconds from 0 to 86400, got '{s}'")),
-    }
 }
 
 /// Volume and centre of mass of a closed object or CSG solid (patent FIG. 23), by stratified
@@ -141,36 +115,4 @@ pub(crate) struct MeasureArgs {
     /// Seed of the jitter (default: the scene's seed).
     #[arg(long, value_name = "N")]
     pub seed: Option<u64>,
-}
-
-pub(crate) fn parse_samples(s: &str) -> Result<(u32, u32), String> {
-    let bad = || format!("expected NxM with N and M from 1 to 64, got '{s}'");
-    let (a, b) = s.split_once(['x', 'X']).ok_or_else(bad)?;
-    let n: u32 = a.trim().parse().map_err(|_| bad())?;
-    let m: u32 = b.trim().parse().map_err(|_| bad())?;
-    if !(1..=64).contains(&n) || !(1..=64).contains(&m) {
-        return Err(bad());
-    }
-    Ok((n, m))
-}
-
-/// Frame numbers to render: inclusive ranges.
-#[derive(Debug, Clone, PartialEq)]
-pub(crate) struct FrameList(pub Vec<(i32, i32)>);
-
-/// A frame list: numbers and inclusive ranges separated by commas (`1-100`, `1,3,5-9`).
-pub(crate) fn parse_frames(s: &str) -> Result<FrameList, String> {
-    let bad = || format!("expected frame numbers and ranges like 1-100 or 1,3,5-9, got '{s}'");
-    s.split(',')
-        .map(|part| {
-            let part = part.trim();
-            let (a, b) = match part.split_once('-').filter(|(a, _)| !a.is_empty()) {
-                Some((a, b)) => (a.trim(), b.trim()),
-                None => (part, part),
-            };
-            let (a, b): (i32, i32) = (a.parse().map_err(|_| bad())?, b.parse().map_err(|_| bad())?);
-            if a > b { Err(bad()) } else { Ok((a, b)) }
-        })
-        .collect::<Result<_, _>>()
-        .map(FrameList)
 }

@@ -9,7 +9,9 @@
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-/// The last stopping signal received (0: none).
+use crate::Exit;
+
+/// The exit code of the last stopping signal received (0: none).
 static RECEIVED: AtomicUsize = AtomicUsize::new(0);
 
 /// A stopping signal that was received.
@@ -17,29 +19,27 @@ static RECEIVED: AtomicUsize = AtomicUsize::new(0);
 pub(crate) struct Stop {
     /// `SIGINT` or `SIGTERM`.
     pub name: &'static str,
-    /// The exit code: 128 plus the signal number, as a shell reports a process the signal
-    /// ended.
+    /// The exit code: 128 plus the signal number, as a shell reports a process it ended.
     pub code: u8,
 }
 
 /// Install the handlers: SIGXFSZ always; SIGINT and SIGTERM when `stop` (for commands that
 /// poll the cancel flag; the others keep the default, which ends them at once, cleanly, as
 /// they write no file), unless the signal was ignored at start, which it then stays.
-pub(crate) fn install(stop: bool) -> std::io::Result<()> {
+pub(crate) fn install(stop: bool) -> Result<(), Exit> {
     #[cfg(unix)]
     {
         use signal_hook::consts::{SIGINT, SIGTERM, SIGXFSZ};
+        use signal_hook::flag::{register, register_usize};
         static XFSZ: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
-        signal_hook::flag::register(SIGXFSZ, &XFSZ)?;
-        if stop {
-            for signal in [SIGINT, SIGTERM]
-                .into_iter()
-                .filter(|&s| crate::hooks::signals_default() || !ignored_at_start(s))
-            {
-                // In this order: whoever sees the cancel flag finds the signal recorded.
-                signal_hook::flag::register_usize(signal, &RECEIVED, signal as usize)?;
-                signal_hook::flag::register(signal, reyes_render::cancel::flag())?;
-            }
+        let failed = |e: std::io::Error| Exit::error(1, format_args!("signals: {e}"));
+        register(SIGXFSZ, &XFSZ).map_err(failed)?;
+        let default = reyes_farm::testing::signals_default();
+        let wanted = |&s: &i32| stop && (default || !ignored_at_start(s));
+        for signal in [SIGINT, SIGTERM].into_iter().filter(wanted) {
+            // In this order: whoever sees the cancel flag finds the signal recorded.
+            register_usize(signal, &RECEIVED, 128 + signal as usize).map_err(failed)?;
+            register(signal, reyes_render::cancel::flag()).map_err(failed)?;
         }
     }
     #[cfg(not(unix))]
@@ -63,18 +63,9 @@ fn ignored_at_start(signal: i32) -> bool {
 
 /// The stopping signal received, if any.
 pub(crate) fn received() -> Option<Stop> {
-    #[cfg(unix)]
-    {
-        use signal_hook::consts::{SIGINT, SIGTERM};
-        match i32::try_from(RECEIVED.load(Ordering::SeqCst)) {
-            Ok(SIGINT) => Some(Stop { name: "SIGINT", code: 130 }),
-            Ok(SIGTERM) => Some(Stop { name: "SIGTERM", code: 143 }),
-            _ => None,
-        }
-    }
-    #[cfg(not(unix))]
-    {
-        let _ = RECEIVED.load(Ordering::SeqCst);
-        None
+    match RECEIVED.load(Ordering::SeqCst) {
+        130 => Some(Stop { name: "SIGINT", code: 130 }),
+        143 => Some(Stop { name: "SIGTERM", code: 143 }),
+        _ => None,
     }
 }

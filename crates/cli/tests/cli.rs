@@ -542,3 +542,38 @@ fn mesh_file_errors_name_the_scene_field_and_the_mesh_file() {
         assert!(!out.exists());
     }
 }
+
+/// Every error is one line, whatever the paths in it hold: a newline, a tab or an escape in a
+/// path is written escaped (`\n`, `\t`, `\u{1b}`), for each command, and whichever part of
+/// the program reports it.
+#[test]
+fn control_characters_in_paths_are_escaped_in_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let scene = scene_with(d, "ok.ron", |t| t.to_string());
+    let s = scene.to_str().unwrap();
+    std::fs::write(d.join("file\n"), b"not a directory").unwrap();
+    let odd = scene_with(d, "sc\u{1b}ene\n.ron", |t| t.to_string());
+    let at = |name: &str| d.join(name).to_str().unwrap().to_string();
+    let odd = odd.to_str().unwrap().to_string();
+    let crop = vec![odd, "--crop".into(), "0,1,0.5,0.5".into(), "-o".into(), at("a.exr")];
+    let cases: [(Vec<String>, i32); 7] = [
+        (vec![s.into(), "-o".into(), at("no\nsuch/out.exr")], 1),
+        (vec![s.into(), "-o".into(), at("out\u{1b}[31m.tiff")], 2),
+        (vec![s.into(), "--tile".into(), "1/2".into(), "-o".into(), at("file\n/t.exr")], 1),
+        (vec![at("no\nscene.ron"), "-o".into(), at("out.exr")], 1),
+        (vec!["merge".into(), at("tile\t1.exr"), "-o".into(), at("out.exr")], 1),
+        (vec!["farm".into(), "status".into(), "--dir".into(), at("no\r\nfarm")], 1),
+        (crop, 2),
+    ];
+    let mut snapshot = String::new();
+    for (args, code) in cases {
+        let o = bin().args(&args).output().expect("run reyes-render");
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(code), "{args:?}: {err}");
+        assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
+        snapshot.push_str(&err.replace(&d.display().to_string(), "DIR"));
+    }
+    assert_eq!(files_in(d), ["file\n", "ok.ron", "sc\u{1b}ene\n.ron"], "nothing written");
+    insta::assert_snapshot!("control_characters_in_paths", snapshot);
+}

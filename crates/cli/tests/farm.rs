@@ -540,3 +540,46 @@ fn farm_slurm_writes_its_jobs_and_names_the_set_up_without_slurm() {
     let o = run(dir, &["farm", "status", "--dir", "nowhere"]);
     assert_eq!(o.status.code(), Some(1));
 }
+
+/// docs/farm.md's `-o tiles/shot.t3.exr` without `tiles/` made first: a tile, a merge and a
+/// farm make their output's directory, only when the file is written (never for a render
+/// that fails), and it holds nothing but the finished file. A plain render's missing
+/// directory stays an error, before any work.
+#[test]
+fn tiles_merges_and_farms_make_their_output_directories() {
+    let tmp = tempfile::tempdir().expect("tempdir");
+    let dir = tmp.path();
+    let s = scene(dir, "motion-blur", (64, 48), "m.ron", |t| t);
+    ok(dir, &[&s, "-o", "whole.exr"]);
+    for i in 1..=3 {
+        ok(dir, &[&s, "--tile", &format!("{i}/3"), "-o", &format!("tiles/deep/shot.t{i}.exr")]);
+    }
+    let names = |d: &str| reyes_testkit::files::names(&dir.join(d));
+    assert_eq!(names("tiles/deep"), ["shot.t1.exr", "shot.t2.exr", "shot.t3.exr"]);
+    let tiles = ["tiles/deep/shot.t1.exr", "tiles/deep/shot.t2.exr", "tiles/deep/shot.t3.exr"];
+    ok(dir, &["merge", tiles[2], tiles[0], tiles[1], "-o", "out/frames/shot.exr"]);
+    assert_eq!(names("out/frames"), ["shot.exr"]);
+    assert!(bytes(&dir.join("whole.exr")) == bytes(&dir.join("out/frames/shot.exr")));
+    // A tile render that fails, or a refused merge, makes no directory.
+    refused(&run(dir, &[&s, "--tile", "1/21", "-o", "never/t.exr"]), "--tile 1/21");
+    refused(&run(dir, &["merge", tiles[0], "-o", "never/m.exr"]), "tiles 2/3, 3/3 missing");
+    assert!(!dir.join("never").exists());
+    // A file in the directory's place is refused before any work (exit 1, one line).
+    std::fs::write(dir.join("plain"), b"x").expect("file");
+    let o = run(dir, &[&s, "--tile", "1/3", "-o", "plain/sub/t.exr"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!((o.status.code(), err.lines().count()), (Some(1), 1), "{err}");
+    assert!(err.contains("plain/sub/t.exr: output directory: plain is not a directory"), "{err}");
+    // A plain render does not make one: a mistyped directory is reported, not created.
+    let o = run(dir, &[&s, "-o", "typo/whole.exr"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("typo/whole.exr: output directory does not exist"), "{err}");
+    assert!(!dir.join("typo").exists());
+    // farm slurm makes the merged frames' directory with its own.
+    let args = ["farm", "slurm", &s, "--tiles", "2", "--frames", "1", "-o", "frames/f.####.exr"];
+    let mut args = args.to_vec();
+    args.push("--no-submit");
+    ok(dir, &args);
+    assert!(dir.join("frames").is_dir() && dir.join("reyes-farm/tiles").is_dir());
+}
