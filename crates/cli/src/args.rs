@@ -103,10 +103,10 @@ pub(crate) struct MergeArgs {
 #[derive(Parser, Debug)]
 #[command(name = "reyes-render measure", bin_name = "reyes-render measure", version)]
 pub(crate) struct MeasureArgs {
-    /// Scene file (RON); see docs/scene-format.md.
+    /// Scene file of one frame, RON or RIB (docs/scene-format.md, docs/rib.md).
     pub scene: PathBuf,
-    /// The object (`objects[].name`) or CSG solid (`solids[].name`) to measure. Cylinders,
-    /// cones and paraboloids count as closed by their end caps.
+    /// The object (`objects[].name`, RIB's `Attribute "identifier" "name"`) or CSG solid
+    /// (`solids[].name`) to measure. Cylinders, cones and paraboloids count as closed.
     #[arg(long, value_name = "NAME")]
     pub object: String,
     /// About how many sample points (one per cell).

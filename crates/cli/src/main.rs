@@ -130,7 +130,7 @@ fn measure_main(args: impl Iterator<Item = OsString>) -> Result<(), Exit> {
     // Measuring polls no cancel flag and writes no file: SIGINT and SIGTERM keep their
     // default, which ends it at once.
     let args: MeasureArgs = parse(args, false, "reyes-render measure --help")?;
-    let scene = reyes_scene::load(&args.scene).map_err(|e| Exit::error(e.exit_code(), &e))?;
+    let scene = reyes_farm::load_one_frame(&args.scene, &mut |w| say(w))?;
     let opts =
         MeasureOptions { samples: args.samples, seed: args.seed.unwrap_or(scene.hider.seed) };
     let m = measure(&scene, &args.scene, &args.object, &opts)

@@ -353,6 +353,24 @@ fn rib_errors_and_warnings_are_one_line_each() {
     let missing = dir.path().join("missing.rib");
     let o = run(&[missing.to_str().unwrap(), "-o", out.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+
+    // A refused file still shows what was tolerated before its error, first, in file order.
+    let both = dir.path().join("both.rib");
+    let text = RIB
+        .replace("\"matte\"", "\"wood\"")
+        .replace("Sphere 1 -1 1 360", "Frobnicate 2\nSphere 0 -1 1 360");
+    std::fs::write(&both, text).unwrap();
+    let out = dir.path().join("both.exr");
+    let o = run(&[both.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    let lines: Vec<String> = stderr(&o).lines().map(String::from).collect();
+    assert_eq!(lines.len(), 3, "{lines:?}");
+    assert!(lines[0].contains("both.rib:6:1: warning: Surface: unknown shader"), "{lines:?}");
+    assert!(lines[1].contains("both.rib:8:1: warning:"), "{lines:?}");
+    assert!(lines[1].contains("Frobnicate"), "{lines:?}");
+    assert!(lines[2].starts_with("reyes-render: error: "), "{lines:?}");
+    assert!(lines[2].contains("both.rib:9:1: Sphere:"), "{lines:?}");
+    assert!(!out.exists());
 }
 
 /// Scenes that used to pass validation and fail at render time (exit 1, no position): a view

@@ -122,3 +122,30 @@ fn usage_errors_exit_2_with_one_line() {
     assert!(o.status.success());
     assert!(String::from_utf8_lossy(&o.stdout).contains("Usage: reyes-render measure"));
 }
+
+/// A RIB scene is measured like its RON twin: a sphere named by `Attribute "identifier"`, moved
+/// by `Translate`; its volume within three standard errors of the exact one. A RIB file of two
+/// frames is refused in one line.
+#[test]
+fn a_rib_scene_is_measured_too() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("ball.rib");
+    std::fs::write(
+        &path,
+        "Projection \"perspective\"\nWorldBegin\nAttributeBegin\n\
+         Attribute \"identifier\" \"name\" [\"ball\"]\nTranslate 1 2 3\nSphere 1.5 -1.5 1.5 360\n\
+         AttributeEnd\nWorldEnd\n",
+    )
+    .unwrap();
+    let o = bin().args(["measure", path.to_str().unwrap(), "--object", "ball"]).output().unwrap();
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let volume = 4.0 / 3.0 * PI * 1.5f64.powi(3);
+    let [(v, e)] = numbers(&out, "volume")[..] else { panic!("{out}") };
+    assert!((v - volume).abs() <= 3.0 * e && e > 0.0, "{v} ± {e} vs {volume}");
+
+    let two = dir.path().join("two.rib");
+    std::fs::write(&two, "FrameBegin 1\nWorldBegin\nSphere 1 -1 1 360\nWorldEnd\nFrameEnd\nFrameBegin 2\nWorldBegin\nSphere 1 -1 1 360\nWorldEnd\nFrameEnd\n").unwrap();
+    let o = bin().args(["measure", two.to_str().unwrap(), "--object", "ball"]).output().unwrap();
+    one_line_error(&o, 2, "the file has 2 frames; this command reads a file of one frame");
+}

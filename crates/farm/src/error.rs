@@ -12,9 +12,10 @@ use reyes_render::RenderError;
 /// Everything the farm layer can report.
 #[derive(Debug, thiserror::Error)]
 pub enum FarmError {
-    /// The scene file could not be loaded.
+    /// The scene file could not be loaded (the warnings raised before the error are in it,
+    /// to be shown first).
     #[error(transparent)]
-    Load(#[from] reyes_rib::InputError),
+    Load(#[from] reyes_rib::Refusal),
     /// A request that cannot be met: an output that is not an image, a frame the scene does
     /// not have, more tiles than buckets, pieces that do not belong together (exit code 2).
     #[error("{0}")]

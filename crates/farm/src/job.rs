@@ -159,7 +159,14 @@ pub fn plan(request: &Request, warn: &mut dyn FnMut(String)) -> Result<Vec<Frame
         )));
     }
     let options = RiOptions { strict: r.strict, frames: r.frames.clone().map(|f| f.0) };
-    let loaded = reyes_rib::load_scene_file(&r.scene, &options)?;
+    let loaded = match reyes_rib::load_scene_file(&r.scene, &options) {
+        Ok(loaded) => loaded,
+        Err(refused) => {
+            // What was tolerated before the error often explains it: shown first.
+            summarise(&refused.warnings, warn);
+            return Err(refused.into());
+        }
+    };
     summarise(&loaded.warnings, warn);
     let scene_path = one_line(r.scene.display());
     if loaded.frames.is_empty() {
@@ -200,6 +207,27 @@ pub fn plan(request: &Request, warn: &mut dyn FnMut(String)) -> Result<Vec<Frame
 
 /// Scene warnings to `warn`, one line each; a message repeated at other places is given
 /// once, at its first place, with the count of the others.
+/// The scene of `path` (RON or RIB) when it has exactly one frame, for the commands that
+/// read one scene without rendering it (`reyes-render measure`); the warnings go to `warn`
+/// as [`plan`]'s do, also when the file is refused.
+pub fn load_one_frame(path: &Path, warn: &mut dyn FnMut(String)) -> Result<Scene, FarmError> {
+    let mut loaded = match reyes_rib::load_scene_file(path, &RiOptions::default()) {
+        Ok(loaded) => loaded,
+        Err(refused) => {
+            summarise(&refused.warnings, warn);
+            return Err(refused.into());
+        }
+    };
+    summarise(&loaded.warnings, warn);
+    match loaded.frames.len() {
+        1 => Ok(loaded.frames.remove(0).scene),
+        n => Err(FarmError::invalid(format_args!(
+            "{}: the file has {n} frames; this command reads a file of one frame",
+            one_line(path.display())
+        ))),
+    }
+}
+
 fn summarise(warnings: &[reyes_rib::Warning], warn: &mut dyn FnMut(String)) {
     let mut seen: Vec<(&str, usize, usize)> = Vec::new();
     for (i, w) in warnings.iter().enumerate() {

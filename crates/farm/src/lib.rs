@@ -36,7 +36,9 @@ pub use checkpoint::Checkpoint;
 pub use error::{FarmError, one_line};
 pub use fingerprint::fingerprint;
 pub use frames::FrameList;
-pub use job::{FrameJob, FramePlan, Overrides, RenderedFrame, Request, WriteHooks, plan};
+pub use job::{
+    FrameJob, FramePlan, Overrides, RenderedFrame, Request, WriteHooks, load_one_frame, plan,
+};
 pub use merge::merge;
 pub use piece::{Header, Piece};
 pub use progress::{Estimator, ProgressLines};
