@@ -33,6 +33,7 @@
 pub mod ast;
 mod check;
 mod error;
+pub mod exec;
 pub mod globals;
 pub mod ir;
 pub mod lexer;
