@@ -185,6 +185,11 @@ impl Mask {
     }
 }
 
+/// The most arguments a lane function sees (a matrix constructor has 16). A `min` or `max`
+/// of more values reads only the first 32 (`spline` does not go through here: any number of
+/// knots).
+pub const MAX_ARGS: usize = 32;
+
 /// Applies `f` to the lanes of `args`: once when every argument is uniform (a uniform result),
 /// else on every active point (inactive lanes of the result are 0).
 pub fn map_n(
@@ -194,8 +199,8 @@ pub fn map_n(
     w_out: usize,
     mut f: impl FnMut(&[&[f32]], &mut [f32]),
 ) -> Num {
-    let mut lanes: [&[f32]; 8] = [&[]; 8];
-    let k = args.len().min(8);
+    let mut lanes: [&[f32]; MAX_ARGS] = [&[]; MAX_ARGS];
+    let k = args.len().min(MAX_ARGS);
     if args.iter().all(|a| !a.varying) {
         let mut out = Num::zeros(w_out, false, n);
         for (j, a) in args.iter().take(k).enumerate() {
@@ -217,7 +222,7 @@ pub fn map_n(
 /// A float function of floats, lane by lane.
 pub fn map_f(n: usize, mask: &Mask, args: &[&Num], f: impl Fn(&[f32]) -> f32) -> Num {
     map_n(n, mask, args, 1, |l, o| {
-        let mut xs = [0.0f32; 8];
+        let mut xs = [0.0f32; MAX_ARGS];
         for (x, a) in xs.iter_mut().zip(l) {
             *x = a[0];
         }
@@ -229,7 +234,7 @@ pub fn map_f(n: usize, mask: &Mask, args: &[&Num], f: impl Fn(&[f32]) -> f32) ->
 pub fn map_c(n: usize, mask: &Mask, args: &[&Num], f: impl Fn(&[f32]) -> f32) -> Num {
     let w = args.iter().map(|a| a.w).max().unwrap_or(1);
     map_n(n, mask, args, w, |l, o| {
-        let mut xs = [0.0f32; 8];
+        let mut xs = [0.0f32; MAX_ARGS];
         for (c, oc) in o.iter_mut().enumerate() {
             for (x, a) in xs.iter_mut().zip(l) {
                 *x = if a.len() == 1 { a[0] } else { a[c] };
