@@ -133,6 +133,15 @@ impl GridContext<'_> {
         let Some(lights) = self.lights.as_deref_mut() else { return Ok(Vec::new()) };
         let q = LightQuery { category, p: position, n: &normal, mask: &all, nu, nv };
         let s = lights.lights(&q)?;
+        let n = self.n;
+        let fits = |x: &Num| x.w == 3 && x.data.len() == if x.varying { 3 * n } else { 3 };
+        if let Some(bad) =
+            s.iter().position(|l| !(fits(&l.l) && fits(&l.cl) && fits(&l.ol) && l.lit.len() == n))
+        {
+            return Err(self.err_at(format!(
+                "light {bad} returned L, Cl, Ol not of 3 floats (per point, for {n} points) or lit not of {n} flags"
+            )));
+        }
         self.light_cache = Some((position.clone(), category.to_string(), s.clone()));
         Ok(s)
     }

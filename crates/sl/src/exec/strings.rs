@@ -142,9 +142,10 @@ fn format_at(fmt: &str, args: &[Expr], vals: &[Value], lane: usize) -> String {
         while i < b.len() && b"-+ #0123456789.".contains(&b[i]) {
             i += 1;
         }
-        let Some(&conv) = b.get(i) else { break };
-        i += 1;
-        let spec = &fmt[start + 1..i - 1];
+        let spec = &fmt[start + 1..i];
+        let Some(ch) = fmt[i..].chars().next() else { break };
+        i += ch.len_utf8();
+        let conv = if ch.is_ascii() { ch as u8 } else { b'?' };
         let prec = spec.split('.').nth(1).and_then(|p| p.parse::<usize>().ok());
         if conv == b'%' {
             out.push('%');
@@ -176,11 +177,14 @@ fn format_at(fmt: &str, args: &[Expr], vals: &[Value], lane: usize) -> String {
 }
 
 /// Whether pattern `p` matches somewhere in `s`.
+/// The search gives up (no match) after a million steps, so a pattern like `a*a*a*a*b`
+/// cannot stall a grid.
 pub fn regex_find(p: &[u8], s: &[u8]) -> bool {
+    let mut steps = 0u32;
     if let Some(rest) = p.strip_prefix(b"^") {
-        return match_here(rest, s, 0);
+        return match_here(rest, s, &mut steps);
     }
-    (0..=s.len()).any(|k| match_here(p, &s[k..], 0))
+    (0..=s.len()).any(|k| match_here(p, &s[k..], &mut steps))
 }
 
 /// One pattern atom: its length in the pattern, and whether it takes byte `c`.
@@ -212,8 +216,9 @@ fn atom(p: &[u8], c: u8) -> (usize, bool) {
     }
 }
 
-fn match_here(p: &[u8], s: &[u8], depth: usize) -> bool {
-    if depth > 1000 {
+fn match_here(p: &[u8], s: &[u8], steps: &mut u32) -> bool {
+    *steps += 1;
+    if *steps > 1_000_000 {
         return false;
     }
     if p.is_empty() {
@@ -234,8 +239,8 @@ fn match_here(p: &[u8], s: &[u8], depth: usize) -> bool {
                 k += 1;
             }
             let min = usize::from(rep == Some(b'+'));
-            (min..=k).rev().any(|j| match_here(rest, &s[j..], depth + 1))
+            (min..=k).rev().any(|j| match_here(rest, &s[j..], steps))
         }
-        _ => !s.is_empty() && takes(s[0]) && match_here(&p[len..], &s[1..], depth + 1),
+        _ => !s.is_empty() && takes(s[0]) && match_here(&p[len..], &s[1..], steps),
     }
 }

@@ -1,0 +1,181 @@
+//! Robustness law of the grid machine: no shader the checker accepts, and no input values
+//! (NaN, infinities, huge numbers), make a run panic; a run ends (the budget) with results or
+//! with an error naming the shader.
+
+mod common;
+
+use common::*;
+use proptest::prelude::*;
+use reyes_sl::exec::{GridContext, Num, ShaderLight, ShaderLights, Spaces, Value};
+use reyes_sl::shaders::STANDARD;
+use reyes_sl::{ShaderKind, compile_str};
+
+/// A shader touching most of the machine: user functions with outputs and returns under
+/// varying control, every loop form, arrays, the library, lighting.
+const VALID: &str = r#"
+float helper(float a; output color c) { c = color(a, a, a); if (a > 0.5) return a * a; return -a; }
+surface test(float Ka = 1, Kd = .5; varying color tint = 1; float arr[3] = {1, 2, 3};
+             output varying float extra = 0;)
+{
+    normal Nf = faceforward(normalize(N), I);
+    vector V = -normalize(I);
+    color Ct = tint, C = 0;
+    float i, j, x = helper(s, Ct);
+    for (i = 0; i < 4; i += 1) { for (j = 0; j < 3; j += 1) { if (j > t * 3) continue 2; if (i * j > s * 4) break 2; x += arr[i]; } }
+    while (x > 10) x /= 2;
+    illuminance(P, Nf, PI / 2) { C += Cl * (normalize(L) . Nf); }
+    point Pw = point "world" (1, 2, 3); color h = color "hsv" (0.5, 1, 1);
+    matrix m = matrix "shader" 1; vector cr = (Pw - P) ^ V;
+    extra = noise(P * 4) + pnoise(s * 8, 4) + cellnoise(t * 5) + spline(s, 0, 1, 4, 9) + Du(s) + area(P);
+    Ci = Os * Ct * (Ka * ambient() + Kd * diffuse(Nf)) + specular(Nf, V, 0.2) + C + h * mod(x, 3);
+    Ci += (x > 1 ? 0 : 1) * arr[s * 5] + filterstep(0.5, s) + mix(color 0, color 1, smoothstep(0, 1, t));
+    Oi = Os * clamp(length(cr), 0, 1) + determinant(m) * 0;
+}
+"#;
+
+const SNIPPETS: &[&str] = &[
+    "(",
+    ")",
+    "{",
+    "}",
+    ";",
+    ",",
+    "+",
+    "-",
+    "*",
+    "/",
+    ".",
+    "^",
+    "?",
+    ":",
+    "=",
+    "+=",
+    "0",
+    "1e38",
+    "-1",
+    "s",
+    "t",
+    "P",
+    "x",
+    "break;",
+    "continue;",
+    "return 1;",
+    "if (s > 0.5)",
+    "else",
+    "while (x < 1e30) x *= 2;",
+    "while (s > 0)",
+    "for (;;)",
+    "sqrt(-1)",
+    "1/0",
+    "arr[9]",
+    "noise(",
+    "Du(",
+    "log(0)",
+    "pow(-2, 0.5)",
+];
+
+fn lights() -> ShaderLights {
+    let light = |name: &str, params: Vec<(String, Value)>| ShaderLight {
+        shader: compile(reyes_sl::shaders::standard(name).unwrap()),
+        params,
+        spaces: Spaces::default(),
+        categories: vec![],
+    };
+    ShaderLights {
+        lights: vec![
+            light("ambientlight", vec![]),
+            light("pointlight", vec![("from".into(), Value::Num(Num::uniform(&[1.0, 1.0, -1.0])))]),
+            light("spotlight", vec![("from".into(), Value::Num(Num::uniform(&[1.0, 1.0, -1.0])))]),
+            light("distantlight", vec![]),
+        ],
+    }
+}
+
+/// Compiles and runs; a compile error is fine, a run error must name the shader.
+fn run(src: &str, nu: usize, nv: usize, poison: Option<f32>) {
+    let Ok(sh) = compile_str("fuzz.sl", src, &[]) else { return };
+    let mut ls = lights();
+    let mut g = plane(&sh, nu, nv);
+    g.set_budget(200_000);
+    g.set_lights(&mut ls);
+    if let Some(x) = poison {
+        let n = nu * nv;
+        let mut p: Vec<f32> = (0..3 * n).map(|i| if i % 7 == 3 { x } else { i as f32 }).collect();
+        p[0] = x;
+        g.set_varying("P", &p).unwrap();
+        g.set_varying("s", &p[..n]).unwrap();
+        g.set_uniform("du", &[x]).unwrap();
+    }
+    if let Err(e) = g.run() {
+        let m = e.to_string();
+        assert!(m.starts_with(&format!("shader \"{}\"", sh.name)) && !m.contains('\n'), "{m}");
+    }
+}
+
+#[test]
+fn the_valid_shader_runs() {
+    let sh = compile(VALID);
+    let mut ls = lights();
+    let mut g = plane(&sh, 6, 5);
+    g.set_lights(&mut ls);
+    let st = g.run().unwrap();
+    assert!(st.instructions > 100);
+    assert!(g.param("extra").unwrap().varying());
+}
+
+#[test]
+fn every_standard_shader_runs() {
+    for (name, src) in STANDARD {
+        let sh = compile(src);
+        let mut ls = lights();
+        let mut g = plane(&sh, 4, 3);
+        if sh.kind == ShaderKind::Light {
+            g.set_varying("Ps", &[0.5; 36]).unwrap();
+        }
+        g.set_lights(&mut ls);
+        g.run().unwrap_or_else(|e| panic!("{name}: {e}"));
+    }
+}
+
+#[test]
+fn poisoned_inputs() {
+    for x in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY, 1e38, -1e38, 0.0, f32::MIN_POSITIVE] {
+        run(VALID, 5, 4, Some(x));
+        for (_, src) in STANDARD {
+            run(src, 3, 3, Some(x));
+        }
+    }
+}
+
+#[test]
+fn one_point_and_one_row_grids() {
+    for (nu, nv) in [(1, 1), (1, 7), (7, 1)] {
+        let sh = compile(VALID);
+        let mut g = GridContext::new(&sh, nu, nv);
+        g.run().unwrap();
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 300, ..ProptestConfig::default() })]
+
+    #[test]
+    fn mutations_run_without_panic(
+        edits in proptest::collection::vec((0usize..2400, proptest::sample::select(SNIPPETS), 0usize..4), 1..5)
+    ) {
+        let mut src = VALID.to_string();
+        for (at, snippet, cut) in edits {
+            let mut i = at % (src.len() + 1);
+            while !src.is_char_boundary(i) { i -= 1; }
+            let mut j = (i + cut).min(src.len());
+            while !src.is_char_boundary(j) { j -= 1; }
+            src.replace_range(i..j, snippet);
+        }
+        run(&src, 4, 3, None);
+    }
+
+    #[test]
+    fn random_inputs_run_without_panic(x in any::<f32>(), nu in 1usize..6, nv in 2usize..5) {
+        run(VALID, nu.max(2), nv, Some(x));
+    }
+}
