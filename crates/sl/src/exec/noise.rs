@@ -1,6 +1,6 @@
 //! Noise, written for this project: gradient noise on the integer lattice in 1 to 4
 //! dimensions. Each lattice corner gets a pseudo-random gradient (components uniform in
-//! [-1, 1], from an integer hash of the corner); the value is the sum over the cell's corners
+//! [-1, 1] in steps of 1/127.5, 8-bit fields of an integer hash of the corner); the value is the sum over the cell's corners
 //! of each gradient dotted with the offset to the corner, blended by the quintic
 //! `6t^5 - 15t^4 + 10t^3` (so the result and its first two derivatives are continuous). It is
 //! 0 at every lattice point and symmetric about 0 (a gradient and its negation are equally
@@ -63,8 +63,10 @@ pub fn gradient(x: &[f32], period: Option<&[f32]>, seed: u32) -> f32 {
         }
         let h = hash_cell(&cell[..d], seed);
         let mut dotp = 0.0;
+        // Gradient components: 8-bit fields of one hash, each mapped onto [-1, 1] (a field
+        // and its complement give opposite components, so the noise is symmetric about 0).
         for (k, off) in offs.iter().take(d).enumerate() {
-            let g = ((mix(h.wrapping_add(k as u32 * 0x68e3_1da4)) & 0xffff) as f32 / 32767.5) - 1.0;
+            let g = ((h >> (8 * k)) & 0xff) as f32 / 127.5 - 1.0;
             dotp += g * off;
         }
         sum += weight * dotp;

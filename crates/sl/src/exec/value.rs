@@ -221,8 +221,8 @@ pub fn map_n(
 
 /// A float function of floats, lane by lane.
 pub fn map_f(n: usize, mask: &Mask, args: &[&Num], f: impl Fn(&[f32]) -> f32) -> Num {
+    let mut xs = [0.0f32; MAX_ARGS];
     map_n(n, mask, args, 1, |l, o| {
-        let mut xs = [0.0f32; MAX_ARGS];
         for (x, a) in xs.iter_mut().zip(l) {
             *x = a[0];
         }
@@ -233,8 +233,8 @@ pub fn map_f(n: usize, mask: &Mask, args: &[&Num], f: impl Fn(&[f32]) -> f32) ->
 /// A componentwise function of same-width values (floats broadcast to the widest).
 pub fn map_c(n: usize, mask: &Mask, args: &[&Num], f: impl Fn(&[f32]) -> f32) -> Num {
     let w = args.iter().map(|a| a.w).max().unwrap_or(1);
+    let mut xs = [0.0f32; MAX_ARGS];
     map_n(n, mask, args, w, |l, o| {
-        let mut xs = [0.0f32; MAX_ARGS];
         for (c, oc) in o.iter_mut().enumerate() {
             for (x, a) in xs.iter_mut().zip(l) {
                 *x = if a.len() == 1 { a[0] } else { a[c] };
