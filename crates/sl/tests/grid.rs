@@ -247,3 +247,82 @@ fn input_errors() {
     g.run().unwrap();
     assert_eq!(g.get_v3("Ci", 3).unwrap(), [0.5, 0.25, 1.0]);
 }
+
+#[test]
+fn deriv_and_derivatives_under_a_mask() {
+    // Deriv(s*s, s) = Du(s^2)/Du(s) + Dv(s^2)/Dv(s); Dv(s) = 0 drops the second term: 2s
+    // inside (centred differences exact for quadratics), to rounding (1e-5).
+    let (nu, nv) = (11, 3);
+    let ci = run_ci(
+        "surface d() {
+            Ci = color(Deriv(s * s, s), 0, 0);
+            if (s > 0.45) Ci = color(Deriv(s * s, s), Du(s), 1);
+        }",
+        nu,
+        nv,
+    );
+    for (i, c) in ci.iter().enumerate().take(nu) {
+        let s = i as f32 / 10.0;
+        if (1..10).contains(&i) && i != 5 {
+            assert!(close(c[0], 2.0 * s, 1e-4), "{i}: {c:?}");
+        }
+        // Under the mask, s = 0.5 has no active left neighbour: one-sided, (0.36-0.25)/0.1.
+        if i == 5 {
+            assert!(close(c[0], 1.1, 1e-4), "{c:?}");
+            assert!(close(c[1], 1.0, 1e-4), "{c:?}");
+        }
+    }
+}
+
+#[test]
+fn random_is_in_range_and_varies() {
+    let sh = common::compile("surface r() { Ci = color(random(), random(), 0); }");
+    let mut g = plane(&sh, 16, 16);
+    g.run().unwrap();
+    let v: Vec<[f32; 3]> = (0..256).map(|i| g.get_v3("Ci", i).unwrap()).collect();
+    assert!(v.iter().all(|c| (0.0..1.0).contains(&c[0]) && (0.0..1.0).contains(&c[1])));
+    // Uniform in [0, 1): mean 0.5, sd of the mean of 256 is 0.29/16 = 0.018; 0.08 is 4 sd.
+    let mean = v.iter().map(|c| c[0]).sum::<f32>() / 256.0;
+    assert!((mean - 0.5).abs() < 0.08, "{mean}");
+    assert!(v.iter().any(|c| c[0] != c[1]));
+}
+
+#[test]
+fn returns_under_different_masks() {
+    let ci = run_ci(
+        "float f(float a) { if (a < 0.3) return 1; if (a < 0.6) return a; return 3; }
+         surface r() { Ci = f(s); }",
+        11,
+        2,
+    );
+    for (i, c) in ci.iter().enumerate().take(11) {
+        let s = i as f32 / 10.0;
+        let want = if s < 0.3 {
+            1.0
+        } else if s < 0.6 {
+            s
+        } else {
+            3.0
+        };
+        assert_eq!(c[0], want, "{i}");
+    }
+}
+
+#[test]
+fn parameter_values_are_checked() {
+    let sh =
+        common::compile("surface p(color c = 1; float a[2] = {1, 2}; string m = \"\") { Ci = c; }");
+    let mut g = GridContext::new(&sh, 2, 2);
+    assert!(g.set_param("c", Value::Num(Num::uniform(&[1.0, 2.0]))).is_err());
+    assert!(g.set_param("c", Value::Num(Num { w: 3, varying: true, data: vec![0.0; 9] })).is_err());
+    assert!(g.set_param("c", Value::Str("x".into())).is_err());
+    assert!(g.set_param("a", Value::Num(Num::scalar(1.0))).is_err());
+    assert!(g.set_param("m", Value::Str("x".into())).is_ok());
+    let two = Value::Array(vec![Value::Num(Num::scalar(3.0)), Value::Num(Num::scalar(4.0))]);
+    assert!(g.set_param("a", two).is_ok());
+    g.set_param("c", Value::Num(Num { w: 3, varying: true, data: vec![0.5; 12] })).unwrap();
+    g.run().unwrap();
+    assert_eq!(g.get_v3("Ci", 3).unwrap(), [0.5; 3]);
+    let mut big = GridContext::new(&sh, 1 << 13, 1 << 13);
+    assert!(big.run().unwrap_err().to_string().contains("over the limit"));
+}

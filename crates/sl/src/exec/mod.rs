@@ -41,6 +41,9 @@ pub use value::{Mask, Num, Value};
 /// uniform or varying) plus loop iterations.
 pub const DEFAULT_BUDGET: u64 = 50_000_000;
 
+/// The most points a grid may have (a dicer makes grids of hundreds; this bounds memory).
+pub const MAX_POINTS: usize = 1 << 24;
+
 /// An error of a run. Its message names the shader.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum ExecError {
@@ -118,7 +121,7 @@ impl<'a> GridContext<'a> {
             shader,
             nu,
             nv,
-            n: nu * nv,
+            n: nu.saturating_mul(nv),
             globals: vec![None; GLOBALS.len()],
             vars: Vec::new(),
             param_set: HashMap::new(),
@@ -204,6 +207,27 @@ impl<'a> GridContext<'a> {
         let Some(&id) = sh.params.iter().find(|&&i| sh.vars[i].name == name) else {
             return Err(self.input_err(format!("no parameter \"{name}\"")));
         };
+        let ty = sh.vars[id].ty;
+        let n = self.n;
+        let w = value::width(ty.base);
+        let fits_num = |x: &Num| {
+            (x.w == 1 || x.w == w) && x.data.len() == if x.varying { x.w * n } else { x.w }
+        };
+        let fits_elem = |x: &Value| match x {
+            Value::Num(x) => ty.base != crate::types::BaseType::String && fits_num(x),
+            Value::Str(_) => ty.base == crate::types::BaseType::String,
+            Value::Array(_) => false,
+        };
+        let ok = match (&v, ty.array) {
+            (Value::Array(xs), Some(len)) => xs.len() == len as usize && xs.iter().all(fits_elem),
+            (x, None) => fits_elem(x),
+            _ => false,
+        };
+        if !ok {
+            return Err(self.input_err(format!(
+                "parameter \"{name}\" is {ty}: the value given does not fit ({n} points)"
+            )));
+        }
         self.param_set.insert(id, v);
         Ok(())
     }
@@ -234,6 +258,12 @@ impl<'a> GridContext<'a> {
     /// Runs the shader over the grid: parameter defaults (in order, each seeing those before
     /// it) where not set, then the body.
     pub fn run(&mut self) -> Result<Stats, ExecError> {
+        if self.n > MAX_POINTS {
+            return Err(self.input_err(format!(
+                "a grid of {} x {} points is over the limit of {MAX_POINTS}",
+                self.nu, self.nv
+            )));
+        }
         self.stats = Stats::default();
         self.printed.clear();
         self.light_cache = None;

@@ -208,7 +208,14 @@ impl GridContext<'_> {
         if self.frames.len() > 256 {
             return Err(self.err_at("function calls nested over 256 deep".into()));
         }
-        self.frames.push(FuncFrame::new(self.n));
+        let mut frame = FuncFrame::new(self.n);
+        // The result has the function's detail from the start, so returns under different
+        // masks each store their points.
+        if func.ret.base != crate::types::BaseType::Void {
+            frame.ret =
+                Some(Value::zero(func.ret, func.ret_detail == crate::Detail::Varying, self.n));
+        }
+        self.frames.push(frame);
         let r = self.exec_block(&func.body, mask);
         let frame = self.frames.pop();
         r?;
