@@ -36,7 +36,7 @@ impl GridContext<'_> {
         let nums: Vec<&Num> = vals.iter().map(Value::num).collect();
         let a = |k: usize| nums.get(k).copied().unwrap_or(&super::value::ZERO1);
         let w_out = super::value::width(e.ty.base);
-        let f1 = |f: fn(f32) -> f32| map_c(n, mask, &[a(0)], move |x| f(x[0]));
+        let f1 = |f: fn(f32) -> f32| super::value::map_c1(n, mask, a(0), f);
         let num = |x: Num| Ok(Value::Num(x));
         match name {
             "radians" => num(f1(|x| x * (PI / 180.0))),
@@ -48,7 +48,7 @@ impl GridContext<'_> {
             "acos" => num(f1(f32::acos)),
             "atan" if nums.len() == 2 => num(map_f(n, mask, &[a(0), a(1)], |x| x[0].atan2(x[1]))),
             "atan" => num(f1(f32::atan)),
-            "pow" => num(map_c(n, mask, &[a(0), a(1)], |x| x[0].powf(x[1]))),
+            "pow" => num(super::value::map_c2(n, mask, a(0), a(1), f32::powf)),
             "exp" => num(f1(f32::exp)),
             "sqrt" => num(f1(f32::sqrt)),
             "inversesqrt" => num(f1(|x| 1.0 / x.sqrt())),

@@ -7,7 +7,7 @@ use crate::ir::{Callee, Expr, ExprKind, Place};
 use crate::types::{BaseType, Type};
 
 use super::space::{mat_inverse, mat_mul};
-use super::value::{self, Mask, Num, Value, map_c, map_n};
+use super::value::{self, Mask, Num, Value, map_c, map_c1, map_c2, map_n};
 use super::{ExecError, GridContext};
 
 impl GridContext<'_> {
@@ -36,8 +36,8 @@ impl GridContext<'_> {
                 let v = self.eval(x, mask)?;
                 let v = v.num();
                 Value::Num(match op {
-                    UnOp::Neg => map_c(n, mask, &[v], |x| -x[0]),
-                    UnOp::Not => map_c(n, mask, &[v], |x| if x[0] == 0.0 { 1.0 } else { 0.0 }),
+                    UnOp::Neg => map_c1(n, mask, v, |x| -x),
+                    UnOp::Not => map_c1(n, mask, v, |x| bool01(x == 0.0)),
                 })
             }
             ExprKind::Binary(op @ (BinOp::And | BinOp::Or), a, b) => {
@@ -316,10 +316,10 @@ pub(crate) fn binary(op: BinOp, a: &Num, b: &Num, n: usize, mask: &Mask) -> Num 
             let y = if op == BinOp::Div { mat_inverse(&y) } else { y };
             o.copy_from_slice(&mat_mul(&x, &y));
         }),
-        BinOp::Add => map_c(n, mask, &[a, b], |x| x[0] + x[1]),
-        BinOp::Sub => map_c(n, mask, &[a, b], |x| x[0] - x[1]),
-        BinOp::Mul => map_c(n, mask, &[a, b], |x| x[0] * x[1]),
-        BinOp::Div => map_c(n, mask, &[a, b], |x| x[0] / x[1]),
+        BinOp::Add => map_c2(n, mask, a, b, |x, y| x + y),
+        BinOp::Sub => map_c2(n, mask, a, b, |x, y| x - y),
+        BinOp::Mul => map_c2(n, mask, a, b, |x, y| x * y),
+        BinOp::Div => map_c2(n, mask, a, b, |x, y| x / y),
         BinOp::Dot => map_n(n, mask, &[a, b], 1, |l, o| {
             o[0] = l[0].iter().zip(l[1]).map(|(x, y)| x * y).sum();
         }),
@@ -338,10 +338,10 @@ pub(crate) fn binary(op: BinOp, a: &Num, b: &Num, n: usize, mask: &Mask) -> Num 
                 o[0] = bool01(eq != ne);
             })
         }
-        BinOp::Lt => map_c(n, mask, &[a, b], |x| bool01(x[0] < x[1])),
-        BinOp::Le => map_c(n, mask, &[a, b], |x| bool01(x[0] <= x[1])),
-        BinOp::Gt => map_c(n, mask, &[a, b], |x| bool01(x[0] > x[1])),
-        BinOp::Ge => map_c(n, mask, &[a, b], |x| bool01(x[0] >= x[1])),
+        BinOp::Lt => map_c2(n, mask, a, b, |x, y| bool01(x < y)),
+        BinOp::Le => map_c2(n, mask, a, b, |x, y| bool01(x <= y)),
+        BinOp::Gt => map_c2(n, mask, a, b, |x, y| bool01(x > y)),
+        BinOp::Ge => map_c2(n, mask, a, b, |x, y| bool01(x >= y)),
         BinOp::And => map_c(n, mask, &[a, b], |x| bool01(x[0] != 0.0 && x[1] != 0.0)),
         BinOp::Or => map_c(n, mask, &[a, b], |x| bool01(x[0] != 0.0 || x[1] != 0.0)),
     }

@@ -45,6 +45,10 @@ pub fn gradient(x: &[f32], period: Option<&[f32]>, seed: u32) -> f32 {
         frac[k] = if x[k].is_finite() { x[k] - f } else { 0.0 };
         per[k] = period.and_then(|p| p.get(k)).map_or(0, |p| p.round().clamp(0.0, 1.0e9) as i32);
     }
+    let mut fades = [0.0f32; 4];
+    for k in 0..d {
+        fades[k] = fade(frac[k]);
+    }
     let mut sum = 0.0;
     for corner in 0..(1u32 << d) {
         let mut cell = [0i32; 4];
@@ -58,8 +62,7 @@ pub fn gradient(x: &[f32], period: Option<&[f32]>, seed: u32) -> f32 {
             }
             cell[k] = c;
             offs[k] = frac[k] - bit as f32;
-            let t = fade(frac[k]);
-            weight *= if bit == 1 { t } else { 1.0 - t };
+            weight *= if bit == 1 { fades[k] } else { 1.0 - fades[k] };
         }
         let h = hash_cell(&cell[..d], seed);
         let mut dotp = 0.0;

@@ -244,6 +244,54 @@ pub fn map_c(n: usize, mask: &Mask, args: &[&Num], f: impl Fn(&[f32]) -> f32) ->
     })
 }
 
+/// A componentwise function of one value, without the generic lane machinery (the common
+/// case: negation, the one-argument math functions).
+pub fn map_c1(n: usize, mask: &Mask, a: &Num, f: impl Fn(f32) -> f32) -> Num {
+    if !a.varying {
+        return Num { w: a.w, varying: false, data: a.data.iter().map(|&x| f(x)).collect() };
+    }
+    let w = a.w;
+    let mut out = Num::zeros(w, true, n);
+    if mask.idx.len() == n {
+        for (o, &x) in out.data.iter_mut().zip(&a.data) {
+            *o = f(x);
+        }
+    } else {
+        for i in mask.iter() {
+            for c in i * w..(i + 1) * w {
+                out.data[c] = f(a.data[c]);
+            }
+        }
+    }
+    out
+}
+
+/// A componentwise function of two values (a float is broadcast to the other's width): the
+/// arithmetic operators.
+pub fn map_c2(n: usize, mask: &Mask, a: &Num, b: &Num, f: impl Fn(f32, f32) -> f32) -> Num {
+    let w = a.w.max(b.w);
+    let step = |x: &Num| usize::from(x.w != 1);
+    let (ca, cb) = (step(a), step(b));
+    if !a.varying && !b.varying {
+        let data = (0..w).map(|c| f(a.data[c * ca], b.data[c * cb])).collect();
+        return Num { w, varying: false, data };
+    }
+    let (sa, sb) = (if a.varying { a.w } else { 0 }, if b.varying { b.w } else { 0 });
+    let mut out = Num::zeros(w, true, n);
+    if mask.idx.len() == n && sa == w && sb == w {
+        for ((o, &x), &y) in out.data.iter_mut().zip(&a.data).zip(&b.data) {
+            *o = f(x, y);
+        }
+        return out;
+    }
+    for i in mask.iter() {
+        for c in 0..w {
+            out.data[i * w + c] = f(a.data[i * sa + c * ca], b.data[i * sb + c * cb]);
+        }
+    }
+    out
+}
+
 /// Writes `src` into `dst` at the active points (a varying destination) or whole (a uniform
 /// one, which takes the first active lane of a varying source).
 pub fn store_num(dst: &mut Num, src: &Num, mask: &Mask, n: usize) {
@@ -259,6 +307,10 @@ pub fn store_num(dst: &mut Num, src: &Num, mask: &Mask, n: usize) {
     }
     if dst.data.len() != dst.w * n {
         *dst = dst.to_varying(n);
+    }
+    if src.varying && src.w == dst.w && mask.idx.len() == n {
+        dst.data.copy_from_slice(&src.data);
+        return;
     }
     for i in mask.iter() {
         let s = src.lane(i);
