@@ -258,3 +258,23 @@ fn pnoise_is_periodic_and_continuous() {
         assert!((o[1] - o[2]).abs() < 0.01, "{i}: continuity {o:?}");
     }
 }
+
+#[test]
+fn open_array_formals_and_categories_of_noise() {
+    // A function taking any length of array passes it whole to spline.
+    let sh = compile(
+        "float through(float x; float k[]) { return spline(\"linear\", x, k); }
+         surface t() { float k[6] = {9, 0, 2, 4, 6, 9}; Ci = through(0.5, k); }",
+    );
+    let mut g = GridContext::new(&sh, 1, 1);
+    g.run().unwrap();
+    // Linear through the interior knots 0 2 4 6 at the middle: 3.
+    let c = g.get_v3("Ci", 0).unwrap();
+    assert!(near(c, [3.0; 3], 1e-6), "{c:?}");
+    // 2D noise and vector/point results: in range, 0.5 on the lattice.
+    let v = one(
+        "vector v = noise(2.0, 3.0); point p = noise(0.25, 0.5); Ci = color(xcomp(v), ycomp(p), noise(4.0));",
+    );
+    assert!(near([v[0], v[2], 0.0], [0.5, 0.5, 0.0], 0.0), "{v:?}");
+    assert!((0.0..=1.0).contains(&v[1]));
+}

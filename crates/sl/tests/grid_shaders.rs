@@ -217,3 +217,29 @@ fn distantlight_through_solar() {
     // Light travels +z, so it comes from -z: full strength on a normal facing -z.
     assert_eq!(g.get_v3("Ci", 0).unwrap(), [1.0; 3]);
 }
+
+#[test]
+fn illuminance_categories() {
+    // Two distant lights, one in category "key": illuminance("key", ...) sees only it.
+    let light = |intensity: f32, cats: Vec<String>| ShaderLight {
+        shader: std_shader("distantlight"),
+        params: vec![("intensity".into(), Value::Num(Num::scalar(intensity)))],
+        spaces: Spaces::default(),
+        categories: cats,
+    };
+    let mut lights =
+        ShaderLights { lights: vec![light(1.0, vec!["key".into()]), light(10.0, vec![])] };
+    let sh = compile(
+        "surface c() {
+            Ci = 0;
+            illuminance(\"key\", P) { Ci += Cl; }
+            illuminance(P) { Oi += Cl; }
+        }",
+    );
+    let mut g = GridContext::new(&sh, 2, 1);
+    g.set_uniform("Os", &[0.0; 3]).unwrap();
+    g.set_lights(&mut lights);
+    g.run().unwrap();
+    assert_eq!(g.get_v3("Ci", 1).unwrap(), [1.0; 3]);
+    assert_eq!(g.get_v3("Oi", 1).unwrap(), [11.0; 3]);
+}

@@ -23,14 +23,13 @@ impl GridContext<'_> {
         name: &str,
         e: &Expr,
         args: &[Expr],
-        options: &[(String, Expr)],
+        _options: &[(String, Expr)],
         mask: &Mask,
     ) -> Result<Value, ExecError> {
         let mut vals = Vec::with_capacity(args.len());
         for a in args {
             vals.push(self.eval(a, mask)?);
         }
-        let _ = options;
         self.at = e.pos;
         let n = self.n;
         let nums: Vec<&Num> = vals.iter().map(Value::num).collect();

@@ -118,7 +118,6 @@ impl GridContext<'_> {
         &mut self,
         category: &str,
         position: &Num,
-        mask: &Mask,
     ) -> Result<Vec<LightSample>, ExecError> {
         if let Some((p, c, s)) = &self.light_cache
             && p == position
@@ -129,7 +128,6 @@ impl GridContext<'_> {
         let normal = self.global_num("N");
         let (nu, nv) = (self.nu, self.nv);
         let all = Mask::all(self.n);
-        let _ = mask;
         let Some(lights) = self.lights.as_deref_mut() else { return Ok(Vec::new()) };
         let q = LightQuery { category, p: position, n: &normal, mask: &all, nu, nv };
         let s = lights.lights(&q)?;
@@ -169,7 +167,7 @@ impl GridContext<'_> {
             }
             None => None,
         };
-        let samples = self.light_samples(&cat, &p, mask)?;
+        let samples = self.light_samples(&cat, &p)?;
         for s in samples.iter().filter(|s| !s.ambient) {
             self.tick()?;
             let m = mask.filter(|i| {
@@ -257,7 +255,7 @@ impl GridContext<'_> {
         mask: &Mask,
     ) -> Result<Num, ExecError> {
         let p = self.global_num("P");
-        let samples = self.light_samples("", &p, mask)?;
+        let samples = self.light_samples("", &p)?;
         let n = self.n;
         let arg = |k: usize| args.get(k).map(|v| v.num().clone()).unwrap_or(Num::scalar(0.0));
         let (nn, v, x) = (arg(0), arg(1), arg(2));

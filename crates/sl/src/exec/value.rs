@@ -327,6 +327,8 @@ pub fn store_num(dst: &mut Num, src: &Num, mask: &Mask, n: usize) {
 pub fn store(dst: &mut Value, src: &Value, mask: &Mask, n: usize) {
     match (dst, src) {
         (Value::Num(d), Value::Num(s)) => store_num(d, s, mask, n),
+        // An open array formal (`float k[]`) takes the actual array whole.
+        (Value::Array(d), Value::Array(s)) if d.len() != s.len() => *d = s.clone(),
         (Value::Array(d), Value::Array(s)) => {
             for (d, s) in d.iter_mut().zip(s) {
                 store(d, s, mask, n);
