@@ -243,3 +243,76 @@ fn illuminance_categories() {
     assert_eq!(g.get_v3("Ci", 1).unwrap(), [1.0; 3]);
     assert_eq!(g.get_v3("Oi", 1).unwrap(), [11.0; 3]);
 }
+
+/// A procedural texture: the mean of the corners' s (texture), or a constant (others); it
+/// records the channel and options it was asked for.
+struct MeanS {
+    seen: Vec<(String, usize, usize)>,
+}
+
+impl reyes_sl::exec::Textures for MeanS {
+    fn lookup(&mut self, q: &reyes_sl::exec::TextureQuery<'_>) -> Result<Num, ExecError> {
+        self.seen.push((q.name.to_string(), q.channel, q.options.len()));
+        let n = q.coords[0].data.len().max(1);
+        let mut out = Num::zeros(q.channels, true, n);
+        for i in q.mask.iter() {
+            let v = match q.kind {
+                reyes_sl::exec::LookupKind::Texture => {
+                    (0..4).map(|k| q.coords[2 * k].f(i)).sum::<f32>() / 4.0
+                }
+                _ => 1.0,
+            };
+            out.lane_mut(i).fill(v);
+        }
+        Ok(out)
+    }
+}
+
+#[test]
+fn texture_footprint_from_derivatives() {
+    // Corners (s, t), (s + Du(s) du, ...), (s + Dv(s) dv, ...), (s + both): with s = u,
+    // Du(s) du = du and Dv(s) = 0, the mean of the corners' s is s + du/2 (exact to rounding).
+    let sh = compile(
+        "surface tx() { Ci = color texture(\"map\"[1], s, t, \"blur\", 0.1); Oi = texture(\"map\"); }",
+    );
+    let (nu, nv) = (5, 3);
+    let mut tex = MeanS { seen: vec![] };
+    let mut g = plane(&sh, nu, nv);
+    g.set_textures(&mut tex);
+    g.run().unwrap();
+    for i in 0..nu * nv {
+        let (s, _) = uv(i, nu, nv);
+        let c = g.get_v3("Ci", i).unwrap();
+        assert!(close(c[0], s + 0.125, 1e-6), "{i}: {c:?}");
+        assert!(close(g.get_v3("Oi", i).unwrap()[0], s + 0.125, 1e-6));
+    }
+    drop(g);
+    assert_eq!(tex.seen[0], ("map".to_string(), 1, 1));
+    assert_eq!(tex.seen[1], ("map".to_string(), 0, 0));
+    // Without a callback, a lookup is an error of the run naming the shader.
+    let mut g = plane(&sh, nu, nv);
+    assert!(g.run().unwrap_err().to_string().contains("needs a texture callback"));
+}
+
+#[test]
+fn bumpy_displaces_along_the_normal() {
+    // The map is the mean of the footprint's s, so amp = Km (s + du/2), and P moves along
+    // N = +z by it.
+    let sh = std_shader("bumpy");
+    let (nu, nv) = (5, 5);
+    let mut tex = MeanS { seen: vec![] };
+    let mut g = plane(&sh, nu, nv);
+    g.set_textures(&mut tex);
+    g.set_param("texturename", Value::Str("bumps".into())).unwrap();
+    g.set_param("Km", Value::Num(Num::scalar(0.5))).unwrap();
+    g.run().unwrap();
+    for i in 0..nu * nv {
+        let (u, v) = uv(i, nu, nv);
+        let p = g.get_v3("P", i).unwrap();
+        let amp = 0.5 * (u + 0.125);
+        assert!(close(p[2], amp, 1e-6) && p[0] == W * u && p[1] == H * v, "{i}: {p:?}");
+    }
+    // N = calculatenormal(P) = Du(P) ^ Dv(P) with Du(P) = (W, 0, 0.5): N = (-0.5 H, 0, W H).
+    let n = g.get_v3("N", 12).unwrap();
+    assert!(close(n[0], -0.5 * H, 1e-4) && close(n[2], W * H, 1e-4) && n[1].abs() < 1e-5, "{n:?}");
+}

@@ -149,6 +149,15 @@ impl GridContext<'_> {
             ExprKind::Call { callee: Callee::User(f), args, .. } => {
                 self.call_user(*f, args, e, mask)?
             }
+            ExprKind::Call { callee: Callee::Builtin { name, .. }, args, options, channel }
+                if matches!(*name, "texture" | "environment" | "shadow") =>
+            {
+                let mut vals = Vec::with_capacity(args.len());
+                for a in args {
+                    vals.push(self.eval(a, mask)?);
+                }
+                self.texture_call(name, e, &vals, channel.as_deref(), options, mask)?
+            }
             ExprKind::Call { callee: Callee::Builtin { name, .. }, args, options, .. } => {
                 self.builtin(name, e, args, options, mask)?
             }

@@ -25,6 +25,7 @@ mod noise;
 pub mod space;
 mod stmt;
 mod strings;
+pub mod texture;
 pub mod value;
 
 use std::collections::HashMap;
@@ -35,6 +36,7 @@ use crate::types::{Detail, ShaderKind};
 
 pub use light::{LightQuery, LightSample, Lights, ShaderLight, ShaderLights};
 pub use space::Spaces;
+pub use texture::{LookupKind, TextureQuery, Textures};
 pub use value::{Mask, Num, Value};
 
 /// The default instruction budget per grid: IR nodes evaluated (each counts once, whether
@@ -103,6 +105,7 @@ pub struct GridContext<'a> {
     pub(crate) param_set: HashMap<usize, Value>,
     pub(crate) spaces: Spaces,
     pub(crate) lights: Option<&'a mut dyn Lights>,
+    pub(crate) textures: Option<&'a mut dyn Textures>,
     pub(crate) budget: u64,
     pub(crate) stats: Stats,
     pub(crate) frames: Vec<stmt::FuncFrame>,
@@ -127,6 +130,7 @@ impl<'a> GridContext<'a> {
             param_set: HashMap::new(),
             spaces: Spaces::default(),
             lights: None,
+            textures: None,
             budget: DEFAULT_BUDGET,
             stats: Stats::default(),
             frames: Vec::new(),
@@ -161,6 +165,11 @@ impl<'a> GridContext<'a> {
     /// Sets the light callback `illuminance`, `ambient`, `diffuse`, `specular` and `phong` use.
     pub fn set_lights(&mut self, lights: &'a mut dyn Lights) {
         self.lights = Some(lights);
+    }
+
+    /// Sets the texture callback `texture`, `environment` and `shadow` use.
+    pub fn set_textures(&mut self, textures: &'a mut dyn Textures) {
+        self.textures = Some(textures);
     }
 
     /// The lines `printf` wrote during the last run.
