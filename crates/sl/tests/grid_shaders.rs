@@ -34,6 +34,7 @@ impl Lights for TestLights {
                 cl: Num::uniform(&self.amb),
                 ol: Num::zeros(3, false, n),
                 lit: all.clone(),
+                outputs: vec![],
             },
             LightSample {
                 ambient: false,
@@ -41,6 +42,7 @@ impl Lights for TestLights {
                 cl: Num::uniform(&self.col),
                 ol: Num::zeros(3, false, n),
                 lit: all,
+                outputs: vec![],
             },
         ])
     }
@@ -315,4 +317,53 @@ fn bumpy_displaces_along_the_normal() {
     // N = calculatenormal(P) = Du(P) ^ Dv(P) with Du(P) = (W, 0, 0.5): N = (-0.5 H, 0, W H).
     let n = g.get_v3("N", 12).unwrap();
     assert!(close(n[0], -0.5 * H, 1e-4) && close(n[2], W * H, 1e-4) && n[1].abs() < 1e-5, "{n:?}");
+}
+
+#[test]
+fn lightsource_messages_and_nonspecular() {
+    // A light with an output parameter and __nonspecular: the surface reads the message in
+    // illuminance, and specular() leaves the light out while diffuse() does not.
+    let light = compile(
+        "light msg(float __nonspecular = 1; output float tag = 7;) {
+            solar(vector(0, 0, 1), 0) { Cl = 1; }
+        }",
+    );
+    let mut lights = ShaderLights {
+        lights: vec![ShaderLight {
+            shader: light,
+            params: vec![],
+            spaces: Spaces::default(),
+            categories: vec![],
+        }],
+    };
+    let sh = compile(
+        "surface s() {
+            float tag = 0, got = 0;
+            illuminance(P) { got = lightsource(\"tag\", tag); }
+            normal n = normal(0, 0, -1);
+            Ci = color(tag, got, 0) + diffuse(n) * color(0, 0, 1);
+            Oi = specular(n, vector(0, 0, -1), 0.1);
+        }",
+    );
+    let mut g = GridContext::new(&sh, 2, 2);
+    g.set_lights(&mut lights);
+    g.run().unwrap();
+    assert_eq!(g.get_v3("Ci", 0).unwrap(), [7.0, 1.0, 1.0]);
+    assert_eq!(g.get_v3("Oi", 0).unwrap(), [0.0; 3]);
+}
+
+#[test]
+fn depthcue_blends_with_depth() {
+    // "camera" is "current" here and the clipping range 0..10, so depth(P) = z / 10 = 0.5 at
+    // z = 5; with the defaults (distances 0 and 1, background black) Ci = mix(Ci, 0, 0.5) and
+    // Oi = mix(Oi, 1, 0.5): halves, exact.
+    let sh = std_shader("depthcue");
+    let mut g = GridContext::new(&sh, 2, 1);
+    g.set_spaces(Spaces { clipping: Some((0.0, 10.0)), ..Spaces::default() });
+    g.set_uniform("P", &[0.0, 0.0, 5.0]).unwrap();
+    g.set_uniform("Ci", &[1.0, 0.5, 0.25]).unwrap();
+    g.set_uniform("Oi", &[0.0; 3]).unwrap();
+    g.run().unwrap();
+    assert_eq!(g.get_v3("Ci", 1).unwrap(), [0.5, 0.25, 0.125]);
+    assert_eq!(g.get_v3("Oi", 1).unwrap(), [0.5; 3]);
 }

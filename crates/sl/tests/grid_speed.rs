@@ -22,6 +22,7 @@ impl Lights for OneLight {
             cl: Num::uniform(&[1.0; 3]),
             ol: Num::zeros(3, false, n),
             lit: vec![true; n],
+            outputs: vec![],
         }])
     }
 }

@@ -168,7 +168,13 @@ impl GridContext<'_> {
             "transform" | "vtransform" | "ntransform" => {
                 self.transform(e.ty.base, args, &vals, mask)
             }
-            "depth" => num(map_n(n, mask, &[a(0)], 1, |l, o| o[0] = l[0][2])),
+            "depth" => {
+                let to_cam = mat_inverse(&self.space("camera")?);
+                let (near, far) = self.spaces.clipping.unwrap_or((0.0, 1.0));
+                num(map_n(n, mask, &[a(0)], 1, |l, o| {
+                    o[0] = (space::xform_point(&to_cam, v3(l[0]))[2] - near) / (far - near)
+                }))
+            }
             "comp" if nums.len() == 3 => num(map_n(n, mask, &nums, 1, |l, o| {
                 o[0] = l[0][cidx(l[1][0], 4) * 4 + cidx(l[2][0], 4)]
             })),
@@ -238,8 +244,9 @@ impl GridContext<'_> {
                 self.string_fn(name, args, &vals, mask)
             }
             "spline" => Ok(self.spline(args, &vals, w_out, mask)),
-            "atmosphere" | "displacement" | "lightsource" | "surface" | "incident" | "opposite"
-            | "attribute" | "option" | "rendererinfo" | "textureinfo" => num(Num::scalar(0.0)),
+            "lightsource" => self.lightsource(args, &vals, mask),
+            "atmosphere" | "displacement" | "surface" | "incident" | "opposite" | "attribute"
+            | "option" | "rendererinfo" | "textureinfo" => num(Num::scalar(0.0)),
             _ => Err(self.err_at(format!("\"{name}\" is not available in the grid machine yet"))),
         }
     }

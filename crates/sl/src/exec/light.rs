@@ -44,6 +44,10 @@ pub struct LightSample {
     pub ol: Num,
     /// Per point, whether the light reached it.
     pub lit: Vec<bool>,
+    /// The light's `output` parameters, for `lightsource("name", var)` in `illuminance`
+    /// (`__nondiffuse` and `__nonspecular`, when non-zero, keep the light out of `diffuse`,
+    /// and out of `specular` and `phong`).
+    pub outputs: Vec<(String, Value)>,
 }
 
 /// The renderer's side: the lights reaching a grid.
@@ -102,6 +106,21 @@ impl Lights for ShaderLights {
                 cl: g.global_num("Cl"),
                 ol: g.global_num("Ol"),
                 lit: if ambient { q.mask.on.clone() } else { rec.lit },
+                outputs: light
+                    .shader
+                    .params
+                    .iter()
+                    .filter(|&&id| {
+                        matches!(
+                            light.shader.vars[id].kind,
+                            crate::ir::VarKind::Param { output: true, .. }
+                        ) || light.shader.vars[id].name.starts_with("__")
+                    })
+                    .filter_map(|&id| {
+                        let name = &light.shader.vars[id].name;
+                        Some((name.clone(), g.param(name)?.clone()))
+                    })
+                    .collect(),
             });
         }
         Ok(out)
@@ -187,7 +206,10 @@ impl GridContext<'_> {
             self.set_global_masked("L", &l, &m);
             self.set_global_masked("Cl", &s.cl, &m);
             self.set_global_masked("Ol", &s.ol, &m);
-            self.exec_block(body, &m)?;
+            let outer = self.current_light.replace(s.outputs.clone());
+            let r = self.exec_block(body, &m);
+            self.current_light = outer;
+            r?;
         }
         Ok(())
     }
@@ -247,6 +269,29 @@ impl GridContext<'_> {
         Ok(())
     }
 
+    /// `lightsource("name", var)` inside `illuminance`: the current light's output parameter
+    /// `name` into `var`; 1 if it has one, else 0 (and `var` unchanged).
+    pub(crate) fn lightsource(
+        &mut self,
+        args: &[Expr],
+        vals: &[Value],
+        mask: &Mask,
+    ) -> Result<Value, ExecError> {
+        let key = vals.first().map(Value::str).unwrap_or("");
+        let found = self
+            .current_light
+            .as_ref()
+            .and_then(|o| o.iter().find(|(k, _)| k == key).map(|(_, v)| v.clone()));
+        let hit = match (found, args.get(1)) {
+            (Some(v), Some(place)) if same_shape(&v, &vals[1]) => {
+                self.write_place(place, &v, mask)?;
+                1.0
+            }
+            _ => 0.0,
+        };
+        Ok(Value::Num(Num::scalar(hit)))
+    }
+
     /// `ambient`, `diffuse`, `specular`, `phong`: sums over the lights at the global `P`.
     pub(crate) fn lighting(
         &mut self,
@@ -264,8 +309,14 @@ impl GridContext<'_> {
             if (name == "ambient") != s.ambient {
                 continue;
             }
+            let flag = |key: &str| s.outputs.iter().find(|(k, _)| k == key).map(|(_, v)| v.num());
+            let skip = match name {
+                "diffuse" => flag("__nondiffuse"),
+                "specular" | "phong" => flag("__nonspecular"),
+                _ => None,
+            };
             for i in mask.iter() {
-                if !s.lit.get(i).copied().unwrap_or(false) {
+                if !s.lit.get(i).copied().unwrap_or(false) || skip.is_some_and(|f| f.f(i) != 0.0) {
                     continue;
                 }
                 let cl = s.cl.v3(i);
@@ -306,4 +357,14 @@ pub fn specularbrdf(l: V3, n: V3, v: V3, roughness: f32) -> f32 {
         super::geom::normalize(v),
     ));
     dot(super::geom::normalize(n), h).max(0.0).powf(1.0 / roughness)
+}
+
+/// Whether a message's value fits the variable it is read into (same kind and width).
+fn same_shape(a: &Value, b: &Value) -> bool {
+    match (a, b) {
+        (Value::Num(x), Value::Num(y)) => x.w == y.w,
+        (Value::Str(_), Value::Str(_)) => true,
+        (Value::Array(x), Value::Array(y)) => x.len() == y.len(),
+        _ => false,
+    }
 }

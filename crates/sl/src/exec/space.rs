@@ -26,6 +26,9 @@ pub const IDENTITY: Mat = [1., 0., 0., 0., 0., 1., 0., 0., 0., 0., 1., 0., 0., 0
 pub struct Spaces {
     /// Name to the matrix taking that space's points to "current".
     pub to_current: HashMap<String, Mat>,
+    /// The camera's near and far clipping distances: `depth(P)` is 0 at near and 1 at far
+    /// (without them, `depth` is the camera-space z).
+    pub clipping: Option<(f32, f32)>,
 }
 
 impl Spaces {
