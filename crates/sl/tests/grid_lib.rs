@@ -162,6 +162,11 @@ fn matrices() {
     let i = one("matrix m = rotate(matrix 1, 0.7, vector(1, 2, 3)); matrix k = m / m;
          Ci = color(comp(k, 0, 0), comp(k, 0, 1), comp(k, 3, 3));");
     assert!(near(i, [1.0, 0.0, 1.0], 1e-6), "{i:?}");
+    // inverse (an extension; m / m is the Specification's way): m * inverse(m) = 1.
+    let j = one("matrix m = translate(rotate(matrix 1, 0.3, vector(0, 1, 0)), vector(1, 2, 3));
+         matrix k = m * inverse(m);
+         Ci = color(comp(k, 1, 1), comp(k, 3, 0), comp(k, 2, 2));");
+    assert!(near(j, [1.0, 0.0, 1.0], 1e-6), "{j:?}");
 }
 
 #[test]

@@ -208,6 +208,9 @@ impl GridContext<'_> {
                     o.copy_from_slice(&space::rgb_to_color(to, rgb).unwrap_or([0.0; 3]));
                 }))
             }
+            "inverse" => num(map_n(n, mask, &[a(0)], 16, |l, o| {
+                o.copy_from_slice(&mat_inverse(&mat16(l[0])))
+            })),
             "determinant" => num(map_n(n, mask, &[a(0)], 1, |l, o| o[0] = mat_det(&mat16(l[0])))),
             "translate" | "rotate" | "scale" => num(map_n(n, mask, &nums, 16, |l, o| {
                 let m = mat16(l[0]);
@@ -291,8 +294,9 @@ impl GridContext<'_> {
             // A varying matrix: point by point.
             None => {
                 let mv = vals[k - 2].num();
+                let from = if k == 3 { self.space(vals[0].str())? } else { space::IDENTITY };
                 Ok(Value::Num(map_n(n, mask, &[mv, p], 3, |l, o| {
-                    let m = mat16(l[0]);
+                    let m = mat_mul(&from, &mat16(l[0]));
                     let q = v3(l[1]);
                     o.copy_from_slice(&match base {
                         BaseType::Point => space::xform_point(&m, q),
