@@ -179,3 +179,13 @@ proptest! {
         run(VALID, nu.max(2), nv, Some(x));
     }
 }
+
+#[test]
+fn huge_arrays_are_refused() {
+    let sh = compile("surface big() { float a[1000000]; a[s] = 1; Ci = a[0]; }");
+    let e = plane(&sh, 16, 16).run().unwrap_err().to_string();
+    assert!(
+        e.starts_with("shader \"big\": its variables need") && e.contains("over the limit"),
+        "{e}"
+    );
+}

@@ -46,6 +46,10 @@ pub const DEFAULT_BUDGET: u64 = 50_000_000;
 /// The most points a grid may have (a dicer makes grids of hundreds; this bounds memory).
 pub const MAX_POINTS: usize = 1 << 24;
 
+/// The most floats a run's variables may take (256 MB), so a shader declaring a huge varying
+/// array is refused instead of exhausting memory.
+pub const MAX_FLOATS: usize = 1 << 26;
+
 /// An error of a run. Its message names the shader.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum ExecError {
@@ -275,11 +279,27 @@ impl<'a> GridContext<'a> {
                 self.nu, self.nv
             )));
         }
+        let sh = self.shader;
+        let need: u128 = sh
+            .vars
+            .iter()
+            .map(|v| {
+                let lanes = if v.detail == Detail::Varying { self.n } else { 1 };
+                u128::from(v.ty.array.unwrap_or(1).max(1))
+                    * value::width(v.ty.base) as u128
+                    * lanes as u128
+            })
+            .sum();
+        if need > MAX_FLOATS as u128 {
+            return Err(self.input_err(format!(
+                "its variables need {need} floats on a {} x {} grid, over the limit of {MAX_FLOATS}",
+                self.nu, self.nv
+            )));
+        }
         self.stats = Stats::default();
         self.printed.clear();
         self.light_cache = None;
         self.init_globals();
-        let sh = self.shader;
         let n = self.n;
         self.vars =
             sh.vars.iter().map(|v| Value::zero(v.ty, v.detail == Detail::Varying, n)).collect();
