@@ -189,3 +189,23 @@ fn huge_arrays_are_refused() {
         "{e}"
     );
 }
+
+#[test]
+fn doubling_strings_are_capped() {
+    let sh = compile(
+        "surface s() { string x = \"ab\"; float i; for (i = 0; i < 40; i += 1) x = concat(x, x); Ci = match(\"b$\", x); }",
+    );
+    let mut g = GridContext::new(&sh, 2, 2);
+    g.run().unwrap();
+    assert_eq!(g.get_v3("Ci", 0).unwrap(), [1.0; 3]);
+}
+
+#[test]
+fn long_patterns_do_not_overflow() {
+    let sh = compile(
+        "surface s() { string x = \"a\"; float i; for (i = 0; i < 20; i += 1) x = concat(x, x); Ci = match(x, x) + match(\"a*a*a*a*a*a*a*a*a*a*a*b\", x); }",
+    );
+    let mut g = GridContext::new(&sh, 1, 1);
+    g.run().unwrap();
+    assert_eq!(g.get_v3("Ci", 0).unwrap(), [0.0; 3]);
+}

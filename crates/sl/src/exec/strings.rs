@@ -3,7 +3,8 @@
 //! Strings are uniform: `format` of a varying value formats its first active point; `printf`
 //! with a varying argument writes one line per active point. `match` is a small regular
 //! expression matcher written here: literals, `.`, `[...]` (ranges, `^` negation), `*`, `+`,
-//! `?`, `^`, `$`, `\` escapes; it finds the pattern anywhere in the subject.
+//! `?`, `^`, `$`, `\` escapes; it finds the pattern anywhere in the subject. Strings a run
+//! makes are at most [`MAX_STRING`] bytes.
 
 use crate::ir::Expr;
 use crate::types::BaseType;
@@ -21,13 +22,13 @@ impl GridContext<'_> {
     ) -> Result<Value, ExecError> {
         let first = mask.idx.first().map_or(0, |&i| i as usize);
         Ok(match name {
-            "concat" => Value::Str(vals.iter().map(Value::str).collect()),
+            "concat" => Value::Str(cap(vals.iter().map(Value::str).collect())),
             "shadername" => Value::Str(self.shader.name.clone()),
             "match" => {
                 let hit = regex_find(vals[0].str().as_bytes(), vals[1].str().as_bytes());
                 Value::Num(Num::scalar(if hit { 1.0 } else { 0.0 }))
             }
-            "format" => Value::Str(format_at(vals[0].str(), &args[1..], &vals[1..], first)),
+            "format" => Value::Str(cap(format_at(vals[0].str(), &args[1..], &vals[1..], first))),
             _ => {
                 let lanes: Vec<usize> = if vals.iter().any(Value::varying) {
                     mask.iter().collect()
@@ -35,7 +36,7 @@ impl GridContext<'_> {
                     vec![first]
                 };
                 for i in lanes {
-                    let line = format_at(vals[0].str(), &args[1..], &vals[1..], i);
+                    let line = cap(format_at(vals[0].str(), &args[1..], &vals[1..], i));
                     if self.printed.len() < 10_000 {
                         self.printed.push(line);
                     }
@@ -80,6 +81,21 @@ impl GridContext<'_> {
         }
         Value::Num(out)
     }
+}
+
+/// The longest string a run makes (1 MiB): `s = concat(s, s)` in a loop cannot exhaust
+/// memory; longer results are cut (at a character boundary).
+pub const MAX_STRING: usize = 1 << 20;
+
+fn cap(mut s: String) -> String {
+    if s.len() > MAX_STRING {
+        let mut k = MAX_STRING;
+        while !s.is_char_boundary(k) {
+            k -= 1;
+        }
+        s.truncate(k);
+    }
+    s
 }
 
 /// One component of a spline through knots `k` at `x` in [0, 1] (clamped).
@@ -177,14 +193,14 @@ fn format_at(fmt: &str, args: &[Expr], vals: &[Value], lane: usize) -> String {
 }
 
 /// Whether pattern `p` matches somewhere in `s`.
-/// The search gives up (no match) after a million steps, so a pattern like `a*a*a*a*b`
-/// cannot stall a grid.
+/// The search gives up (no match) after `4 * (2^20 + len)` steps, so a pattern like
+/// `a*a*a*a*b` cannot stall a grid (a plain pattern over a long subject stays well inside).
 pub fn regex_find(p: &[u8], s: &[u8]) -> bool {
-    let mut steps = 0u32;
+    let mut steps = 4 * ((1u64 << 20) + s.len() as u64);
     if let Some(rest) = p.strip_prefix(b"^") {
-        return match_here(rest, s, &mut steps);
+        return match_here(rest, s, &mut steps, 0);
     }
-    (0..=s.len()).any(|k| match_here(p, &s[k..], &mut steps))
+    (0..=s.len()).any(|k| match_here(p, &s[k..], &mut steps, 0))
 }
 
 /// One pattern atom: its length in the pattern, and whether it takes byte `c`.
@@ -216,11 +232,13 @@ fn atom(p: &[u8], c: u8) -> (usize, bool) {
     }
 }
 
-fn match_here(p: &[u8], s: &[u8], steps: &mut u32) -> bool {
-    *steps += 1;
-    if *steps > 1_000_000 {
+fn match_here(p: &[u8], s: &[u8], steps: &mut u64, depth: u32) -> bool {
+    // Each level matches one atom: a pattern of more than 2000 atoms does not match (and
+    // cannot overflow the stack).
+    if *steps == 0 || depth > 2000 {
         return false;
     }
+    *steps -= 1;
     if p.is_empty() {
         return true;
     }
@@ -239,8 +257,8 @@ fn match_here(p: &[u8], s: &[u8], steps: &mut u32) -> bool {
                 k += 1;
             }
             let min = usize::from(rep == Some(b'+'));
-            (min..=k).rev().any(|j| match_here(rest, &s[j..], steps))
+            (min..=k).rev().any(|j| match_here(rest, &s[j..], steps, depth + 1))
         }
-        _ => !s.is_empty() && takes(s[0]) && match_here(&p[len..], &s[1..], steps),
+        _ => !s.is_empty() && takes(s[0]) && match_here(&p[len..], &s[1..], steps, depth + 1),
     }
 }
