@@ -209,3 +209,17 @@ fn long_patterns_do_not_overflow() {
     g.run().unwrap();
     assert_eq!(g.get_v3("Ci", 0).unwrap(), [0.0; 3]);
 }
+
+#[test]
+fn deep_nesting_runs_within_the_stack() {
+    // As deep as the checker allows: expressions 120 parentheses deep, varying ifs 200 deep, run on a
+    // test thread's small stack.
+    let e = format!("{}s{}", "(1 + ".repeat(120), ")".repeat(120));
+    let ifs = format!("{} Ci = 1;", "if (s > 0.1) ".repeat(200));
+    for body in [format!("Ci = {e};"), ifs] {
+        let src = format!("surface d() {{ {body} }}");
+        let sh = compile_str("d.sl", &src, &[]).unwrap_or_else(|e| panic!("{e}"));
+        let mut g = plane(&sh, 3, 3);
+        g.run().unwrap();
+    }
+}

@@ -192,6 +192,20 @@ fn spotlight_cone_and_illuminance_cone() {
             // The axis: cos = 1, distance 1, smoothstep 1: Cl = 1.
             assert!(close(c, 1.0, 1e-5), "{c}");
         }
+        // Everywhere the spotlight's formula: cos^2 / d^2 times the smooth edge (a dozen f32
+        // operations on values near 1: 1e-5).
+        let d2 = r * r + 1.0;
+        let cos = 1.0 / d2.sqrt();
+        let (c0, c1) = (30f32.to_radians().cos(), 25f32.to_radians().cos());
+        let edge = if cos < c0 {
+            0.0
+        } else if cos >= c1 {
+            1.0
+        } else {
+            let x = (cos - c0) / (c1 - c0);
+            x * x * (3.0 - 2.0 * x)
+        };
+        assert!(close(c, cos * cos / d2 * edge, 1e-5), "{i}: {c} vs {}", cos * cos / d2 * edge);
     }
     // The illuminance cone: from +z nothing is lit.
     let sh2 =
