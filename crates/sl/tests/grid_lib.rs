@@ -191,7 +191,7 @@ fn strings() {
     let sh = compile(
         "surface t() {
             string a = concat(\"ab\", \"cd\");
-            string f = format(\"%s=%.2f %d\", a, 0.5, 7);
+            string f = format(\"%s=%.2f %d[%5.1f|%-4d|%03d]\", a, 0.5, 7, 2.25, 3, -4);
             printf(\"%s|%f\\n\", f, s);
             Ci = color(match(\"^a.c+d$\", a), match(\"[x-z]\", a), match(\"b\", a));
         }",
@@ -200,7 +200,10 @@ fn strings() {
     g.set_varying("s", &[1.0, 2.0]).unwrap();
     g.run().unwrap();
     assert_eq!(g.get_v3("Ci", 0).unwrap(), [1.0, 0.0, 1.0]);
-    assert_eq!(g.printed(), ["abcd=0.50 7|1.000000\n", "abcd=0.50 7|2.000000\n"]);
+    assert_eq!(
+        g.printed(),
+        ["abcd=0.50 7[  2.2|3   |-04]|1.000000\n", "abcd=0.50 7[  2.2|3   |-04]|2.000000\n"]
+    );
 }
 
 #[test]
@@ -282,4 +285,30 @@ fn open_array_formals_and_categories_of_noise() {
     );
     assert!(near([v[0], v[2], 0.0], [0.5, 0.5, 0.0], 0.0), "{v:?}");
     assert!((0.0..=1.0).contains(&v[1]));
+}
+
+#[test]
+fn message_passing_from_the_renderer() {
+    let sh = compile(
+        "surface m() {
+            float kd = 0, fov = 0, missing = 5;
+            string name = \"\";
+            float a = surface(\"Kd\", kd) + option(\"fov\", fov) + attribute(\"none\", missing);
+            float b = rendererinfo(\"renderer\", name) + textureinfo(\"map.tx\", \"channels\", fov);
+            Ci = color(a, kd + missing, fov); Oi = color(b, match(\"reyes\", name), 0);
+        }",
+    );
+    let mut g = GridContext::new(&sh, 1, 1);
+    g.set_message("surface", "Kd", reyes_sl::exec::Value::Num(reyes_sl::exec::Num::scalar(0.5)));
+    g.set_message("option", "fov", reyes_sl::exec::Value::Num(reyes_sl::exec::Num::scalar(45.0)));
+    g.set_message("rendererinfo", "renderer", reyes_sl::exec::Value::Str("reyes-render".into()));
+    g.set_message(
+        "textureinfo",
+        "map.tx:channels",
+        reyes_sl::exec::Value::Num(reyes_sl::exec::Num::scalar(3.0)),
+    );
+    g.run().unwrap();
+    // Two answers found (Kd, fov), one not (missing keeps 5); then renderer and channels.
+    assert_eq!(g.get_v3("Ci", 0).unwrap(), [2.0, 5.5, 3.0]);
+    assert_eq!(g.get_v3("Oi", 0).unwrap(), [2.0, 1.0, 0.0]);
 }

@@ -249,7 +249,7 @@ impl GridContext<'_> {
             "spline" => Ok(self.spline(args, &vals, w_out, mask)),
             "lightsource" => self.lightsource(args, &vals, mask),
             "atmosphere" | "displacement" | "surface" | "incident" | "opposite" | "attribute"
-            | "option" | "rendererinfo" | "textureinfo" => num(Num::scalar(0.0)),
+            | "option" | "rendererinfo" | "textureinfo" => self.message(name, args, &vals, mask),
             _ => Err(self.err_at(format!("\"{name}\" is not available in the grid machine yet"))),
         }
     }

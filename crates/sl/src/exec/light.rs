@@ -282,8 +282,40 @@ impl GridContext<'_> {
             .current_light
             .as_ref()
             .and_then(|o| o.iter().find(|(k, _)| k == key).map(|(_, v)| v.clone()));
+        self.deliver(found, args, vals, mask)
+    }
+
+    /// `surface`, `displacement`, `atmosphere`, `incident`, `opposite`, `attribute`, `option`,
+    /// `rendererinfo`, `textureinfo`: the value the renderer gave with
+    /// [`GridContext::set_message`] under this function's name (`textureinfo`: the map's
+    /// name and the field, joined by `:`), into the output argument; 1 if found, else 0.
+    pub(crate) fn message(
+        &mut self,
+        name: &str,
+        args: &[Expr],
+        vals: &[Value],
+        mask: &Mask,
+    ) -> Result<Value, ExecError> {
+        let key = if name == "textureinfo" {
+            format!("{}:{}", vals[0].str(), vals.get(1).map_or("", Value::str))
+        } else {
+            vals.first().map(Value::str).unwrap_or("").to_string()
+        };
+        let found = self.messages.get(&(name.to_string(), key)).cloned();
+        let (args, vals) =
+            if name == "textureinfo" { (&args[1..], &vals[1..]) } else { (args, vals) };
+        self.deliver(found, args, vals, mask)
+    }
+
+    fn deliver(
+        &mut self,
+        found: Option<Value>,
+        args: &[Expr],
+        vals: &[Value],
+        mask: &Mask,
+    ) -> Result<Value, ExecError> {
         let hit = match (found, args.get(1)) {
-            (Some(v), Some(place)) if same_shape(&v, &vals[1]) => {
+            (Some(v), Some(place)) if vals.get(1).is_some_and(|w| same_shape(&v, w)) => {
                 self.write_place(place, &v, mask)?;
                 1.0
             }

@@ -116,6 +116,7 @@ pub struct GridContext<'a> {
     pub(crate) light_cache: Option<(Num, String, Vec<LightSample>)>,
     pub(crate) light_out: Option<light::LightRecord>,
     pub(crate) current_light: Option<Vec<(String, Value)>>,
+    pub(crate) messages: HashMap<(String, String), Value>,
     pub(crate) random_state: u64,
     pub(crate) printed: Vec<String>,
     pub(crate) at: crate::error::Pos,
@@ -142,6 +143,7 @@ impl<'a> GridContext<'a> {
             light_cache: None,
             light_out: None,
             current_light: None,
+            messages: HashMap::new(),
             random_state: 0x9e37_79b9_7f4a_7c15,
             printed: Vec::new(),
             at: crate::error::Pos::default(),
@@ -176,6 +178,14 @@ impl<'a> GridContext<'a> {
     /// Sets the texture callback `texture`, `environment` and `shadow` use.
     pub fn set_textures(&mut self, textures: &'a mut dyn Textures) {
         self.textures = Some(textures);
+    }
+
+    /// Gives the answer to a message-passing or information call: `function` is `surface`,
+    /// `displacement`, `atmosphere`, `incident`, `opposite`, `attribute`, `option`,
+    /// `rendererinfo` or `textureinfo`, `name` the name asked (`textureinfo`: `"map:field"`).
+    /// A call with no answer returns 0 and leaves its variable alone.
+    pub fn set_message(&mut self, function: &str, name: &str, v: Value) {
+        self.messages.insert((function.to_string(), name.to_string()), v);
     }
 
     /// The lines `printf` wrote during the last run.

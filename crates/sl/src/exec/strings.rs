@@ -162,22 +162,46 @@ fn format_at(fmt: &str, args: &[Expr], vals: &[Value], lane: usize) -> String {
         let Some(ch) = fmt[i..].chars().next() else { break };
         i += ch.len_utf8();
         let conv = if ch.is_ascii() { ch as u8 } else { b'?' };
-        let prec = spec.split('.').nth(1).and_then(|p| p.parse::<usize>().ok());
+        // Flags `-` (left) and `0` (zero padding), a width and a precision, each capped so a
+        // hostile format cannot ask for a huge string.
+        let prec = spec.split('.').nth(1).and_then(|p| p.parse::<usize>().ok()).map(|p| p.min(64));
+        let head = spec.split('.').next().unwrap_or("");
+        let left = head.contains('-');
+        let digits = head.trim_start_matches(['-', '+', ' ', '#', '0']);
+        let zero = head.trim_start_matches(['-', '+', ' ', '#']).starts_with('0') && !left;
+        let width = digits.parse::<usize>().unwrap_or(0).min(256);
+        let pad = |t: String, numeric: bool| {
+            let len = t.chars().count();
+            if len >= width {
+                t
+            } else if left {
+                format!("{t}{}", " ".repeat(width - len))
+            } else if zero && numeric {
+                let (sign, rest) =
+                    if let Some(r) = t.strip_prefix('-') { ("-", r) } else { ("", &t[..]) };
+                format!("{sign}{}{rest}", "0".repeat(width - len))
+            } else {
+                format!("{}{t}", " ".repeat(width - len))
+            }
+        };
         if conv == b'%' {
             out.push('%');
             continue;
         }
         let Some((v, _)) = it.next() else { continue };
-        let f = |x: f32| match (conv, prec) {
-            (b'd' | b'i', _) => format!("{}", x as i64),
-            (b'e', Some(p)) => format!("{x:.p$e}"),
-            (b'e', None) => format!("{x:e}"),
-            (_, Some(p)) => format!("{x:.p$}"),
-            (b'f', None) => format!("{x:.6}"),
-            _ => format!("{x}"),
+        let f = |x: f32| {
+            let t = match (conv, prec) {
+                (b'd' | b'i', _) => format!("{}", x as i64),
+                (b'e', Some(p)) => format!("{x:.p$e}"),
+                (b'e', None) => format!("{x:e}"),
+                (_, Some(p)) => format!("{x:.p$}"),
+                (b'f', None) => format!("{x:.6}"),
+                _ => format!("{x}"),
+            };
+            pad(t, true)
         };
         match v {
-            Value::Str(s) => out.push_str(s),
+            Value::Str(s) => out.push_str(&pad(s.clone(), false)),
             Value::Num(x) => {
                 let l = x.lane(lane);
                 let parts: Vec<String> = l.iter().map(|&c| f(c)).collect();
