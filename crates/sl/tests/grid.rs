@@ -310,19 +310,25 @@ fn returns_under_different_masks() {
 
 #[test]
 fn parameter_values_are_checked() {
-    let sh =
-        common::compile("surface p(color c = 1; float a[2] = {1, 2}; string m = \"\") { Ci = c; }");
+    let sh = common::compile(
+        "surface p(color c = 1; float a[2] = {1, 2}; string m = \"\"; varying color vc = 0;) {
+            Ci = c + vc;
+        }",
+    );
     let mut g = GridContext::new(&sh, 2, 2);
     assert!(g.set_param("c", Value::Num(Num::uniform(&[1.0, 2.0]))).is_err());
     assert!(g.set_param("c", Value::Num(Num { w: 3, varying: true, data: vec![0.0; 9] })).is_err());
     assert!(g.set_param("c", Value::Str("x".into())).is_err());
     assert!(g.set_param("a", Value::Num(Num::scalar(1.0))).is_err());
+    // c is uniform (the default): a value per point is refused, not silently cut to one.
+    let e = g.set_param("c", Value::Num(Num { w: 3, varying: true, data: vec![0.5; 12] }));
+    assert!(e.unwrap_err().to_string().contains("declared varying"));
     assert!(g.set_param("m", Value::Str("x".into())).is_ok());
     let two = Value::Array(vec![Value::Num(Num::scalar(3.0)), Value::Num(Num::scalar(4.0))]);
     assert!(g.set_param("a", two).is_ok());
-    g.set_param("c", Value::Num(Num { w: 3, varying: true, data: vec![0.5; 12] })).unwrap();
+    g.set_param("vc", Value::Num(Num { w: 3, varying: true, data: vec![0.5; 12] })).unwrap();
     g.run().unwrap();
-    assert_eq!(g.get_v3("Ci", 3).unwrap(), [0.5; 3]);
+    assert_eq!(g.get_v3("Ci", 3).unwrap(), [1.5; 3]);
     let mut big = GridContext::new(&sh, 1 << 13, 1 << 13);
     assert!(big.run().unwrap_err().to_string().contains("over the limit"));
 }

@@ -253,6 +253,11 @@ impl<'a> GridContext<'a> {
                 "parameter \"{name}\" is {ty}: the value given does not fit ({n} points)"
             )));
         }
+        if v.varying() && sh.vars[id].detail == Detail::Uniform {
+            return Err(self.input_err(format!(
+                "parameter \"{name}\" is uniform: one value per point needs it declared varying"
+            )));
+        }
         self.param_set.insert(id, v);
         Ok(())
     }
