@@ -328,6 +328,9 @@ fn bumpy_displaces_along_the_normal() {
         let amp = 0.5 * (u + 0.125);
         assert!(close(p[2], amp, 1e-6) && p[0] == W * u && p[1] == H * v, "{i}: {p:?}");
     }
+    // Each run starts from the globals as set: a second run displaces the same amount.
+    g.run().unwrap();
+    assert!(close(g.get_v3("P", 24).unwrap()[2], 0.5 * 1.125, 1e-6));
     // N = calculatenormal(P) = Du(P) ^ Dv(P) with Du(P) = (W, 0, 0.5): N = (-0.5 H, 0, W H).
     let n = g.get_v3("N", 12).unwrap();
     assert!(close(n[0], -0.5 * H, 1e-4) && close(n[2], W * H, 1e-4) && n[1].abs() < 1e-5, "{n:?}");

@@ -105,6 +105,9 @@ pub struct GridContext<'a> {
     pub(crate) n: usize,
     /// The globals, in [`GLOBALS`] order; `None` until set (then defaults at the run).
     pub(crate) globals: Vec<Option<Value>>,
+    /// The globals as the caller set them: each run starts from these, so running twice gives
+    /// the same results (a displacement does not move `P` twice).
+    pub(crate) inputs: Vec<Option<Value>>,
     pub(crate) vars: Vec<Value>,
     pub(crate) param_set: HashMap<usize, Value>,
     pub(crate) spaces: Spaces,
@@ -132,6 +135,7 @@ impl<'a> GridContext<'a> {
             nv,
             n: nu.saturating_mul(nv),
             globals: vec![None; GLOBALS.len()],
+            inputs: vec![None; GLOBALS.len()],
             vars: Vec::new(),
             param_set: HashMap::new(),
             spaces: Spaces::default(),
@@ -211,6 +215,7 @@ impl<'a> GridContext<'a> {
                 v.data.len()
             )));
         }
+        self.inputs[k] = Some(Value::Num(v.clone()));
         self.globals[k] = Some(Value::Num(v));
         Ok(())
     }
@@ -345,7 +350,7 @@ impl<'a> GridContext<'a> {
             let v = match g.name {
                 "PI" => Num::scalar(std::f32::consts::PI),
                 "ncomps" => Num::scalar(3.0),
-                _ => match self.globals[k].take() {
+                _ => match self.inputs[k].clone() {
                     Some(Value::Num(v)) => v,
                     _ => match g.name {
                         "Cs" | "Os" => Num::uniform(&[1.0; 3]),
