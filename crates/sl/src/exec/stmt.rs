@@ -55,7 +55,8 @@ impl GridContext<'_> {
                 break;
             }
             self.exec(st, &m)?;
-            if leaves(st) {
+            // Rebuilt only when some point left (the common case is none).
+            if leaves(st) && m.iter().any(|i| !self.alive(i)) {
                 m = self.narrow(&m);
             }
         }
