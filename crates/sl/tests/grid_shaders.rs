@@ -384,3 +384,31 @@ fn depthcue_blends_with_depth() {
     assert_eq!(g.get_v3("Ci", 1).unwrap(), [0.5, 0.25, 0.125]);
     assert_eq!(g.get_v3("Oi", 1).unwrap(), [0.5; 3]);
 }
+
+#[test]
+fn break_inside_illuminance_leaves_the_enclosing_loop() {
+    // Two lights of 1 and 10; the loop runs once, and a point with s > 0.5 breaks out after
+    // the first light, so it sums only 1; the others sum 11.
+    let light = |intensity: f32| ShaderLight {
+        shader: std_shader("distantlight"),
+        params: vec![("intensity".into(), Value::Num(Num::scalar(intensity)))],
+        spaces: Spaces::default(),
+        categories: vec![],
+    };
+    let mut lights = ShaderLights { lights: vec![light(1.0), light(10.0)] };
+    let sh = compile(
+        "surface b() {
+            float k, sum = 0;
+            for (k = 0; k < 1; k += 1) {
+                illuminance(P) { sum += comp(Cl, 0); if (s > 0.5) break; }
+            }
+            Ci = sum;
+        }",
+    );
+    let mut g = GridContext::new(&sh, 2, 1);
+    g.set_varying("s", &[0.0, 1.0]).unwrap();
+    g.set_lights(&mut lights);
+    g.run().unwrap();
+    assert_eq!(g.get_v3("Ci", 0).unwrap()[0], 11.0);
+    assert_eq!(g.get_v3("Ci", 1).unwrap()[0], 1.0);
+}

@@ -189,7 +189,9 @@ impl GridContext<'_> {
         let samples = self.light_samples(&cat, &p)?;
         for s in samples.iter().filter(|s| !s.ambient) {
             self.tick()?;
-            let m = mask.filter(|i| {
+            // Points that left (a `break` or `return` in the body for an earlier light) stay out.
+            let alive = self.narrow(mask);
+            let m = alive.filter(|i| {
                 s.lit.get(i).copied().unwrap_or(false)
                     && cone.as_ref().is_none_or(|(axis, angle)| {
                         let a = angle.f(i);
