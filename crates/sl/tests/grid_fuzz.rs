@@ -223,3 +223,88 @@ fn deep_nesting_runs_within_the_stack() {
         g.run().unwrap();
     }
 }
+
+/// A random float expression over s and t from the library.
+fn expr_strategy() -> impl Strategy<Value = String> {
+    let leaf = prop_oneof![
+        Just("s".to_string()),
+        Just("t".to_string()),
+        Just("u".to_string()),
+        (-1e3f32..1e3).prop_map(|x| format!("{x:?}")),
+        Just("0".to_string()),
+        Just("1e38".to_string()),
+    ];
+    leaf.prop_recursive(5, 40, 4, |inner| {
+        let f1 = proptest::sample::select(vec![
+            "sin",
+            "cos",
+            "tan",
+            "asin",
+            "acos",
+            "atan",
+            "sqrt",
+            "exp",
+            "log",
+            "abs",
+            "sign",
+            "floor",
+            "ceil",
+            "round",
+            "inversesqrt",
+            "radians",
+            "degrees",
+            "noise",
+            "cellnoise",
+            "Du",
+            "Dv",
+            "filterwidth",
+            "-",
+        ]);
+        let f2 = proptest::sample::select(vec![
+            "pow",
+            "mod",
+            "min",
+            "max",
+            "step",
+            "atan",
+            "log",
+            "pnoise",
+            "filterstep",
+            "noise",
+            "Deriv",
+        ]);
+        let f3 = proptest::sample::select(vec!["clamp", "mix", "smoothstep"]);
+        let ops = proptest::sample::select(vec!["+", "-", "*", "/"]);
+        prop_oneof![
+            (f1, inner.clone()).prop_map(|(f, a)| format!("{f}({a})")),
+            (f2, inner.clone(), inner.clone()).prop_map(|(f, a, b)| format!("{f}({a}, {b})")),
+            (f3, inner.clone(), inner.clone(), inner.clone())
+                .prop_map(|(f, a, b, c)| format!("{f}({a}, {b}, {c})")),
+            (inner.clone(), ops, inner.clone()).prop_map(|(a, o, b)| format!("({a} {o} {b})")),
+            (inner.clone(), inner.clone(), inner.clone())
+                .prop_map(|(c, a, b)| format!("({c} > 0.5 ? {a} : {b})")),
+            (inner.clone(), inner.clone(), inner.clone())
+                .prop_map(|(x, a, b)| format!("spline({x}, {a}, {b}, {a}, {b})")),
+            (inner.clone(), inner.clone()).prop_map(|(a, b)| format!(
+                "length(vector({a}, {b}, 1) ^ vector(noise(point({b}, {a}, 0))))"
+            )),
+            (inner.clone(), inner)
+                .prop_map(|(a, b)| format!("comp(ctransform(\"hsv\", color({a}, {b}, 0.5)), 0)")),
+        ]
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 300, ..ProptestConfig::default() })]
+
+    #[test]
+    fn random_library_expressions_never_panic(e in expr_strategy()) {
+        let src = format!(
+            "surface r() {{ float x = {e}; float k = 0; while (k < 3 && x > 0) {{ k += 1; x = x / 2; }} Ci = color(x, k, {e}); }}"
+        );
+        let sh = compile_str("r.sl", &src, &[]).unwrap_or_else(|err| panic!("{err}\n{src}"));
+        let mut g = plane(&sh, 4, 3);
+        g.set_budget(1_000_000);
+        g.run().unwrap_or_else(|err| panic!("{err}\n{src}"));
+    }
+}
