@@ -332,3 +332,18 @@ fn parameter_values_are_checked() {
     let mut big = GridContext::new(&sh, 1 << 13, 1 << 13);
     assert!(big.run().unwrap_err().to_string().contains("over the limit"));
 }
+
+#[test]
+fn set_parametric_is_the_dicer_grid() {
+    // u from 0.5 to 1 over 5 columns (du = 0.125), v from 0 to 2 over 3 rows (dv = 1); the
+    // last column and row land exactly on the ends.
+    let sh =
+        common::compile("surface p() { Ci = color(u, v, Du(s) * du); Oi = color(du, dv, t); }");
+    let mut g = GridContext::new(&sh, 5, 3);
+    g.set_parametric(0.5, 1.0, 0.0, 2.0).unwrap();
+    g.run().unwrap();
+    assert_eq!(g.get_v3("Ci", 4).unwrap(), [1.0, 0.0, 0.125]);
+    assert_eq!(g.get_v3("Ci", 14).unwrap(), [1.0, 2.0, 0.125]);
+    assert_eq!(g.get_v3("Ci", 6).unwrap(), [0.625, 1.0, 0.125]);
+    assert_eq!(g.get_v3("Oi", 7).unwrap(), [0.125, 1.0, 1.0]);
+}

@@ -231,6 +231,26 @@ impl<'a> GridContext<'a> {
         self.set_global(name, Num { w, varying: true, data: data.to_vec() })
     }
 
+    /// Sets `u`, `v` (per point, evenly from `u0` to `u1` along a row and `v0` to `v1` down a
+    /// column, as a dicer makes them), `du`, `dv` (one step), and `s`, `t` to the same values
+    /// (the Specification's default texture coordinates; set them after to override).
+    pub fn set_parametric(&mut self, u0: f32, u1: f32, v0: f32, v1: f32) -> Result<(), ExecError> {
+        let (nu, nv) = (self.nu, self.nv);
+        let step = |a: f32, b: f32, k: usize| if k > 1 { (b - a) / (k - 1) as f32 } else { 0.0 };
+        let (du, dv) = (step(u0, u1, nu), step(v0, v1, nv));
+        let at = |a: f32, b: f32, d: f32, i: usize, k: usize| {
+            if i + 1 == k && k > 1 { b } else { a + d * i as f32 }
+        };
+        let u: Vec<f32> = (0..self.n).map(|i| at(u0, u1, du, i % nu, nu)).collect();
+        let v: Vec<f32> = (0..self.n).map(|i| at(v0, v1, dv, i / nu, nv)).collect();
+        self.set_varying("u", &u)?;
+        self.set_varying("v", &v)?;
+        self.set_varying("s", &u)?;
+        self.set_varying("t", &v)?;
+        self.set_uniform("du", &[du])?;
+        self.set_uniform("dv", &[dv])
+    }
+
     /// Sets a shader parameter (a float is broadcast to a triple's three components).
     pub fn set_param(&mut self, name: &str, v: Value) -> Result<(), ExecError> {
         let sh = self.shader;
