@@ -1,5 +1,6 @@
 //! RenderMan Shading Language front end: RSL 1 as the RenderMan Interface Specification 3.2,
-//! Part II (chapters 11-16) defines it, compiled to a checked, typed IR.
+//! Part II (chapters 11-16) defines it, compiled to a checked, typed IR, and the grid machine
+//! ([`exec`]) that runs the IR over whole grids of points.
 //!
 //! Stage invariants: every token maps back to `file:line:col` of a file the user wrote (through
 //! `#include`s and macro expansions, which report the expansion site); every error is one line,
@@ -14,7 +15,9 @@
 //! - the parser (private): tokens to the syntax tree ([`ast`]);
 //! - the checker (private): scopes, types, the operator and overload rules, the predefined
 //!   variables of each shader type ([`globals`]), the standard library's signatures
-//!   ([`library`]), recursion, and the uniform/varying analysis, to the IR ([`ir`]).
+//!   ([`library`]), recursion, and the uniform/varying analysis, to the IR ([`ir`]);
+//! - the grid machine ([`exec`]): the IR run over an `nu` x `nv` grid, uniform values once and
+//!   varying ones per point under masks, with the library, derivatives and the light callback.
 //!
 //! ```
 //! let shader = reyes_sl::compile_str(
@@ -33,6 +36,7 @@
 pub mod ast;
 mod check;
 mod error;
+pub mod exec;
 pub mod globals;
 pub mod ir;
 pub mod lexer;
