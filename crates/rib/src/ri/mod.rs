@@ -12,6 +12,7 @@
 //! produced the offending value.
 
 mod archives;
+mod area;
 mod attributes;
 mod build;
 mod frame;

@@ -222,6 +222,9 @@ impl Machine {
         object.focus_factor = a.focus_factor;
         object.one_sided = a.sides == 1;
         let to_world = self.to_world();
+        if let Some(area) = &a.area_light {
+            self.emitter(r, area, &mut object, &to_world);
+        }
         let origin = Origin { at: r.at.clone(), request: r.name() };
         if let Some(b) = &mut self.build {
             b.add_object(object, &to_world, deform, attributes, origin);

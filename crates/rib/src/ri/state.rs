@@ -151,8 +151,10 @@ pub(crate) struct Attributes {
     pub reverse_orientation: bool,
     pub matte: bool,
     pub name: Option<String>,
-    /// Lights on for the primitives of this block: indices into the frame's lights.
+    /// Lights on for the primitives of this block: light slots of the frame.
     pub lights_on: Vec<usize>,
+    /// The `AreaLightSource` whose geometry the primitives of this block are.
+    pub area_light: Option<super::area::AreaSource>,
     /// `Basis` for bicubic patches: `(u basis, u step, v basis, v step)`.
     pub basis: (Basis, u32, Basis, u32),
     /// The `Displacement` shader (its name None: none).
@@ -178,6 +180,7 @@ impl Default for Attributes {
             matte: false,
             name: None,
             lights_on: Vec::new(),
+            area_light: None,
             basis: (Basis::Bezier, 3, Basis::Bezier, 3),
             displacement: SurfaceShader { name: None, params: Vec::new(), at: None },
             displacement_bound: None,

@@ -2,6 +2,7 @@
 //! of each supported request onto the model), its error catalogue, and whole renders of the
 //! peers' benchmark files against the peers' own pictures and our RON ports.
 
+mod area;
 mod deep;
 mod errors;
 mod extensions;
