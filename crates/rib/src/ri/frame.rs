@@ -437,6 +437,9 @@ impl Machine {
             K::Attribute => self.attribute(&r),
             K::LightSource => self.light_source(&r),
             K::AreaLightSource => self.area_light_source(&r),
+            K::RelativeDetail => self.relative_detail(&r),
+            K::Detail => self.detail(&r),
+            K::DetailRange => self.detail_range(&r),
             K::Illuminate => self.illuminate(&r),
             K::Basis => self.basis(&r),
             K::Declare | K::Version | K::ColorSamples => Ok(()),
@@ -458,7 +461,6 @@ impl Machine {
             | K::Hider
             | K::Option
             | K::PixelVariance
-            | K::RelativeDetail
             | K::ClippingPlane
             | K::Imager => self.option(&r),
 

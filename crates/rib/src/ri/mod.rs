@@ -15,6 +15,7 @@ mod archives;
 mod area;
 mod attributes;
 mod build;
+mod detail;
 mod frame;
 pub(crate) mod geometry;
 mod options;

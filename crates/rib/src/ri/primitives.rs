@@ -136,7 +136,12 @@ impl Machine {
                 "the primitive is skipped",
             );
         }
-        let a = self.attributes.clone();
+        let mut a = self.attributes.clone();
+        // A level of detail out of range is not drawn; in a transition it blends by opacity.
+        if a.detail_weight <= 0.0 {
+            return Ok(());
+        }
+        a.opacity = a.opacity.map(|o| o * a.detail_weight);
         let (cs, colors_constant) = match &shape {
             Shape::Mesh { .. } | Shape::SubdivisionMesh { .. } => {
                 (a.color, self.constant_color(r)?)

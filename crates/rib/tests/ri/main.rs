@@ -4,6 +4,7 @@
 
 mod area;
 mod deep;
+mod detail;
 mod errors;
 mod extensions;
 mod frames;
