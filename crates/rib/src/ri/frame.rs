@@ -61,6 +61,7 @@ pub(super) struct Motion {
 pub(crate) struct Machine {
     pub(super) reader: Reader,
     pub(super) options: RiOptions,
+    pub(super) permissions: super::Permissions,
     /// The options in force (restored at `FrameEnd`).
     pub(super) frame_options: FrameOptions,
     saved_options: Vec<FrameOptions>,
@@ -121,10 +122,15 @@ fn f3(v: &[f32]) -> [f32; 3] {
 }
 
 impl Machine {
-    pub(super) fn new(reader: Reader, options: RiOptions) -> Machine {
+    pub(super) fn new(
+        reader: Reader,
+        options: RiOptions,
+        permissions: super::Permissions,
+    ) -> Machine {
         Machine {
             reader,
             options,
+            permissions,
             frame_options: FrameOptions::default(),
             saved_options: Vec::new(),
             attributes: Attributes::default(),

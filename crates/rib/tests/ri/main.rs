@@ -11,6 +11,7 @@ mod frames;
 mod lookdev;
 mod mapping;
 mod peers;
+mod program;
 mod renderman;
 mod tolerance;
 
