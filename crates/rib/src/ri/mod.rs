@@ -24,6 +24,7 @@ mod program;
 mod search;
 mod shaders;
 mod solids;
+mod spaces;
 pub(crate) mod state;
 mod subdivision;
 pub mod teapot;
