@@ -103,7 +103,10 @@ impl Machine {
             .floats(0)
             .map(<[f32]>::to_vec)
             .unwrap_or_else(|| (0..4).map(|i| r.float(i).unwrap_or(0.0)).collect());
-        let range = [v[0], v[1], v[2], v[3]];
+        let &[a, b, c, d] = v.as_slice() else {
+            return Err(r.error(format!("expected 4 numbers, got {}", v.len())));
+        };
+        let range = [a, b, c, d];
         if range.iter().any(|v| v.is_nan()) || range.windows(2).any(|p| p[0] > p[1]) {
             return Err(r.error(format!(
                 "the range must be in increasing order, got [{} {} {} {}]",

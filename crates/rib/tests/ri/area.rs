@@ -243,3 +243,24 @@ Sphere 1 -1 1 360",
     assert!(loaded.frames[0].scene.lights.is_empty());
     assert_eq!(loaded.frames[0].scene.objects.len(), 2);
 }
+
+#[test]
+fn another_area_light_shader_stands_in_as_arealight_and_strict_refuses_it() {
+    let text = super::world(
+        "AttributeBegin
+  AreaLightSource \"glow\" 3 \"intensity\" [2]
+  Polygon \"P\" [-1 1 5  1 1 5  1 1 6  -1 1 6]
+AttributeEnd",
+    );
+    let loaded = rib(&text).unwrap();
+    let w: Vec<String> = loaded.warnings.iter().map(ToString::to_string).collect();
+    assert!(w.iter().any(|w| w.contains("unknown area light shader \"glow\"")), "{w:?}");
+    let Light::Area { intensity, .. } = &loaded.frames[0].scene.lights[0] else { panic!() };
+    // Radiance 2 over the 2 x 1 quad.
+    assert!((intensity - 4.0).abs() < 1e-5);
+    let strict = reyes_rib::RiOptions { strict: true, ..Default::default() };
+    let e = reyes_rib::load(reyes_rib::Source::from_bytes("test.rib", text.into_bytes()), &strict)
+        .unwrap_err()
+        .to_string();
+    assert_eq!(e, "test.rib:5:3: AreaLightSource: unknown area light shader \"glow\" (--strict)");
+}

@@ -120,3 +120,29 @@ fn levels_blend_by_opacity_where_their_ranges_overlap() {
     assert!(p[1] >= g * (1.0 - b) - 1e-4 && p[1] <= g + 1e-4, "{p:?}");
     assert!(p[2] >= b * (1.0 - g) - 1e-4 && p[2] <= b + 1e-4, "{p:?}");
 }
+
+#[test]
+fn bad_ranges_and_bounds_are_one_line_errors() {
+    let cases = [
+        (
+            "Detail [-1 1 -1 1 -1 1] DetailRange [3 2 1 0]",
+            "DetailRange: the range must be in increasing order, got [3 2 1 0]",
+        ),
+        ("Detail [-1 1 -1 1 -1 1] DetailRange [1 2]", "DetailRange"),
+        ("Detail [-1 1 -1 1]", "Detail"),
+        ("RelativeDetail -1", "RelativeDetail"),
+    ];
+    for (body, want) in cases {
+        let text = if body.starts_with("RelativeDetail") {
+            format!("{body}\n{}", super::world(""))
+        } else {
+            super::world(body)
+        };
+        let e = super::rib(&text).unwrap_err().to_string();
+        assert!(e.starts_with("test.rib:") && e.contains(want) && !e.contains('\n'), "{body}: {e}");
+    }
+    // Without a Detail bound the level is drawn, with a warning.
+    let loaded = super::rib(&super::world("DetailRange [0 0 10 20] Sphere 1 -1 1 360")).unwrap();
+    assert_eq!(loaded.frames[0].scene.objects.len(), 1);
+    assert!(loaded.warnings.iter().any(|w| w.to_string().contains("no Detail bound")));
+}
