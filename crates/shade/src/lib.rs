@@ -25,7 +25,9 @@
 //!   times the visibility of the shadow ray to it; the time `t` is the shading time, and the
 //!   light's motion keys are normalised over the shutter as the tracer normalises objects'.
 //!   Shadow rays are only traced to lights above the face-forwarded surface.
-//! * **Shadow rays** see every object, matte ones included. An opaque surface blocks; a
+//! * **Shadow rays** see every object, matte ones included, except that a shadow ray toward an
+//!   area light passes through the objects linked to that light (`Object::area_light`: the
+//!   light's own visible surface, which would otherwise hide it). An opaque surface blocks; a
 //!   surface with opacity `Os < 1` in some channel attenuates the light by `1 - Os` per
 //!   channel, and the ray goes on behind it (so a pane of tinted, partly transparent
 //!   material casts a tinted shadow); a refracting object (`refract`) blocks whatever its
