@@ -227,9 +227,9 @@ pub struct Shading<'a> {
     /// Some object attenuates shadow rays instead of blocking them (opacity below 1 and no
     /// refraction); otherwise a shadow ray is a yes-or-no query.
     attenuating: bool,
-    /// The lights (indices into `Scene::lights`) that some object is the visible surface of:
-    /// their shadow rays pass through those objects.
-    emitters: Vec<usize>,
+    /// Per light of `Scene::lights`: whether some object is its visible surface
+    /// (`Object::area_light`), which its shadow rays pass through.
+    emitters: Vec<bool>,
     max_depth: u32,
     min_weight: f32,
 }
@@ -265,11 +265,15 @@ impl<'a> Shading<'a> {
             lights,
             area_lights: area_lights as u32,
             attenuating,
-            emitters: scene
-                .objects
-                .iter()
-                .filter_map(|o| o.area_light.map(|l| l as usize))
-                .collect(),
+            emitters: {
+                let mut linked = vec![false; scene.lights.len()];
+                for l in scene.objects.iter().filter_map(|o| o.area_light) {
+                    if let Some(flag) = linked.get_mut(l as usize) {
+                        *flag = true;
+                    }
+                }
+                linked
+            },
             max_depth: scene.raytrace.max_depth.min(MAX_DEPTH),
             min_weight: scene.raytrace.min_weight,
         }
@@ -577,7 +581,7 @@ impl<'a> Shading<'a> {
                 (ray, 1.0)
             }
         };
-        let emitters = self.emitters.contains(&light);
+        let emitters = self.emitters.get(light).copied().unwrap_or(false);
         if !self.attenuating && !emitters {
             counts.shadow += 1;
             return if self.tracer.occluded(&ray, t_max) { Vec3::ZERO } else { Vec3::ONE };
