@@ -8,7 +8,7 @@
 use std::io::Read;
 use std::path::Path;
 
-use crate::{Frame, Loaded, RiOptions, RibError, Source, Warning};
+use crate::{Frame, Loaded, Permissions, RiOptions, RibError, Source, Warning};
 
 /// The two scene formats.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -117,6 +117,20 @@ pub fn detect(path: &Path, head: &[u8]) -> Format {
 ///
 /// A [`Refusal`]: the first error, with the warnings raised before it.
 pub fn load_scene_file(path: &Path, options: &RiOptions) -> Result<Loaded, Refusal> {
+    load_scene_file_with(path, options, Permissions::default())
+}
+
+/// [`load_scene_file`] with `permissions` (running a RIB file's `RunProgram` procedurals:
+/// the CLI's `--allow-run-program`).
+///
+/// # Errors
+///
+/// As [`load_scene_file`].
+pub fn load_scene_file_with(
+    path: &Path,
+    options: &RiOptions,
+    permissions: Permissions,
+) -> Result<Loaded, Refusal> {
     if path == Path::new("-") {
         let mut bytes = Vec::new();
         std::io::stdin().read_to_end(&mut bytes).map_err(InputError::Stdin)?;
@@ -125,7 +139,7 @@ pub fn load_scene_file(path: &Path, options: &RiOptions) -> Result<Loaded, Refus
                 let text = String::from_utf8_lossy(&bytes);
                 Ok(ron_frames(&text, Path::new("<stdin>"), options)?)
             }
-            Format::Rib => load_rib(Source::from_bytes("<stdin>", bytes), options),
+            Format::Rib => load_rib(Source::from_bytes("<stdin>", bytes), options, permissions),
         };
     }
     let mut head = [0u8; 256];
@@ -142,13 +156,17 @@ pub fn load_scene_file(path: &Path, options: &RiOptions) -> Result<Loaded, Refus
                 file: path.display().to_string().into(),
                 source,
             })?;
-            load_rib(source, options)
+            load_rib(source, options, permissions)
         }
     }
 }
 
-fn load_rib(source: Source, options: &RiOptions) -> Result<Loaded, Refusal> {
-    crate::ri::load_reporting(source, options)
+fn load_rib(
+    source: Source,
+    options: &RiOptions,
+    permissions: Permissions,
+) -> Result<Loaded, Refusal> {
+    crate::ri::load_reporting(source, options, permissions)
         .map_err(|(e, warnings)| Refusal { error: Box::new(e.into()), warnings })
 }
 

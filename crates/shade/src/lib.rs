@@ -25,7 +25,9 @@
 //!   times the visibility of the shadow ray to it; the time `t` is the shading time, and the
 //!   light's motion keys are normalised over the shutter as the tracer normalises objects'.
 //!   Shadow rays are only traced to lights above the face-forwarded surface.
-//! * **Shadow rays** see every object, matte ones included. An opaque surface blocks; a
+//! * **Shadow rays** see every object, matte ones included, except that a shadow ray toward an
+//!   area light passes through the objects linked to that light (`Object::area_light`: the
+//!   light's own visible surface, which would otherwise hide it). An opaque surface blocks; a
 //!   surface with opacity `Os < 1` in some channel attenuates the light by `1 - Os` per
 //!   channel, and the ray goes on behind it (so a pane of tinted, partly transparent
 //!   material casts a tinted shadow); a refracting object (`refract`) blocks whatever its
@@ -225,6 +227,9 @@ pub struct Shading<'a> {
     /// Some object attenuates shadow rays instead of blocking them (opacity below 1 and no
     /// refraction); otherwise a shadow ray is a yes-or-no query.
     attenuating: bool,
+    /// Per light of `Scene::lights`: whether some object is its visible surface
+    /// (`Object::area_light`), which its shadow rays pass through.
+    emitters: Vec<bool>,
     max_depth: u32,
     min_weight: f32,
 }
@@ -260,6 +265,15 @@ impl<'a> Shading<'a> {
             lights,
             area_lights: area_lights as u32,
             attenuating,
+            emitters: {
+                let mut linked = vec![false; scene.lights.len()];
+                for l in scene.objects.iter().filter_map(|o| o.area_light) {
+                    if let Some(flag) = linked.get_mut(l as usize) {
+                        *flag = true;
+                    }
+                }
+                linked
+            },
             max_depth: scene.raytrace.max_depth.min(MAX_DEPTH),
             min_weight: scene.raytrace.min_weight,
         }
@@ -431,7 +445,8 @@ impl<'a> Shading<'a> {
                     }
                     return None;
                 }
-                self.light(light, p, at.n_world, n, at.time, &mut light_strata, walk.counts)
+                let lit = (*index, light);
+                self.light(lit, p, at.n_world, n, at.time, &mut light_strata, walk.counts)
             });
             shader.illuminate_looked(&at.looked, cs, n, v, lights)
         };
@@ -501,7 +516,7 @@ impl<'a> Shading<'a> {
     #[allow(clippy::too_many_arguments)]
     fn light(
         &self,
-        light: &DirectLight,
+        (index, light): (usize, &DirectLight),
         p: Vec3,
         n_geom: Vec3,
         n: Vec3,
@@ -538,7 +553,7 @@ impl<'a> Shading<'a> {
         match toward {
             None => Some((l, cl)),
             Some(toward) => {
-                let vis = self.visibility(p, n_geom, toward, time, counts);
+                let vis = self.visibility(p, n_geom, toward, time, index, counts);
                 (vis != Vec3::ZERO).then_some((l, cl * vis))
             }
         }
@@ -546,13 +561,15 @@ impl<'a> Shading<'a> {
 
     /// The fraction of light, per channel, that reaches `p` (normal `n`) from `toward` at
     /// `time`: 0 behind an opaque or refracting surface, `prod (1 - Os)` through surfaces
-    /// that are not opaque.
+    /// that are not opaque. The visible surfaces of light `light` (`Object::area_light`) are
+    /// passed through.
     fn visibility(
         &self,
         p: Vec3,
         n: Vec3,
         toward: Toward,
         time: f32,
+        light: usize,
         counts: &mut RayCounts,
     ) -> Vec3 {
         let (mut ray, t_max) = match toward {
@@ -564,7 +581,8 @@ impl<'a> Shading<'a> {
                 (ray, 1.0)
             }
         };
-        if !self.attenuating {
+        let emitters = self.emitters.get(light).copied().unwrap_or(false);
+        if !self.attenuating && !emitters {
             counts.shadow += 1;
             return if self.tracer.occluded(&ray, t_max) { Vec3::ZERO } else { Vec3::ONE };
         }
@@ -580,10 +598,13 @@ impl<'a> Shading<'a> {
             else {
                 return Vec3::ZERO;
             };
-            if object.refract.is_some() || setup.shader.opaque() {
+            if emitters && object.area_light.is_some_and(|l| l as usize == light) {
+                // The light's own surface: not an occluder of its light.
+            } else if object.refract.is_some() || setup.shader.opaque() {
                 return Vec3::ZERO;
+            } else {
+                vis *= Vec3::ONE - setup.shader.opacity();
             }
-            vis *= Vec3::ONE - setup.shader.opacity();
             if vis.max_element() <= 0.0 {
                 return Vec3::ZERO;
             }

@@ -38,10 +38,12 @@ pub(crate) struct AreaLight {
     /// Keys `(normalised time, offset, intensity)`; empty: still at `intensity`.
     keys: Vec<(f32, Vec3, f32)>,
     intensity: f32,
+    /// Flat shapes emit toward their normal's side only.
+    one_sided: bool,
 }
 
 /// The emitting shape, in world space at zero offset.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 enum Emitter {
     Sphere {
         center: Vec3,
@@ -61,6 +63,13 @@ enum Emitter {
         corner: Vec3,
         edge_u: Vec3,
         edge_v: Vec3,
+        n: Vec3,
+    },
+    /// A convex polygon as the fan of triangles `(a, b, c)` from its first corner, with the
+    /// running sum of their areas (the last is the polygon's area) and its unit normal.
+    Polygon {
+        fan: Vec<[Vec3; 3]>,
+        cumulative: Vec<f32>,
         n: Vec3,
     },
 }
@@ -121,7 +130,7 @@ impl DirectLight {
             Light::Spot { shadows, .. } => {
                 Some(DirectLight::Spot { spot: SpotLight::of(light)?, shadows: *shadows })
             }
-            Light::Area { shape, color, intensity, motion } => {
+            Light::Area { shape, color, intensity, motion, one_sided } => {
                 let shape = match shape {
                     AreaShape::Sphere { center, radius } => {
                         Emitter::Sphere { center: Vec3::from(*center), radius: *radius }
@@ -140,6 +149,7 @@ impl DirectLight {
                             n: edge_u.cross(edge_v).normalize_or_zero(),
                         }
                     }
+                    AreaShape::Polygon { points } => polygon(points),
                 };
                 let mut keys: Vec<(f32, Vec3, f32)> = Vec::with_capacity(motion.len());
                 for key in motion {
@@ -158,6 +168,7 @@ impl DirectLight {
                     color: Vec3::from(*color),
                     keys,
                     intensity: *intensity,
+                    one_sided: *one_sided,
                 }))
             }
         }
@@ -189,6 +200,7 @@ impl AreaLight {
     ///
     /// * Disk: the concentric map of `u` onto the disk (uniform in area, strata compact).
     /// * Rectangle: `corner + u1 edge_u + u2 edge_v` (uniform in area).
+    /// * Polygon: a triangle of its fan chosen by area, a point uniform in it.
     /// * Sphere: the concentric map onto the disk of radius `r` through the centre,
     ///   perpendicular to the direction from the centre to `p`. Seen from `p` at distance
     ///   `d`, that disk's outline subtends the half-angle `atan(r / d)` and the ball's
@@ -200,20 +212,23 @@ impl AreaLight {
     ///   projects to a denser centre and is not stratified.)
     pub fn sample(&self, p: Vec3, time: f32, u: (f32, f32)) -> Option<LightSample> {
         let (offset, intensity) = self.at(time);
-        let (point, normal) = match self.shape {
-            Emitter::Sphere { center, radius } => {
+        let (point, normal) = match &self.shape {
+            &Emitter::Sphere { center, radius } => {
                 let c = center + offset;
                 let w = (p - c).try_normalize().unwrap_or(Vec3::Z);
                 let (e1, e2) = w.any_orthonormal_pair();
                 let q = concentric_disk(u) * radius;
                 (c + q.x * e1 + q.y * e2, None)
             }
-            Emitter::Disk { center, radius, n, e1, e2 } => {
+            &Emitter::Disk { center, radius, n, e1, e2 } => {
                 let q = concentric_disk(u) * radius;
                 (center + offset + q.x * e1 + q.y * e2, Some(n))
             }
-            Emitter::Rectangle { corner, edge_u, edge_v, n } => {
+            &Emitter::Rectangle { corner, edge_u, edge_v, n } => {
                 (corner + offset + u.0 * edge_u + u.1 * edge_v, Some(n))
+            }
+            Emitter::Polygon { fan, cumulative, n } => {
+                (offset + in_polygon(fan, cumulative, u)?, Some(*n))
             }
         };
         let d = point - p;
@@ -222,11 +237,48 @@ impl AreaLight {
             return None;
         }
         let l = d / d2.sqrt();
-        // Both faces of disks and rectangles emit: the cosine's absolute value.
+        // Both faces of flat shapes emit (the cosine's absolute value), unless one-sided: then
+        // only where the light leaves the point toward the normal's side.
+        if self.one_sided && normal.is_some_and(|n| n.dot(l) >= 0.0) {
+            return None;
+        }
         let cos_light = normal.map_or(1.0, |n| n.dot(l).abs());
         let cl = self.color * (intensity * cos_light / d2);
         (cl != Vec3::ZERO).then_some(LightSample { point, l, cl })
     }
+}
+
+/// The fan of a convex polygon (see [`Emitter::Polygon`]).
+fn polygon(points: &[[f32; 3]]) -> Emitter {
+    let p: Vec<Vec3> = points.iter().map(|&q| Vec3::from(q)).collect();
+    let mut fan = Vec::new();
+    let mut cumulative = Vec::new();
+    let mut total = 0.0;
+    let mut normal = Vec3::ZERO;
+    for k in 1..p.len().saturating_sub(1) {
+        let (a, b, c) = (p[0], p[k], p[k + 1]);
+        let cross = (b - a).cross(c - a);
+        normal += cross;
+        total += 0.5 * cross.length();
+        fan.push([a, b, c]);
+        cumulative.push(total);
+    }
+    Emitter::Polygon { fan, cumulative, n: normal.normalize_or_zero() }
+}
+
+/// The point of the fan chosen by `u`, uniform in area: `u.0` picks the triangle by area
+/// and is rescaled within it (so strata stay strata), then the square-root map fills the
+/// triangle uniformly.
+fn in_polygon(fan: &[[Vec3; 3]], cumulative: &[f32], u: (f32, f32)) -> Option<Vec3> {
+    let total = *cumulative.last()?;
+    let x = u.0 * total;
+    let k = cumulative.iter().position(|&c| x < c).unwrap_or(fan.len() - 1);
+    let below = if k == 0 { 0.0 } else { cumulative[k - 1] };
+    let span = cumulative[k] - below;
+    let w = if span > 0.0 { ((x - below) / span).clamp(0.0, 1.0) } else { 0.5 };
+    let s = w.sqrt();
+    let [a, b, c] = fan[k];
+    Some(a * (1.0 - s) + b * (s * (1.0 - u.1)) + c * (s * u.1))
 }
 
 #[cfg(test)]
@@ -251,6 +303,7 @@ mod tests {
                 .iter()
                 .map(|&(time, x, intensity)| LightKey { time, offset: [x, 0.0, 0.0], intensity })
                 .collect(),
+            one_sided: false,
         };
         match DirectLight::new(&light, &ShutterNorm::new(&scene)) {
             Some(DirectLight::Area(a)) => a,
@@ -283,6 +336,7 @@ mod tests {
             color: [1.0, 0.5, 0.25],
             intensity: 8.0,
             motion: vec![],
+            one_sided: false,
         };
         let Some(DirectLight::Area(a)) =
             DirectLight::new(&light, &ShutterNorm { open: 0.0, span: 1.0, closed: false })
@@ -296,5 +350,31 @@ mod tests {
         // The back face emits too.
         let s = a.sample(Vec3::new(2.0, 4.0, 0.0), 0.0, (0.5, 0.5)).expect("lit");
         assert!((s.cl.x - want).abs() < 1e-4);
+    }
+
+    #[test]
+    fn one_sided_lights_emit_toward_their_normal_only() {
+        let light = Light::Area {
+            shape: AreaShape::Polygon {
+                points: vec![[0.0, 2.0, 0.0], [1.0, 2.0, 0.0], [0.0, 2.0, 1.0]],
+            },
+            color: [1.0; 3],
+            intensity: 1.0,
+            motion: vec![],
+            one_sided: true,
+        };
+        let Some(DirectLight::Area(a)) =
+            DirectLight::new(&light, &ShutterNorm { open: 0.0, span: 1.0, closed: false })
+        else {
+            panic!("area light");
+        };
+        // (1, 0, 0) x (0, 0, 1) = (0, -1, 0): the triangle faces down.
+        assert!(a.sample(Vec3::new(0.2, 0.0, 0.2), 0.0, (0.3, 0.6)).is_some());
+        assert!(a.sample(Vec3::new(0.2, 4.0, 0.2), 0.0, (0.3, 0.6)).is_none());
+        // Uniform in area: the point lies in the triangle for every draw.
+        for u in [(0.0, 0.0), (0.99, 0.99), (0.5, 0.1), (0.1, 0.9)] {
+            let q = a.sample(Vec3::new(0.2, 0.0, 0.2), 0.0, u).expect("lit").point;
+            assert!(q.x >= -1e-6 && q.z >= -1e-6 && q.x + q.z <= 1.0 + 1e-6, "{q}");
+        }
     }
 }

@@ -108,11 +108,31 @@ impl Machine {
         Ok(())
     }
 
+    /// `AreaLightSource name handle params`: the primitives that follow in the attribute
+    /// block are its emitters (see `area.rs`); the light is on for the block, and its handle
+    /// names it for `Illuminate`.
     pub(super) fn area_light_source(&mut self, r: &Request) -> Result<(), RibError> {
-        let w = r.warning(
-            "area lights from geometry are not supported: the light is ignored (use an Area light in RON)",
-        );
-        self.warn_once("arealightsource", w);
+        let name = r.string(0).unwrap_or_default().to_string();
+        let h = handle(r, 1).ok_or_else(|| r.error("expected a light handle"))?;
+        if name != "arealight" {
+            self.tolerate(
+                &r.at,
+                "AreaLightSource",
+                format!("unknown area light shader \"{name}\""),
+                "stands in as arealight with its \"intensity\" and \"lightcolor\"",
+            )?;
+        }
+        let (intensity, color) = super::area::shader(&name, &r.params, &r.at, &mut self.warnings);
+        let Some(b) = &mut self.build else {
+            let w = r.warning("an area light before WorldBegin has no geometry: ignored");
+            self.warnings.push(w);
+            return Ok(());
+        };
+        let slot = b.add_area_light(h);
+        if !self.attributes.lights_on.contains(&slot) {
+            self.attributes.lights_on.push(slot);
+        }
+        self.attributes.area_light = Some(super::area::AreaSource { slot, color, intensity });
         Ok(())
     }
 

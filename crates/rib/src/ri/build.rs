@@ -38,7 +38,7 @@ pub(super) struct Origin {
 pub(super) struct ObjectAttributes {
     /// `ShadingRate`.
     pub shading_rate: f32,
-    /// The lights on for it (indices into the frame's lights).
+    /// The lights on for it (light slots, see [`FrameBuild::add_light`]).
     pub lights: Vec<usize>,
 }
 
@@ -53,7 +53,12 @@ pub(super) struct FrameBuild {
     /// The frame is one of those asked for (else it is read and dropped).
     pub wanted: bool,
     lights: Vec<Light>,
-    light_origins: Vec<Location>,
+    /// Where each light of the model was made, and by which request.
+    light_origins: Vec<(Location, &'static str)>,
+    /// Per RIB light (a light slot): its lights of the model, one for `LightSource`, one per
+    /// emitting primitive for `AreaLightSource`.
+    slots: Vec<Vec<usize>>,
+    /// Handle -> light slot.
     light_handles: HashMap<String, usize>,
     objects: Vec<Object>,
     object_origins: Vec<Origin>,
@@ -78,6 +83,7 @@ impl FrameBuild {
             wanted,
             lights: Vec::new(),
             light_origins: Vec::new(),
+            slots: Vec::new(),
             light_handles: HashMap::new(),
             objects: Vec::new(),
             object_origins: Vec::new(),
@@ -93,16 +99,39 @@ impl FrameBuild {
     }
 
     /// Adds a light under `handle` (a handle used again names the new light) and returns its
-    /// index.
+    /// light slot: what light sets (`Attributes::lights_on`) hold, resolved into lights of the
+    /// model when the frame is finished.
     pub fn add_light(&mut self, handle: String, light: Light, at: Location) -> usize {
+        let slot = self.add_area_light(handle);
+        self.add_emitter(slot, light, at, "LightSource");
+        slot
+    }
+
+    /// A light slot under `handle` without lights yet: an `AreaLightSource`, whose lights
+    /// come with its geometry ([`FrameBuild::add_emitter`]).
+    pub fn add_area_light(&mut self, handle: String) -> usize {
+        self.slots.push(Vec::new());
+        let slot = self.slots.len() - 1;
+        self.light_handles.insert(handle, slot);
+        slot
+    }
+
+    /// Adds `light` to the light slot `slot` and returns its index among the model's lights.
+    pub fn add_emitter(
+        &mut self,
+        slot: usize,
+        light: Light,
+        at: Location,
+        request: &'static str,
+    ) -> usize {
         self.lights.push(light);
-        self.light_origins.push(at);
+        self.light_origins.push((at, request));
         let index = self.lights.len() - 1;
-        self.light_handles.insert(handle, index);
+        self.slots[slot].push(index);
         index
     }
 
-    /// The index of the light with `handle`.
+    /// The light slot with `handle`.
     pub fn light_index(&self, handle: &str) -> Option<usize> {
         self.light_handles.get(handle).copied()
     }
@@ -401,8 +430,10 @@ impl FrameBuild {
             if a.shading_rate != first {
                 o.shading_rate = Some(a.shading_rate);
             }
-            let mut lights = a.lights.clone();
+            let mut lights: Vec<usize> =
+                a.lights.iter().flat_map(|&slot| self.slots[slot].iter().copied()).collect();
             lights.sort_unstable();
+            lights.dedup();
             if lights != all {
                 o.lights = Some(lights.iter().map(|&l| l as u32).collect());
             }
@@ -442,9 +473,9 @@ impl FrameBuild {
             return RibError::Request { at: o.at.clone(), request: o.request, message: what };
         }
         if let Some(i) = index("lights[")
-            && let Some(at) = self.light_origins.get(i)
+            && let Some((at, request)) = self.light_origins.get(i)
         {
-            return RibError::Request { at: at.clone(), request: "LightSource", message: what };
+            return RibError::Request { at: at.clone(), request, message: what };
         }
         // A CSG operand at fault: its own primitive.
         if path.starts_with("solids[")

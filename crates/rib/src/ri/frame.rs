@@ -1,4 +1,5 @@
-//! The request loop of the RI state machine: blocks, options, attributes and transformations;
+//! The request loop of the RI state machine: blocks, options, attributes and transformations
+//! (the involved transformation requests in [`super::spaces`]);
 //! geometry is handed to [`super::primitives`], solids and object instances to
 //! [`super::solids`], and each `WorldEnd` to [`super::build`].
 //!
@@ -8,12 +9,11 @@
 
 use std::collections::HashMap;
 
-use glam::DMat4;
 use reyes_scene::Light;
 
 use super::build::FrameBuild;
 use super::state::{Attributes, FrameOptions, SurfaceShader};
-use super::xform::{self, Xform};
+use super::xform::Xform;
 use super::{Frame, Loaded, RiOptions};
 use crate::{Location, Reader, Request, RequestKind as K, RibError, Value, Warning};
 
@@ -61,6 +61,7 @@ pub(super) struct Motion {
 pub(crate) struct Machine {
     pub(super) reader: Reader,
     pub(super) options: RiOptions,
+    pub(super) permissions: super::Permissions,
     /// The options in force (restored at `FrameEnd`).
     pub(super) frame_options: FrameOptions,
     saved_options: Vec<FrameOptions>,
@@ -75,7 +76,7 @@ pub(crate) struct Machine {
     pub(super) motion: Option<Motion>,
     /// Named coordinate systems (`CoordinateSystem`), as current-to-camera (before the world)
     /// or current-to-world transformations, with whether they were named inside the world.
-    coordinate_systems: HashMap<String, (Xform, bool)>,
+    pub(super) coordinate_systems: HashMap<String, (Xform, bool)>,
     /// Lights declared before `WorldBegin`, added to each world block.
     pub(super) pending_lights: Vec<(String, Light, Location)>,
     /// The lights declared outside the frame, saved at `FrameBegin` and restored at
@@ -121,10 +122,15 @@ fn f3(v: &[f32]) -> [f32; 3] {
 }
 
 impl Machine {
-    pub(super) fn new(reader: Reader, options: RiOptions) -> Machine {
+    pub(super) fn new(
+        reader: Reader,
+        options: RiOptions,
+        permissions: super::Permissions,
+    ) -> Machine {
         Machine {
             reader,
             options,
+            permissions,
             frame_options: FrameOptions::default(),
             saved_options: Vec::new(),
             attributes: Attributes::default(),
@@ -266,7 +272,7 @@ impl Machine {
         self.dispatch(r)
     }
 
-    fn dispatch(&mut self, r: Request) -> Result<(), RibError> {
+    pub(super) fn dispatch(&mut self, r: Request) -> Result<(), RibError> {
         match r.kind {
             // Blocks.
             K::FrameBegin => self.frame_begin(&r),
@@ -437,6 +443,9 @@ impl Machine {
             K::Attribute => self.attribute(&r),
             K::LightSource => self.light_source(&r),
             K::AreaLightSource => self.area_light_source(&r),
+            K::RelativeDetail => self.relative_detail(&r),
+            K::Detail => self.detail(&r),
+            K::DetailRange => self.detail_range(&r),
             K::Illuminate => self.illuminate(&r),
             K::Basis => self.basis(&r),
             K::Declare | K::Version | K::ColorSamples => Ok(()),
@@ -458,7 +467,6 @@ impl Machine {
             | K::Hider
             | K::Option
             | K::PixelVariance
-            | K::RelativeDetail
             | K::ClippingPlane
             | K::Imager => self.option(&r),
 
@@ -615,152 +623,6 @@ impl Machine {
         // Outside the world block the transformation is the camera's again.
         self.ctm = self.frame_options.camera.clone();
         Ok(())
-    }
-
-    /// The matrix of a transformation request. A `Transform` or `ConcatTransform` whose
-    /// projective terms are (0, 0, 0, 1) but for exporters' rounding noise is snapped to it,
-    /// with a warning (an error under `--strict`).
-    fn matrix_of(&mut self, r: &Request) -> Result<DMat4, RibError> {
-        let v = |i| r.float(i).unwrap_or(0.0);
-        Ok(match r.kind {
-            K::ConcatTransform | K::Transform => {
-                let m = r.floats(0).unwrap_or(&[0.0; 16]);
-                match xform::projective(m) {
-                    xform::Projective::Near(terms) => {
-                        let [a, b, c, d] = terms.map(xform::show);
-                        self.tolerate(
-                            &r.at,
-                            r.name(),
-                            format!(
-                                "the matrix's projective terms (its numbers 4, 8, 12 and 16) are \
-                                 ({a}, {b}, {c}, {d}), not (0, 0, 0, 1)"
-                            ),
-                            &format!(
-                                "snapped to (0, 0, 0, 1), being within {} of it relative to the \
-                                 matrix's scale",
-                                xform::show(xform::SNAP)
-                            ),
-                        )?;
-                        xform::from_rib(&xform::snapped(m))
-                    }
-                    _ => xform::from_rib(m),
-                }
-            }
-            K::Translate => xform::translate([v(0), v(1), v(2)]),
-            K::Rotate => xform::rotate(v(0), [v(1), v(2), v(3)]),
-            K::Scale => xform::scale([v(0), v(1), v(2)]),
-            K::Skew => {
-                let a = r.floats(0).map(<[f32]>::to_vec).unwrap_or_else(|| (0..7).map(v).collect());
-                if a.len() != 7 {
-                    return Err(r.error("expected 7 numbers"));
-                }
-                xform::skew(a[0], [a[1], a[2], a[3]], [a[4], a[5], a[6]]).ok_or_else(|| {
-                    r.error("the vectors are parallel or the angle turns one past the other")
-                })?
-            }
-            K::Perspective => xform::perspective(v(0))
-                .ok_or_else(|| r.error(format!("fov must be in (0, 180) degrees, got {}", v(0))))?,
-            _ => DMat4::IDENTITY,
-        })
-    }
-
-    fn coord_sys_transform(&mut self, r: &Request) -> Result<(), RibError> {
-        let name = r.string(0).unwrap_or_default();
-        let in_world = self.in_world();
-        match (name, self.coordinate_systems.get(name)) {
-            ("world", _) if in_world => self.ctm = Xform::default(),
-            ("camera" | "screen" | "raster" | "NDC", _) if in_world => {
-                // Camera space inside the world: the inverse of the camera transformation.
-                let c = &self.frame_options.camera;
-                self.ctm = Xform { keys: c.keys.iter().map(|(t, m)| (*t, m.inverse())).collect() };
-            }
-            (_, Some((x, named_in_world))) if *named_in_world == in_world => self.ctm = x.clone(),
-            (_, Some(_)) => {
-                return Err(r.error(format!(
-                    "coordinate system \"{name}\" was named on the other side of WorldBegin"
-                )));
-            }
-            (_, None) => {
-                return Err(r.error(format!("no coordinate system named \"{name}\"")));
-            }
-        }
-        Ok(())
-    }
-
-    fn motion_end(&mut self, r: &Request) -> Result<(), RibError> {
-        let m = self.motion.take().ok_or_else(|| r.error("no MotionBegin is open"))?;
-        let Some(first) = m.requests.first() else { return Ok(()) };
-        let n = m.times.len();
-        let transform_kinds = [
-            K::ConcatTransform,
-            K::Translate,
-            K::Rotate,
-            K::Scale,
-            K::Skew,
-            K::Transform,
-            K::Perspective,
-        ];
-        if transform_kinds.contains(&first.kind) {
-            if m.requests.len() != n || m.requests.iter().any(|q| q.kind != first.kind) {
-                let mut kinds: Vec<&str> = m.requests.iter().map(Request::name).collect();
-                kinds.dedup();
-                return Err(RibError::Request {
-                    at: m.at.clone(),
-                    request: "MotionBegin",
-                    message: format!(
-                        "{n} times need {n} transformations of one kind, got {} ({})",
-                        m.requests.len(),
-                        kinds.join(", ")
-                    ),
-                });
-            }
-            let mut ms: Vec<DMat4> = Vec::with_capacity(n);
-            for q in &m.requests {
-                ms.push(self.matrix_of(q)?);
-            }
-            self.ctm = if first.kind == K::Transform {
-                Xform { keys: m.times.iter().copied().zip(ms).collect() }
-            } else {
-                self.ctm.then_apply_keys(&m.times, &ms)
-            };
-            return Ok(());
-        }
-        if m.requests.len() != n || m.requests.iter().any(|q| q.kind != first.kind) {
-            return Err(RibError::Request {
-                at: m.at.clone(),
-                request: "MotionBegin",
-                message: format!(
-                    "{n} times need {n} requests of one kind, got {}",
-                    m.requests.len()
-                ),
-            });
-        }
-        match first.kind {
-            K::Color | K::Opacity | K::Surface | K::LightSource | K::ShadingRate => {
-                // Moving attributes: the value at shutter open, as the peers do.
-                let w = first
-                    .warning("motion of this attribute is not supported: the first value is used");
-                self.warn_once(format!("motion {}", first.name()), w);
-                let first = first.clone();
-                self.dispatch(first)
-            }
-            _ if self.in_world() => {
-                let keys = m.requests;
-                let q = keys[0].clone();
-                self.primitive(&q, Some((&m.times, &keys)))
-            }
-            _ => Err(first.error("geometry must be inside WorldBegin/WorldEnd")),
-        }
-    }
-
-    /// Current space to the model's world at every time of the transformation.
-    pub(super) fn to_world(&self) -> Xform {
-        if self.in_world() {
-            let c0 = self.frame_options.camera.at(f32::NEG_INFINITY);
-            Xform::still(c0).compose(&self.ctm)
-        } else {
-            self.ctm.clone()
-        }
     }
 }
 

@@ -12,15 +12,19 @@
 //! produced the offending value.
 
 mod archives;
+mod area;
 mod attributes;
 mod build;
+mod detail;
 mod frame;
 pub(crate) mod geometry;
 mod options;
 mod primitives;
+mod program;
 mod search;
 mod shaders;
 mod solids;
+mod spaces;
 pub(crate) mod state;
 mod subdivision;
 pub mod teapot;
@@ -41,6 +45,17 @@ pub struct RiOptions {
     /// Build only the frames whose `FrameBegin` number is in one of these inclusive ranges
     /// (None: every frame). A file without frames is frame 1 for this purpose.
     pub frames: Option<Vec<(i32, i32)>>,
+}
+
+/// What reading a scene may do beyond reading files: running programs the scene names is a
+/// security decision for the person rendering it, off by default. (Kept apart from
+/// [`RiOptions`], which callers build field by field, so that adding a permission breaks no
+/// caller.)
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Permissions {
+    /// `Procedural "RunProgram"` may run the programs the scene names (off: refused with an
+    /// error; the CLI's `--allow-run-program`).
+    pub run_program: bool,
 }
 
 impl RiOptions {
@@ -79,15 +94,29 @@ pub struct Loaded {
 /// The first malformed request, unbalanced block or invalid value, as one line
 /// `file:line:col: Request: message`; [`RibError::Io`] if the source cannot be read.
 pub fn load(source: Source, options: &RiOptions) -> Result<Loaded, RibError> {
-    load_reporting(source, options).map_err(|(e, _)| e)
+    load_with(source, options, Permissions::default())
+}
+
+/// [`load`] with `permissions` (running `RunProgram` procedurals).
+///
+/// # Errors
+///
+/// As [`load`].
+pub fn load_with(
+    source: Source,
+    options: &RiOptions,
+    permissions: Permissions,
+) -> Result<Loaded, RibError> {
+    load_reporting(source, options, permissions).map_err(|(e, _)| e)
 }
 
 /// [`load`], keeping on an error the warnings gathered before it (in file order).
 pub(crate) fn load_reporting(
     source: Source,
     options: &RiOptions,
+    permissions: Permissions,
 ) -> Result<Loaded, (RibError, Vec<Warning>)> {
     // The machine follows ReadArchive itself: an inline archive (ArchiveBegin) is replayed,
     // a file is looked up along the archive search path and read in place.
-    frame::Machine::new(Reader::new(source), options.clone()).run()
+    frame::Machine::new(Reader::new(source), options.clone(), permissions).run()
 }

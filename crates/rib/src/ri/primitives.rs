@@ -136,7 +136,12 @@ impl Machine {
                 "the primitive is skipped",
             );
         }
-        let a = self.attributes.clone();
+        let mut a = self.attributes.clone();
+        // A level of detail out of range is not drawn; in a transition it blends by opacity.
+        if a.detail_weight <= 0.0 {
+            return Ok(());
+        }
+        a.opacity = a.opacity.map(|o| o * a.detail_weight);
         let (cs, colors_constant) = match &shape {
             Shape::Mesh { .. } | Shape::SubdivisionMesh { .. } => {
                 (a.color, self.constant_color(r)?)
@@ -222,6 +227,9 @@ impl Machine {
         object.focus_factor = a.focus_factor;
         object.one_sided = a.sides == 1;
         let to_world = self.to_world();
+        if let Some(area) = &a.area_light {
+            self.emitter(r, area, &mut object, &to_world);
+        }
         let origin = Origin { at: r.at.clone(), request: r.name() };
         if let Some(b) = &mut self.build {
             b.add_object(object, &to_world, deform, attributes, origin);

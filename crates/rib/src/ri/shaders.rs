@@ -13,7 +13,7 @@ use crate::ri::xform::{Xform, point};
 use crate::{Location, Param, Warning};
 
 /// A float parameter of a shader, if given as one float.
-fn float(params: &[Param], name: &str) -> Option<f32> {
+pub(super) fn float(params: &[Param], name: &str) -> Option<f32> {
     params.iter().find(|p| p.name == name).and_then(|p| match p.floats() {
         Some([v]) => Some(*v),
         _ => None,
@@ -21,7 +21,7 @@ fn float(params: &[Param], name: &str) -> Option<f32> {
 }
 
 /// A colour parameter of a shader, if given as three floats.
-fn color(params: &[Param], name: &str) -> Option<[f32; 3]> {
+pub(super) fn color(params: &[Param], name: &str) -> Option<[f32; 3]> {
     params.iter().find(|p| p.name == name).and_then(|p| match p.floats() {
         Some([r, g, b]) => Some([*r, *g, *b]),
         _ => None,
@@ -35,7 +35,7 @@ fn point_param(params: &[Param], name: &str) -> Option<[f32; 3]> {
 
 /// Warnings for the parameters of `params` that a standard shader does not take, or takes in
 /// another form.
-fn unused(
+pub(super) fn unused(
     shader: &str,
     params: &[Param],
     known: &[(&str, usize)],

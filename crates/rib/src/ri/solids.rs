@@ -89,6 +89,9 @@ impl Machine {
             let path = self.archive_path(file, &r.at)?;
             return self.read_file_in_place(&path, &r.at);
         }
+        if name == "RunProgram" {
+            return self.run_program(r);
+        }
         if name == "DynamicLoad" {
             let library = r.strings(1).and_then(|a| a.first()).map_or("", String::as_str);
             return Err(r.error(format!(

@@ -41,6 +41,8 @@ pub struct Display {
 /// The options of one frame (Spec 3.2, 4.1).
 #[derive(Debug, Clone)]
 pub(crate) struct FrameOptions {
+    /// `RelativeDetail`: the scale on every detail (raster area of a `Detail` bound).
+    pub relative_detail: f32,
     pub width: u32,
     pub height: u32,
     pub pixel_aspect: f32,
@@ -74,6 +76,7 @@ pub(crate) struct FrameOptions {
 impl Default for FrameOptions {
     fn default() -> Self {
         FrameOptions {
+            relative_detail: 1.0,
             width: 640,
             height: 480,
             pixel_aspect: 1.0,
@@ -151,8 +154,14 @@ pub(crate) struct Attributes {
     pub reverse_orientation: bool,
     pub matte: bool,
     pub name: Option<String>,
-    /// Lights on for the primitives of this block: indices into the frame's lights.
+    /// Lights on for the primitives of this block: light slots of the frame.
     pub lights_on: Vec<usize>,
+    /// `Detail`: the corners of the bound in world space (camera space at shutter open).
+    pub detail: Option<[[f64; 3]; 8]>,
+    /// `DetailRange`: how much of the primitives' opacity this level keeps (0: not drawn).
+    pub detail_weight: f32,
+    /// The `AreaLightSource` whose geometry the primitives of this block are.
+    pub area_light: Option<super::area::AreaSource>,
     /// `Basis` for bicubic patches: `(u basis, u step, v basis, v step)`.
     pub basis: (Basis, u32, Basis, u32),
     /// The `Displacement` shader (its name None: none).
@@ -178,6 +187,9 @@ impl Default for Attributes {
             matte: false,
             name: None,
             lights_on: Vec::new(),
+            area_light: None,
+            detail: None,
+            detail_weight: 1.0,
             basis: (Basis::Bezier, 3, Basis::Bezier, 3),
             displacement: SurfaceShader { name: None, params: Vec::new(), at: None },
             displacement_bound: None,

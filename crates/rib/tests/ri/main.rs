@@ -2,13 +2,16 @@
 //! of each supported request onto the model), its error catalogue, and whole renders of the
 //! peers' benchmark files against the peers' own pictures and our RON ports.
 
+mod area;
 mod deep;
+mod detail;
 mod errors;
 mod extensions;
 mod frames;
 mod lookdev;
 mod mapping;
 mod peers;
+mod program;
 mod renderman;
 mod tolerance;
 

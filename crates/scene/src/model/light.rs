@@ -84,7 +84,8 @@ pub enum Light {
     /// A light with extent: a point light of `intensity` spread evenly over `shape`. Each
     /// shading sample sends a shadow ray to a pseudo-randomly chosen, stratified point of
     /// the shape, so a partly hidden light gives a penumbra (FIG. 22). Always shadows.
-    /// The light itself is invisible to camera rays (put an object there to see it).
+    /// The light itself is invisible to camera rays (put an object there to see it, and link
+    /// that object to the light with `Object::area_light` so that it does not shadow it).
     Area {
         /// The emitting shape.
         shape: AreaShape,
@@ -99,6 +100,12 @@ pub enum Light {
         /// linearly and held outside. Empty: still, at `intensity`.
         #[serde(default)]
         motion: Vec<LightKey>,
+        /// Flat shapes emit only toward the side their normal points to (a rectangle's
+        /// `edge_u x edge_v`, a disk's `normal`, a polygon's normal by the right-hand rule
+        /// around its points), as RenderMan's `arealight` does; spheres ignore it. `false`:
+        /// both sides.
+        #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+        one_sided: bool,
     },
 }
 
@@ -132,6 +139,48 @@ pub enum AreaShape {
         /// Second edge.
         edge_v: V3,
     },
+    /// A planar convex polygon through `points` (in order around it), emitting to both
+    /// sides: general quadrilaterals and the polygons of RIB area lights.
+    Polygon {
+        /// The corners, 3 or more, in order around the polygon.
+        points: Vec<V3>,
+    },
+}
+
+impl AreaShape {
+    /// Why `points` cannot be the corners of a [`AreaShape::Polygon`], if they cannot: fewer
+    /// than 3, not finite, no area, not planar (a corner farther than `1e-4` of the polygon's
+    /// size from the plane through the centroid with the Newell normal) or not convex (two
+    /// turns of opposite sense about that normal; straight corners are allowed).
+    pub fn polygon_flaw(points: &[V3]) -> Option<String> {
+        if points.len() < 3 {
+            return Some(format!("needs at least 3 points, got {}", points.len()));
+        }
+        if points.iter().flatten().any(|c| !c.is_finite()) {
+            return Some("the points must be finite".into());
+        }
+        let p: Vec<glam::DVec3> =
+            points.iter().map(|q| glam::DVec3::from(q.map(f64::from))).collect();
+        let n = p.len();
+        let normal: glam::DVec3 = (0..n).map(|i| p[i].cross(p[(i + 1) % n])).sum();
+        let size = (0..n).map(|i| (p[i] - p[0]).length()).fold(0.0, f64::max);
+        if normal.length() <= 1e-12 * size * size || size == 0.0 {
+            return Some("the polygon has no area".into());
+        }
+        let u = normal.normalize();
+        let centroid = p.iter().sum::<glam::DVec3>() / n as f64;
+        if p.iter().any(|q| u.dot(*q - centroid).abs() > 1e-4 * size) {
+            return Some("the polygon is not planar".into());
+        }
+        let turns = (0..n).map(|i| {
+            let (a, b, c) = (p[i], p[(i + 1) % n], p[(i + 2) % n]);
+            u.dot((b - a).cross(c - b))
+        });
+        if turns.into_iter().any(|t| t < -1e-9 * size * size) {
+            return Some("the polygon is not convex".into());
+        }
+        None
+    }
 }
 
 /// An area light at one time.

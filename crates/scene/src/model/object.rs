@@ -103,6 +103,11 @@ pub struct Object {
     /// with `emission: (4.0, 3.5, 2.5)`; values above 1 reach an EXR unclamped.
     #[serde(default)]
     pub emission: Option<Rgb>,
+    /// The object is the visible surface of the area light `Scene::lights[i]` (which must be
+    /// an `Area` light): shadow rays toward that light pass through it, so the emitter does
+    /// not shadow its own light; it still shadows every other light.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub area_light: Option<u32>,
 }
 
 impl Object {
@@ -148,6 +153,7 @@ impl Object {
             displacement: None,
             bump: None,
             emission: None,
+            area_light: None,
         }
     }
 

@@ -60,7 +60,7 @@ pub(super) fn light(at: &str, light: &Light, shutter: &Shutter) -> Check {
 }
 
 /// The shape of an area light: finite; radii > 0; a disk's normal non-zero; a rectangle's
-/// edges non-zero and not parallel.
+/// edges non-zero and not parallel; a polygon's points as [`AreaShape::polygon_flaw`] wants.
 fn area_shape(at: &str, shape: &AreaShape) -> Check {
     let field = |name: &str| format!("{at}.{name}");
     match shape {
@@ -82,6 +82,22 @@ fn area_shape(at: &str, shape: &AreaShape) -> Check {
                 return fail(field("edge_v"), "must not be parallel to edge_u");
             }
             Ok(())
+        }
+        AreaShape::Polygon { points } => match AreaShape::polygon_flaw(points) {
+            Some(flaw) => fail(field("points"), flaw),
+            None => Ok(()),
+        },
+    }
+}
+
+/// An object's link to the area light it is the visible surface of: an `Area` light.
+pub(super) fn emitter_link(at: &str, light: u32, lights: &[Light]) -> Check {
+    match lights.get(light as usize) {
+        Some(Light::Area { .. }) => Ok(()),
+        Some(_) => fail(at, format!("lights[{light}] is not an Area light")),
+        None => {
+            let count = lights.len();
+            fail(at, format!("index {light} is out of range: the scene has {count} light(s)"))
         }
     }
 }

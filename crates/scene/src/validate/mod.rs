@@ -69,6 +69,9 @@ fn check_scene(scene: &Scene) -> Check {
     }
     for (i, object) in scene.objects.iter().enumerate() {
         object::object(&format!("objects[{i}]"), object, shutter, scene.lights.len())?;
+        if let Some(light) = object.area_light {
+            light::emitter_link(&format!("objects[{i}].area_light"), light, &scene.lights)?;
+        }
     }
     solid::solids(scene)?;
     raytrace::raytrace(&scene.raytrace, scene)?;

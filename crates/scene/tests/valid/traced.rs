@@ -51,6 +51,7 @@ fn ray_tracing_fields_take_their_defaults() {
             color: [1.0, 1.0, 1.0],
             intensity: 1.0,
             motion: vec![],
+            one_sided: false,
         }
     );
     let Light::Area { motion, .. } = &scene.lights[4] else { panic!("not an area light") };
