@@ -3,7 +3,6 @@
 //! "elem/s" is points shaded per second. Run with `cargo bench -p reyes-sl --bench grid`.
 
 #[path = "../tests/common/mod.rs"]
-#[allow(dead_code)]
 mod common;
 
 use std::hint::black_box;
