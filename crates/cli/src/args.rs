@@ -53,9 +53,12 @@ pub(crate) struct Args {
     /// (docs/scene-format.md, "Animation"; needed when it has any).
     #[arg(long, value_name = "LIST")]
     pub frames: Option<FrameList>,
-    /// Unknown RIB shaders are errors instead of warnings.
+    /// What RIB tolerates with a warning (unknown shaders, exporter noise) is an error.
     #[arg(long)]
     pub strict: bool,
+    /// Let `Procedural "RunProgram"` run the programs a RIB file names (off: refused).
+    #[arg(long)]
+    pub allow_run_program: bool,
     /// Memory budget, e.g. 4G or 512M (default: $REYES_MEMORY_LIMIT, else 3/4 of the smaller
     /// of physical memory and the address-space limit). A frame estimated not to fit is
     /// refused before it starts (exit 2); one that runs out while dicing stops (exit 1).

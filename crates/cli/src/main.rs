@@ -29,7 +29,7 @@ use std::process::ExitCode;
 
 use clap::Parser;
 use reyes_farm::testing::TestHooks;
-use reyes_farm::{FarmError, FrameJob, Overrides, Request, WriteHooks};
+use reyes_farm::{FarmError, FrameJob, Overrides, Request};
 use reyes_film::WriteOptions;
 use reyes_measure::{MeasureOptions, measure};
 
@@ -158,6 +158,7 @@ fn render_main() -> Result<(), Exit> {
         scene: args.scene.clone(),
         output: args.output.clone(),
         strict: args.strict,
+        allow_run_program: args.allow_run_program,
         frames: args.frames.clone(),
         overrides: Overrides { seed, samples, crop, z_infinite },
         tile: args.tile,
@@ -178,11 +179,7 @@ fn render_main() -> Result<(), Exit> {
         let mut rendered = rendered.map_err(|e| failed(e, &frame.main))?;
         rendered.warnings.iter().for_each(say);
         let pause = |path: &Path, temp: Option<&Path>| hooks.after_first_chunk(path, temp, &say);
-        let write = WriteHooks {
-            cancel: Some(reyes_render::cancel::flag()),
-            after_first_chunk: Some(&pause),
-            named_temporary: hooks.named_temporary,
-        };
+        let write = hooks.write_hooks(&pause);
         job.write(&mut rendered, &write).map_err(|e| failed(e, &frame.main))?;
         job.finish(&mut |w| say(w));
         if args.stats {

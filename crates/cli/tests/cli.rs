@@ -595,3 +595,30 @@ fn control_characters_in_paths_are_escaped_in_errors() {
     assert_eq!(files_in(d), ["file\n", "ok.ron", "sc\u{1b}ene\n.ron"], "nothing written");
     insta::assert_snapshot!("control_characters_in_paths", snapshot);
 }
+
+/// `Procedural "RunProgram"` runs a program only with `--allow-run-program`: refused in one
+/// line without it (exit 2, no output), rendered with it.
+#[test]
+fn run_program_needs_allow_run_program() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = tempfile::tempdir().unwrap();
+    let program = dir.path().join("gen.sh");
+    let script = "#!/bin/sh\nwhile read detail data; do\n  echo \"Sphere 1 -1 1 360\"\n  printf '\\377'\ndone\n";
+    std::fs::write(&program, script).unwrap();
+    std::fs::set_permissions(&program, std::fs::Permissions::from_mode(0o755)).unwrap();
+    let rib = dir.path().join("prog.rib");
+    let procedural = format!(
+        "Procedural \"RunProgram\" [\"{}\" \"\"] [-1 1 -1 1 -1 1]",
+        program.display()
+    );
+    std::fs::write(&rib, RIB.replace("Sphere 1 -1 1 360", &procedural)).unwrap();
+    let out = dir.path().join("prog.exr");
+    let o = run(&[rib.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert_eq!(stderr(&o).lines().count(), 1, "{}", stderr(&o));
+    assert!(stderr(&o).contains("--allow-run-program"), "{}", stderr(&o));
+    assert!(!out.exists());
+    let o = run(&[rib.to_str().unwrap(), "-o", out.to_str().unwrap(), "--allow-run-program"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(out.exists());
+}

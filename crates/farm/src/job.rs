@@ -121,8 +121,11 @@ pub struct Request {
     pub scene: PathBuf,
     /// The output (`.exr` or `.png`; frame numbers go in as [`frame_path`] puts them).
     pub output: PathBuf,
-    /// Unknown RIB shaders are errors instead of warnings.
+    /// What a RIB file gets away with (unknown shaders, exporter noise) is an error.
     pub strict: bool,
+    /// `Procedural "RunProgram"` may run the programs the scene names
+    /// ([`reyes_rib::Permissions`]).
+    pub allow_run_program: bool,
     /// The frames to render (None: every frame of a RIB file; a RON scene's one).
     pub frames: Option<FrameList>,
     /// The changes to each frame's scene.
@@ -159,7 +162,8 @@ pub fn plan(request: &Request, warn: &mut dyn FnMut(String)) -> Result<Vec<Frame
         )));
     }
     let options = RiOptions { strict: r.strict, frames: r.frames.clone().map(|f| f.0) };
-    let loaded = match reyes_rib::load_scene_file(&r.scene, &options) {
+    let permissions = reyes_rib::Permissions { run_program: r.allow_run_program };
+    let loaded = match reyes_rib::load_scene_file_with(&r.scene, &options, permissions) {
         Ok(loaded) => loaded,
         Err(refused) => {
             // What was tolerated before the error often explains it: shown first.

@@ -19,6 +19,8 @@ use std::path::Path;
 use std::sync::Once;
 use std::time::{Duration, Instant};
 
+use crate::job::WriteHooks;
+
 /// The test hooks of one run, the pause taken once.
 pub struct TestHooks {
     /// `REYES_TEST_PAUSE`: `render`, `write`, or None.
@@ -58,6 +60,19 @@ impl TestHooks {
                 say(format!("test: paused writing {}, temporary file {temporary}", file.display()));
                 wait_for_cancel();
             });
+        }
+    }
+}
+
+impl TestHooks {
+    /// How a frame's files are written in a cancellable run: the render's cancel flag polled
+    /// before each chunk, `pause` after the first chunk (which calls
+    /// [`TestHooks::after_first_chunk`]), and a named temporary file if the hooks ask for one.
+    pub fn write_hooks<'a>(&self, pause: &'a crate::job::FirstChunkHook<'a>) -> WriteHooks<'a> {
+        WriteHooks {
+            cancel: Some(reyes_render::cancel::flag()),
+            after_first_chunk: Some(pause),
+            named_temporary: self.named_temporary,
         }
     }
 }
