@@ -1,5 +1,5 @@
 //! `cargo xtask compare A B`: how closely two renders agree, as the peer comparison of
-//! `../shared/peers/README.md` measures it: PSNR over the whole image (values in 0..1, peak 1)
+//! `crates/rib/tests/data/peers/README.md` measures it: PSNR over the whole image (values in 0..1, peak 1)
 //! of each of R, G, B and alpha, of RGB together, and each image's channel means. Also the
 //! RMS and the largest absolute difference of each channel. With `--diff OUT.png`, also how
 //! many pixels differ by more than 0.01 in some channel, and a picture of where: `|a - b|`

@@ -607,10 +607,8 @@ fn run_program_needs_allow_run_program() {
     std::fs::write(&program, script).unwrap();
     std::fs::set_permissions(&program, std::fs::Permissions::from_mode(0o755)).unwrap();
     let rib = dir.path().join("prog.rib");
-    let procedural = format!(
-        "Procedural \"RunProgram\" [\"{}\" \"\"] [-1 1 -1 1 -1 1]",
-        program.display()
-    );
+    let procedural =
+        format!("Procedural \"RunProgram\" [\"{}\" \"\"] [-1 1 -1 1 -1 1]", program.display());
     std::fs::write(&rib, RIB.replace("Sphere 1 -1 1 360", &procedural)).unwrap();
     let out = dir.path().join("prog.exr");
     let o = run(&[rib.to_str().unwrap(), "-o", out.to_str().unwrap()]);

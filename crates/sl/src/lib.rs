@@ -96,13 +96,7 @@ pub fn compile_str(
 
 /// Compiles with [`Options`].
 pub fn compile_with(source: Source<'_>, options: &Options) -> Result<CheckedShader, SlError> {
-    let mut map = SourceMap::default();
-    let input = match source {
-        Source::File(p) => pp::Input::File(p),
-        Source::Text { name, text } => pp::Input::Text { name, text },
-    };
-    let toks = pp::preprocess(input, &options.include_paths, &options.defines, &mut map)
-        .map_err(|d| d.into_error(&map))?;
+    let (toks, map) = tokens(source, options)?;
     let file = parser::parse(&toks).map_err(|d| d.into_error(&map))?;
     check::check(&file, map.clone()).map_err(|d| d.into_error(&map))
 }
@@ -110,6 +104,16 @@ pub fn compile_with(source: Source<'_>, options: &Options) -> Result<CheckedShad
 /// Preprocesses only: the source's tokens after `#include`s and macros, each with its
 /// position shown as `file:line:col`. For tests and tools.
 pub fn preprocess(source: Source<'_>, options: &Options) -> Result<Vec<(String, String)>, SlError> {
+    let (toks, map) = tokens(source, options)?;
+    Ok(toks.into_iter().map(|t| (t.tok.spelling(), map.show(t.pos))).collect())
+}
+
+/// The preprocessed tokens of `source`, with the map that places them; the first stage of
+/// every entry above.
+fn tokens(
+    source: Source<'_>,
+    options: &Options,
+) -> Result<(Vec<lexer::Token>, SourceMap), SlError> {
     let mut map = SourceMap::default();
     let input = match source {
         Source::File(p) => pp::Input::File(p),
@@ -117,17 +121,11 @@ pub fn preprocess(source: Source<'_>, options: &Options) -> Result<Vec<(String, 
     };
     let toks = pp::preprocess(input, &options.include_paths, &options.defines, &mut map)
         .map_err(|d| d.into_error(&map))?;
-    Ok(toks.into_iter().map(|t| (t.tok.spelling(), map.show(t.pos))).collect())
+    Ok((toks, map))
 }
 
 /// Parses only (preprocessor and parser, no checking): the syntax tree.
 pub fn parse(source: Source<'_>, options: &Options) -> Result<ast::File, SlError> {
-    let mut map = SourceMap::default();
-    let input = match source {
-        Source::File(p) => pp::Input::File(p),
-        Source::Text { name, text } => pp::Input::Text { name, text },
-    };
-    let toks = pp::preprocess(input, &options.include_paths, &options.defines, &mut map)
-        .map_err(|d| d.into_error(&map))?;
+    let (toks, map) = tokens(source, options)?;
     parser::parse(&toks).map_err(|d| d.into_error(&map))
 }
