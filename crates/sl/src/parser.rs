@@ -122,6 +122,23 @@ impl<'a> Parser<'a> {
         if self.eat(p) { Ok(pos) } else { self.err(format_args!("'{}' {context}", p.as_str())) }
     }
 
+    /// The arguments of a call or light statement named `name`, after its `(`: expressions
+    /// separated by `,`, up to and including the `)`.
+    pub(super) fn arguments(&mut self, name: &str) -> DResult<Vec<Expr>> {
+        let mut args = Vec::new();
+        if !self.eat(P::RParen) {
+            loop {
+                args.push(self.assign()?);
+                if self.eat(P::Comma) {
+                    continue;
+                }
+                self.expect(P::RParen, &format!("or ',' in the arguments of \"{name}\""))?;
+                break;
+            }
+        }
+        Ok(args)
+    }
+
     pub(super) fn enter(&mut self) -> DResult<()> {
         self.depth += 1;
         if self.depth > MAX_DEPTH {

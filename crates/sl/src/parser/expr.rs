@@ -207,17 +207,7 @@ impl Parser<'_> {
                     return Ok(Expr { kind: ExprKind::Name(s.clone()), pos });
                 }
                 self.i += 1;
-                let mut args = Vec::new();
-                if !self.eat(P::RParen) {
-                    loop {
-                        args.push(self.assign()?);
-                        if self.eat(P::Comma) {
-                            continue;
-                        }
-                        self.expect(P::RParen, &format!("or ',' in the arguments of \"{s}\""))?;
-                        break;
-                    }
-                }
+                let args = self.arguments(s)?;
                 Ok(Expr { kind: ExprKind::Call(s.clone(), args), pos })
             }
             Some(Tok::Punct(P::LParen)) => {

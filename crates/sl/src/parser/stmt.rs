@@ -118,17 +118,7 @@ impl Parser<'_> {
                 let which = w.clone();
                 self.i += 1;
                 self.expect(P::LParen, &format!("after \"{which}\""))?;
-                let mut args = Vec::new();
-                if !self.eat(P::RParen) {
-                    loop {
-                        args.push(self.assign()?);
-                        if self.eat(P::Comma) {
-                            continue;
-                        }
-                        self.expect(P::RParen, &format!("or ',' in the arguments of \"{which}\""))?;
-                        break;
-                    }
-                }
+                let args = self.arguments(&which)?;
                 let body = Box::new(self.stmt()?);
                 Ok(match which.as_str() {
                     "illuminance" => Stmt::Illuminance { args, body, pos },
