@@ -2,6 +2,9 @@
 //! soups and random mutations of valid shaders are compiled; every error displays as one line
 //! with a position (or a path, for I/O).
 
+mod common;
+
+use common::mutate;
 use proptest::prelude::*;
 use reyes_sl::compile_str;
 
@@ -164,14 +167,7 @@ proptest! {
     fn mutations_of_valid_source_never_panic(
         edits in proptest::collection::vec((0usize..2000, proptest::sample::select(SNIPPETS), 0usize..4), 1..6)
     ) {
-        let mut src = VALID.to_string();
-        for (at, snippet, cut) in edits {
-            let mut i = at % (src.len() + 1);
-            while !src.is_char_boundary(i) { i -= 1; }
-            let mut j = (i + cut).min(src.len());
-            while !src.is_char_boundary(j) { j -= 1; }
-            src.replace_range(i..j, snippet);
-        }
+        let src = mutate(VALID, &edits);
         check(&src);
     }
 

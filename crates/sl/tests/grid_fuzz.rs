@@ -163,14 +163,7 @@ proptest! {
     fn mutations_run_without_panic(
         edits in proptest::collection::vec((0usize..2400, proptest::sample::select(SNIPPETS), 0usize..4), 1..5)
     ) {
-        let mut src = VALID.to_string();
-        for (at, snippet, cut) in edits {
-            let mut i = at % (src.len() + 1);
-            while !src.is_char_boundary(i) { i -= 1; }
-            let mut j = (i + cut).min(src.len());
-            while !src.is_char_boundary(j) { j -= 1; }
-            src.replace_range(i..j, snippet);
-        }
+        let src = mutate(VALID, &edits);
         run(&src, 4, 3, None);
     }
 

@@ -54,3 +54,21 @@ pub fn run_ci(src: &str, nu: usize, nv: usize) -> Vec<[f32; 3]> {
 pub fn close(a: f32, b: f32, tol: f32) -> bool {
     (a - b).abs() <= tol
 }
+
+/// `valid` with each edit `(at, snippet, cut)` applied in turn: `cut` bytes from about byte
+/// `at` (wrapped to the text, moved back to a character boundary) replaced by `snippet`.
+pub fn mutate(valid: &str, edits: &[(usize, &str, usize)]) -> String {
+    let mut src = valid.to_string();
+    for &(at, snippet, cut) in edits {
+        let mut i = at % (src.len() + 1);
+        while !src.is_char_boundary(i) {
+            i -= 1;
+        }
+        let mut j = (i + cut).min(src.len());
+        while !src.is_char_boundary(j) {
+            j -= 1;
+        }
+        src.replace_range(i..j, snippet);
+    }
+    src
+}
