@@ -28,11 +28,11 @@ pub(crate) struct Args {
     /// extension or else its content; - reads standard input.
     pub scene: PathBuf,
     /// Output image: .exr (RGBA plus Z, and the scene's AOVs as layers) or .png (8-bit sRGB
-    /// with alpha, dithered; docs/outputs.md). Several frames (RIB FrameBegin) go to numbered
-    /// files: a run of # or a %0Nd in the name takes the frame number, else it is inserted
-    /// before the extension (out.0001.exr).
+    /// with alpha, dithered; docs/outputs.md); default for RIB: its Display name. A file of
+    /// several frames writes numbered files: a run of # or a %0Nd in the name takes the frame
+    /// number, else it is inserted before the extension (out.0001.exr).
     #[arg(short, long, value_name = "FILE")]
-    pub output: PathBuf,
+    pub output: Option<PathBuf>,
     /// Worker threads (default: one per core).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=1024))]
     pub threads: Option<u16>,

@@ -346,8 +346,10 @@ fn rib_errors_and_warnings_are_one_line_each() {
     let o = run(&[odd.to_str().unwrap(), "-o", out.to_str().unwrap()]);
     assert!(o.status.success());
     let err = stderr(&o);
-    assert_eq!(err.lines().count(), 1, "{err}");
+    assert_eq!(err.lines().count(), 2, "{err}");
     assert!(err.contains("odd.rib:6:1: warning: Surface: unknown shader \"wood\""), "{err}");
+    let wrote = format!("reyes-render: wrote {}", out.display());
+    assert_eq!(err.lines().last(), Some(wrote.as_str()), "{err}");
     let o = run(&[odd.to_str().unwrap(), "-o", out.to_str().unwrap(), "--strict"]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     let missing = dir.path().join("missing.rib");

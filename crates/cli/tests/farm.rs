@@ -251,8 +251,11 @@ fn progress_lines_parse_as_documented() {
         run(dir, &[&s, "--tile", "2/3", "--progress-every", "0", "--threads", "1", "-o", "t.exr"]);
     assert_eq!(o.status.code(), Some(0));
     let err = String::from_utf8_lossy(&o.stderr);
+    // The progress lines, then the file written.
+    assert_eq!(err.lines().last(), Some("reyes-render: wrote t.exr"), "{err}");
     let lines: Vec<ProgressLine> = err
         .lines()
+        .filter(|l| !l.starts_with("reyes-render: wrote "))
         .map(|l| parse_progress(l).unwrap_or_else(|| panic!("not a progress line: {l}")))
         .collect();
     // Tile 2 of 3 of 20 buckets holds 7: a line after each of the first six, then 100%.
@@ -264,9 +267,10 @@ fn progress_lines_parse_as_documented() {
         assert!(l.left.is_some());
     }
     assert_eq!(lines.last().map(|l| (l.percent, l.left)), Some((100, Some(0))));
-    // A render shorter than the interval prints none; --quiet prints none.
+    // A render shorter than the interval prints none (only the file written); --quiet
+    // prints none.
     let o = run(dir, &[&s, "-o", "a.exr"]);
-    assert!(o.stderr.is_empty(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(String::from_utf8_lossy(&o.stderr), "reyes-render: wrote a.exr\n");
     let o = run(dir, &[&s, "--quiet", "--progress-every", "0", "-o", "b.exr"]);
     assert!(o.stderr.is_empty());
     assert_eq!(

@@ -382,7 +382,7 @@ fn usage_errors_are_one_line_with_exit_2() {
         (&["--foo"], "reyes-render: error: unexpected argument '--foo' found (see --help)"),
         (
             &[],
-            "reyes-render: error: the following required arguments were not provided: --output <FILE> <SCENE> (see --help)",
+            "reyes-render: error: the following required arguments were not provided: <SCENE> (see --help)",
         ),
         (
             &["s.ron", "-o", "x.exr", "--stat"],

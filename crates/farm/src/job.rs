@@ -119,8 +119,9 @@ fn revalidate(scene: Scene, path: &Path, flag: &str) -> Result<Scene, FarmError>
 pub struct Request {
     /// The scene file (RON or RIB; `-`: standard input).
     pub scene: PathBuf,
-    /// The output (`.exr` or `.png`; frame numbers go in as [`frame_path`] puts them).
-    pub output: PathBuf,
+    /// The output (`.exr` or `.png`; frame numbers go in as [`frame_path`] puts them). None:
+    /// each RIB frame's main `Display` name ([`crate::output::display_output`]).
+    pub output: Option<PathBuf>,
     /// What a RIB file gets away with (unknown shaders, exporter noise) is an error.
     pub strict: bool,
     /// `Procedural "RunProgram"` may run the programs the scene names
@@ -154,12 +155,8 @@ pub struct FramePlan {
 /// other places of a RIB file once, with the count of the others).
 pub fn plan(request: &Request, warn: &mut dyn FnMut(String)) -> Result<Vec<FramePlan>, FarmError> {
     let r = request;
-    check_output(&r.output, r.tile.is_some())?;
-    if r.tile.is_some() && !is_exr(&r.output) {
-        return Err(FarmError::invalid(format_args!(
-            "{}: --tile: a tile is written as .exr",
-            one_line(r.output.display())
-        )));
+    if let Some(output) = &r.output {
+        check_main(output, r.tile.is_some())?;
     }
     let options = RiOptions { strict: r.strict, frames: r.frames.clone().map(|f| f.0) };
     let permissions = reyes_rib::Permissions { run_program: r.allow_run_program };
@@ -176,17 +173,33 @@ pub fn plan(request: &Request, warn: &mut dyn FnMut(String)) -> Result<Vec<Frame
     if loaded.frames.is_empty() {
         return Err(FarmError::invalid(format_args!("{scene_path}: no frame to render")));
     }
-    let numbered = loaded.frames.len() > 1 || loaded.frames.iter().any(|f| f.number.is_some());
+    // Numbered names only for a file of several frames (and a pattern in the name): a
+    // single-frame file's `-o out.exr` is out.exr. Without -o, each frame's own Display name
+    // is numbered only when frames share one.
+    let several = loaded.several_frames || loaded.frames.len() > 1;
+    let numbered = if r.output.is_some() { several } else { several && loaded.display_repeats };
     let mut plans = Vec::with_capacity(loaded.frames.len());
     for frame in loaded.frames {
+        let output = match &r.output {
+            Some(output) => output.clone(),
+            None => {
+                let Some(named) = crate::output::display_output(&frame.displays, warn) else {
+                    return Err(FarmError::invalid(format_args!(
+                        "{scene_path}: no output: the file names no Display, give -o OUT.exr"
+                    )));
+                };
+                check_main(&named, r.tile.is_some())?;
+                named
+            }
+        };
         let scene = r.overrides.apply(frame.scene, &r.scene)?;
         if let Some(w) = reyes_render::settings::pattern_fallback(&scene) {
             warn(format!("{scene_path}: warning: {w}"));
         }
-        let main = frame_path(&r.output, frame.number, numbered);
+        let main = frame_path(&output, frame.number, numbered);
         let mut extras = Vec::new();
         for d in frame.displays.iter().filter(|d| d.extra) {
-            match extra_path(&r.output, &d.name, frame.number, numbered) {
+            match extra_path(&output, &d.name, frame.number, numbered) {
                 Some(path) => extras.push(path),
                 None => warn(format!(
                     "{}: warning: Display: \"{}\" is not written: only .exr and .png outputs are",
@@ -209,8 +222,18 @@ pub fn plan(request: &Request, warn: &mut dyn FnMut(String)) -> Result<Vec<Frame
     Ok(plans)
 }
 
-/// Scene warnings to `warn`, one line each; a message repeated at other places is given
-/// once, at its first place, with the count of the others.
+/// Check a main output before anything is rendered ([`check_output`]); a tile is .exr.
+fn check_main(output: &Path, tile: bool) -> Result<(), FarmError> {
+    check_output(output, tile)?;
+    if tile && !is_exr(output) {
+        return Err(FarmError::invalid(format_args!(
+            "{}: --tile: a tile is written as .exr",
+            one_line(output.display())
+        )));
+    }
+    Ok(())
+}
+
 /// The scene of `path` (RON or RIB) when it has exactly one frame, for the commands that
 /// read one scene without rendering it (`reyes-render measure`); the warnings go to `warn`
 /// as [`plan`]'s do, also when the file is refused.
@@ -232,6 +255,8 @@ pub fn load_one_frame(path: &Path, warn: &mut dyn FnMut(String)) -> Result<Scene
     }
 }
 
+/// Scene warnings to `warn`, one line each; a message repeated at other places is given
+/// once, at its first place, with the count of the others.
 fn summarise(warnings: &[reyes_rib::Warning], warn: &mut dyn FnMut(String)) {
     let mut seen: Vec<(&str, usize, usize)> = Vec::new();
     for (i, w) in warnings.iter().enumerate() {
@@ -434,11 +459,16 @@ impl<'a> FrameJob<'a> {
         Ok(())
     }
 
-    /// Every output is written: remove the checkpoint (a folder that cannot be removed is a
-    /// line to `warn`).
-    pub fn finish(self, warn: &mut dyn FnMut(String)) {
+    /// Every output is written: with `announce`, name each file written, one line each to
+    /// `say`; remove the checkpoint (a folder that cannot be removed is a line to `say`).
+    pub fn finish(self, announce: bool, say: &mut dyn FnMut(String)) {
+        if announce {
+            for path in self.outputs() {
+                say(format!("wrote {}", one_line(path.display())));
+            }
+        }
         if let Some(c) = self.checkpoint {
-            c.finish(warn);
+            c.finish(say);
         }
     }
 }

@@ -20,10 +20,11 @@ use reyes_scene::Scene;
 use crate::{FarmError, one_line};
 
 /// The output path of frame `number`: a run of `#` (`out.####.exr`) or a `%0Nd`
-/// (`out.%04d.exr`) takes the number, zero-padded to the run's length or N; otherwise, when
-/// `numbered` (the file has several frames), `.NNNN` is inserted before the extension.
+/// (`out.%04d.exr`) takes the number (1 for a file without `FrameBegin`), zero-padded to
+/// the run's length or N; otherwise, when `numbered` (the file has several frames), `.NNNN`
+/// is inserted before the extension.
 pub fn frame_path(output: &Path, number: Option<i32>, numbered: bool) -> PathBuf {
-    let Some(n) = number else { return output.to_path_buf() };
+    let n = number.unwrap_or(1);
     let name = output.file_name().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
     let with = |name: String| output.with_file_name(name);
     if let Some(start) = name.find('#') {
@@ -39,7 +40,7 @@ pub fn frame_path(output: &Path, number: Option<i32>, numbered: bool) -> PathBuf
             return with(format!("{}{:0width$}{}", &name[..start], n, &name[end..]));
         }
     }
-    if !numbered {
+    if !numbered || number.is_none() {
         return output.to_path_buf();
     }
     match name.rfind('.') {
@@ -62,6 +63,34 @@ pub fn extra_path(
     }
     let dir = output.parent().unwrap_or(Path::new(""));
     Some(frame_path(&dir.join(display), number, numbered))
+}
+
+/// The main output of a RIB frame rendered without `-o`: its main `Display` name, relative
+/// to the current directory, as RenderMan renderers write it. A name that is not an .exr or
+/// .png file (a `"tiff"` or `"framebuffer"` display) is written as OpenEXR under the same
+/// name with `.exr` for its extension, and `warn` says so. None when the frame has no
+/// `Display`.
+pub fn display_output(
+    displays: &[reyes_rib::Display],
+    warn: &mut dyn FnMut(String),
+) -> Option<PathBuf> {
+    let d = displays.iter().find(|d| !d.extra)?;
+    let path = PathBuf::from(&d.name);
+    path.file_name()?;
+    let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+    if matches!(ext.as_deref(), Some("exr" | "png")) {
+        return Some(path);
+    }
+    let written = path.with_extension("exr");
+    warn(format!(
+        "{}: warning: Display: \"{}\" (driver \"{}\"): only .exr and .png files are written: \
+         writing {} (use -o to choose)",
+        d.at,
+        one_line(&d.name),
+        one_line(&d.driver),
+        one_line(written.display())
+    ));
+    Some(written)
 }
 
 /// Whether `path` names an OpenEXR file.

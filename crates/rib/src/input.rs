@@ -200,7 +200,12 @@ fn ron_frames(
         None => {
             let scene = reyes_scene::parse_files(text, file)?;
             let frames = vec![Frame { number: None, scene, displays: Vec::new() }];
-            return Ok(Loaded { frames, warnings: Vec::new() });
+            return Ok(Loaded {
+                frames,
+                warnings: Vec::new(),
+                several_frames: false,
+                display_repeats: false,
+            });
         }
     };
     let mut frames = Vec::with_capacity(numbers.len());
@@ -209,7 +214,8 @@ fn ron_frames(
         let scene = reyes_scene::parse_files(&text, file)?;
         frames.push(Frame { number: Some(n), scene, displays: Vec::new() });
     }
-    Ok(Loaded { frames, warnings: Vec::new() })
+    let several_frames = reyes_scene::animate::is_animated(text);
+    Ok(Loaded { frames, warnings: Vec::new(), several_frames, display_repeats: false })
 }
 
 #[cfg(test)]

@@ -105,6 +105,11 @@ pub(crate) struct Machine {
     /// Warnings given once per key (unknown shaders, unsupported features).
     pub(super) warned: std::collections::HashSet<String>,
     frames: Vec<Frame>,
+    /// World blocks read, built or not (`--frames` may skip some): how many frames the file
+    /// has, which decides whether output names are numbered.
+    worlds: usize,
+    /// The main `Display` name of every world block read, built or not.
+    display_names: Vec<String>,
 }
 
 /// A handle argument as a key (RIB handles are integers or strings; `1` and `"1"` differ).
@@ -154,6 +159,8 @@ impl Machine {
             warnings: Vec::new(),
             warned: Default::default(),
             frames: Vec::new(),
+            worlds: 0,
+            display_names: Vec::new(),
         }
     }
 
@@ -193,7 +200,12 @@ impl Machine {
         self.warnings.extend(self.reader.take_warnings());
         in_file_order(&mut self.warnings);
         match result {
-            Ok(()) => Ok(Loaded { frames: self.frames, warnings: self.warnings }),
+            Ok(()) => Ok(Loaded {
+                frames: self.frames,
+                warnings: self.warnings,
+                several_frames: self.worlds > 1,
+                display_repeats: repeats(&self.display_names),
+            }),
             Err(e) => Err((e, self.warnings)),
         }
     }
@@ -616,6 +628,10 @@ impl Machine {
         self.pop(r, Block::World)?;
         let build = self.build.take().ok_or_else(|| r.error("no WorldBegin is open"))?;
         let frame_number = self.frame_number;
+        self.worlds += 1;
+        if let Some(d) = self.frame_options.displays.iter().find(|d| !d.extra) {
+            self.display_names.push(d.name.clone());
+        }
         if build.wanted {
             let (scene, displays) = build.finish(&mut self.warnings)?;
             self.frames.push(Frame { number: frame_number, scene, displays });
@@ -624,6 +640,13 @@ impl Machine {
         self.ctm = self.frame_options.camera.clone();
         Ok(())
     }
+}
+
+/// Whether some name occurs more than once.
+fn repeats(names: &[String]) -> bool {
+    let mut sorted: Vec<&String> = names.iter().collect();
+    sorted.sort_unstable();
+    sorted.windows(2).any(|w| w[0] == w[1])
 }
 
 /// Sorts warnings into file order: by line and column within each source, and the sources in

@@ -84,6 +84,12 @@ pub struct Loaded {
     /// Everything accepted but worth telling: unknown requests and parameters, features we
     /// do not support, stand-in shaders.
     pub warnings: Vec<Warning>,
+    /// The file has more than one frame (RIB world blocks, whether `--frames` built them or
+    /// not; an animated RON scene): its output names are numbered.
+    pub several_frames: bool,
+    /// Two world blocks have the same main `Display` name: without `-o`, the frames'
+    /// names are numbered so that they do not overwrite each other.
+    pub display_repeats: bool,
 }
 
 /// Reads RIB from `source` into validated scenes, one per frame (archives are read relative
