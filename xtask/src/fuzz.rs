@@ -4,7 +4,7 @@
 //! The instrumented build has its own target folder (`target/fuzz`) and is built for the host
 //! triple given explicitly, so that RUSTFLAGS reach the fuzzed code but not build scripts or
 //! proc macros (which run inside the compiler, where the coverage callbacks do not exist).
-//! ARGS go to `reyes-fuzz` (`--execs N`, `--renders N`, `--targets ron,rib,render`,
+//! ARGS go to `reyes-fuzz` (`--execs N`, `--renders N`, `--targets ron,rib,render,sl`,
 //! `--seed S`, `--save`, `--time-limit SECS`, ...); the run's files go to `target/fuzz/out`.
 
 use std::path::{Path, PathBuf};
@@ -15,7 +15,7 @@ const RUSTFLAGS: &str = "-C passes=sancov-module -C llvm-args=-sanitizer-coverag
                          -C llvm-args=-sanitizer-coverage-trace-pc-guard";
 
 /// The targets, in the order they are fuzzed and minimised.
-const TARGETS: &[&str] = &["ron", "rib", "render"];
+const TARGETS: &[&str] = &["ron", "rib", "render", "sl"];
 
 fn host() -> Result<String, String> {
     let out = Command::new(std::env::var("RUSTC").unwrap_or_else(|_| "rustc".into()))

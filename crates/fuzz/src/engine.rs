@@ -217,6 +217,7 @@ fn extension(target: Target, input: &[u8]) -> &'static str {
         Target::Ron => Format::Ron,
         Target::Rib => Format::Rib,
         Target::Render => target::detect(input),
+        Target::Sl => return "sl",
     };
     match format {
         Format::Ron => "ron",
@@ -310,6 +311,14 @@ pub fn run(opts: &Options) -> std::io::Result<Report> {
                 current.set(input);
                 watchdog.start();
                 let r = target::run_in_process(format, input);
+                watchdog.stop();
+                let new = map.merge();
+                r.map(|v| (v, new))
+            }
+            Target::Sl => {
+                current.set(input);
+                watchdog.start();
+                let r = target::run_sl(input);
                 watchdog.stop();
                 let new = map.merge();
                 r.map(|v| (v, new))

@@ -1,7 +1,7 @@
 //! The `reyes-fuzz` command (run by `cargo xtask fuzz`; see docs/reliability.md, "Fuzzing").
 //!
 //! ```text
-//! reyes-fuzz [fuzz] [--targets ron,rib,render] [--execs N] [--renders N] [--seed S]
+//! reyes-fuzz [fuzz] [--targets ron,rib,render,sl] [--execs N] [--renders N] [--seed S]
 //!            [--corpus DIR] [--out DIR] [--save] [--timeout SECS] [--memory MIB]
 //!            [--time-limit SECS] [--quiet]
 //! reyes-fuzz replay TARGET FILE...
@@ -27,7 +27,7 @@ use reyes_fuzz::engine::{self, Child, HANG_EXIT, Options, Report};
 use reyes_fuzz::target::{self, Failure, Target, Verdict};
 use reyes_fuzz::{limits, rng::Rng};
 
-const USAGE: &str = "usage: reyes-fuzz [fuzz] [--targets ron,rib,render] [--execs N] [--renders N] \
+const USAGE: &str = "usage: reyes-fuzz [fuzz] [--targets ron,rib,render,sl] [--execs N] [--renders N] \
 [--seed S] [--corpus DIR] [--out DIR] [--save] [--timeout SECS] [--memory MIB] [--time-limit SECS] \
 [--quiet] | replay TARGET FILE... | cmin TARGET DIR... --into DIR";
 
@@ -53,7 +53,7 @@ struct Args {
 impl Default for Args {
     fn default() -> Args {
         Args {
-            targets: vec![Target::Ron, Target::Rib, Target::Render],
+            targets: vec![Target::Ron, Target::Rib, Target::Render, Target::Sl],
             execs: 100_000,
             renders: 1_000,
             seed: 1,
@@ -97,14 +97,15 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
     Ok(a)
 }
 
-/// The seed folders of a target: the hand-picked seeds (`seeds/ron`, `seeds/rib`, never
-/// minimised away) and what earlier runs found (`ron`, `rib`, `render`, minimised by
-/// `cmin`); renders start from all of them.
+/// The seed folders of a target: the hand-picked seeds (`seeds/ron`, `seeds/rib`,
+/// `seeds/sl`, never minimised away) and what earlier runs found (`ron`, `rib`, `render`,
+/// `sl`, minimised by `cmin`); renders start from all of the scenes.
 fn seed_dirs(corpus: &Path, target: Target) -> Vec<PathBuf> {
     let dirs: &[&str] = match target {
         Target::Ron => &["seeds/ron", "ron"],
         Target::Rib => &["seeds/rib", "rib"],
         Target::Render => &["seeds/ron", "seeds/rib", "ron", "rib", "render"],
+        Target::Sl => &["seeds/sl", "sl"],
     };
     dirs.iter().map(|d| corpus.join(d)).collect()
 }
@@ -119,6 +120,10 @@ fn save_dir(a: &Args, target: Target) -> PathBuf {
 /// started after one died goes on from the coverage reached.
 fn options(a: &Args, target: Target, execs: u64, seed: u64) -> Options {
     let mut seeds = seed_dirs(&a.corpus, target);
+    if target == Target::Sl {
+        // The standard shaders the renderer ships are seeds too (not copied into the corpus).
+        seeds.push(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../sl/shaders"));
+    }
     let save = save_dir(a, target);
     if !seeds.contains(&save) {
         seeds.push(save.clone());
@@ -247,6 +252,7 @@ fn replay(args: &[String]) -> Result<u8, String> {
                 Ok(Verdict::Accepted) => child.render(&input).map(|(v, _)| v),
                 other => other,
             },
+            Target::Sl => target::run_sl(&input),
         };
         match result {
             Ok(v) => println!("{file}: {v:?}"),
@@ -291,6 +297,10 @@ fn cmin(args: &[String]) -> Result<u8, String> {
                     reyes_rib::Format::Rib
                 };
                 let _ = target::run_in_process(format, input);
+                coverage::parse(&coverage::dump())
+            }
+            Target::Sl => {
+                let _ = target::run_sl(input);
                 coverage::parse(&coverage::dump())
             }
             Target::Render => {
@@ -450,7 +460,9 @@ fn supervise(
             "{}-{kind}-{}.{}",
             target.name(),
             engine::hash(&input),
-            if target::detect(&input) == reyes_rib::Format::Ron && target != Target::Rib {
+            if target == Target::Sl {
+                "sl"
+            } else if target::detect(&input) == reyes_rib::Format::Ron && target != Target::Rib {
                 "ron"
             } else {
                 "rib"

@@ -3,6 +3,9 @@
 //! - [`Target::Ron`]: `reyes_scene::parse` (RON syntax, then validation), in process.
 //! - [`Target::Rib`]: `reyes_rib::load` (lexer, reader, RI state machine, validation of every
 //!   frame), in process.
+//! - [`Target::Sl`]: the shading-language compiler (`reyes_sl::compile_str`: preprocessor,
+//!   parser, checker), and each shader it accepts run by the grid machine over a 4x4 grid
+//!   under a small instruction budget, in process.
 //! - [`Target::Render`]: a whole render of the scene, shrunk by [`shrink`], in a child process
 //!   under a memory cap and a time limit ([`render_child`] is what the child runs).
 //!
@@ -28,6 +31,8 @@ pub enum Target {
     Rib,
     /// Small renders in child processes.
     Render,
+    /// The shading-language compiler and grid machine.
+    Sl,
 }
 
 impl Target {
@@ -37,6 +42,7 @@ impl Target {
             "ron" => Some(Target::Ron),
             "rib" => Some(Target::Rib),
             "render" => Some(Target::Render),
+            "sl" => Some(Target::Sl),
             _ => None,
         }
     }
@@ -47,6 +53,7 @@ impl Target {
             Target::Ron => "ron",
             Target::Rib => "rib",
             Target::Render => "render",
+            Target::Sl => "sl",
         }
     }
 }
@@ -137,6 +144,67 @@ pub fn run_in_process(format: Format, input: &[u8]) -> Result<Verdict, Failure> 
             let msg = LAST_PANIC.lock().ok().and_then(|mut l| l.take());
             Err(Failure::new("panic", msg.unwrap_or_else(|| "panic".into())))
         }
+    }
+}
+
+/// The file name the shading-language target gives its input (errors must name it).
+pub const SL_FILE: &str = "fuzz.sl";
+
+/// The instruction budget of a fuzzed shader's run: enough for every seed shader, small
+/// enough that a mutant's endless loop ends in milliseconds (as the budget error).
+pub const SL_BUDGET: u64 = 200_000;
+
+/// Compiles `input` as a shader and runs what compiles over a 4x4 grid, in this process; a
+/// panic is caught. A compile error must keep the compiler's promise (one line,
+/// `fuzz.sl:line:col: ...` at a line inside the text); a run may fail only with the
+/// machine's own errors (the budget, an input that does not fit, an unsupported construct).
+pub fn run_sl(input: &[u8]) -> Result<Verdict, Failure> {
+    let run = || {
+        if let Some(canary) = CANARY.get() {
+            canary(input);
+        }
+        check_sl(input)
+    };
+    match catch_unwind(AssertUnwindSafe(run)) {
+        Ok(r) => r,
+        Err(_) => {
+            let msg = LAST_PANIC.lock().ok().and_then(|mut l| l.take());
+            Err(Failure::new("panic", msg.unwrap_or_else(|| "panic".into())))
+        }
+    }
+}
+
+fn check_sl(input: &[u8]) -> Result<Verdict, Failure> {
+    let text = String::from_utf8_lossy(input);
+    let shader = match reyes_sl::compile_str(SL_FILE, &text, &[]) {
+        Ok(shader) => shader,
+        Err(e) => {
+            let message = e.to_string();
+            let bad = |why: &str| Err(Failure::new("bad-error", format!("{why}: {message:?}")));
+            if message.contains(['\n', '\r']) {
+                return bad("error of more than one line");
+            }
+            // Errors inside the text name it with its line; an #include that is not found
+            // names the including line too.
+            let Some(rest) = message.strip_prefix(&format!("{SL_FILE}:")) else {
+                return bad("error not naming the file");
+            };
+            let line: Option<usize> = rest.split(':').next().and_then(|l| l.parse().ok());
+            let lines = text.lines().count().max(1) + 1;
+            if line.is_none_or(|l| l == 0 || l > lines) {
+                return bad("error at a line outside the text");
+            }
+            return Ok(Verdict::Rejected);
+        }
+    };
+    let mut grid = reyes_sl::exec::GridContext::new(&shader, 4, 4);
+    grid.set_budget(SL_BUDGET);
+    match grid.run() {
+        Ok(_) => Ok(Verdict::Accepted),
+        Err(e) if e.to_string().contains(['\n', '\r']) => {
+            Err(Failure::new("bad-error", format!("run error of more than one line: {e}")))
+        }
+        Err(_) => Ok(Verdict::Rejected),
     }
 }
 

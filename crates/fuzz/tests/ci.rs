@@ -73,6 +73,12 @@ fn ci_rib_reader_state_machine_and_validator() {
     ci_run("rib", 500_000);
 }
 
+/// The shading-language compiler, and the grid machine on what compiles.
+#[test]
+fn ci_shading_language_compiler_and_grid_machine() {
+    ci_run("sl", 100_000);
+}
+
 /// 1,000 renders (with seed 20; before the dicer's work bounds, 400 already reached the endless
 /// split of `regressions/dice-split-endless-huge-moving-mesh-point.ron`).
 #[test]

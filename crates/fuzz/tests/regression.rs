@@ -100,3 +100,13 @@ fn render_camera_swing_slow() {
 fn render_dof_huge_axis_slow() {
     replay_with("render", "render-dof-huge-axis-slow.rib", &["--timeout", "2"]);
 }
+
+#[test]
+fn sl_no_shader_names_the_file() {
+    replay("sl", "sl-no-shader-names-the-file.sl");
+}
+
+#[test]
+fn sl_control_character_in_run_error() {
+    replay("sl", "sl-control-character-in-run-error.sl");
+}

@@ -115,9 +115,17 @@ fn tokens(
     options: &Options,
 ) -> Result<(Vec<lexer::Token>, SourceMap), SlError> {
     let mut map = SourceMap::default();
+    // The main file is file 0, which a position with nothing to point at (the end of an
+    // empty file) names.
     let input = match source {
-        Source::File(p) => pp::Input::File(p),
-        Source::Text { name, text } => pp::Input::Text { name, text },
+        Source::File(p) => {
+            map.intern(&p.display().to_string());
+            pp::Input::File(p)
+        }
+        Source::Text { name, text } => {
+            map.intern(name);
+            pp::Input::Text { name, text }
+        }
     };
     let toks = pp::preprocess(input, &options.include_paths, &options.defines, &mut map)
         .map_err(|d| d.into_error(&map))?;

@@ -198,6 +198,7 @@ impl<'a> GridContext<'a> {
     }
 
     fn input_err(&self, message: String) -> ExecError {
+        let message = crate::error::OneLine(&message).to_string();
         ExecError::Input { shader: self.shader.name.clone(), message }
     }
 
@@ -411,11 +412,13 @@ impl<'a> GridContext<'a> {
         }
     }
 
+    /// An error at the node being evaluated; the message is put on one line (it may quote
+    /// a string the shader computed).
     pub(crate) fn err_at(&self, message: String) -> ExecError {
         ExecError::Unsupported {
             shader: self.shader.name.clone(),
             at: self.shader.sources.show(self.at),
-            message,
+            message: crate::error::OneLine(&message).to_string(),
         }
     }
 
