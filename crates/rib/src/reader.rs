@@ -33,11 +33,19 @@ pub struct ReaderOptions {
     pub keep_structure_comments: bool,
     /// Deepest nesting of archives accepted (the root source counts 1).
     pub max_depth: usize,
+    /// `--strict`: a parameter of a type this reader does not know is an error, not a
+    /// warning and a skipped parameter.
+    pub strict: bool,
 }
 
 impl Default for ReaderOptions {
     fn default() -> Self {
-        ReaderOptions { follow_archives: false, keep_structure_comments: false, max_depth: 64 }
+        ReaderOptions {
+            follow_archives: false,
+            keep_structure_comments: false,
+            max_depth: 64,
+            strict: false,
+        }
     }
 }
 
@@ -217,6 +225,7 @@ impl Reader {
                         context: Context::None,
                         param_name: String::new(),
                         param_decl: None,
+                        strict: self.options.strict,
                     };
                     let request = match parser.request() {
                         Ok(r) => r,

@@ -32,6 +32,8 @@ pub(super) struct Parser<'a> {
     pub(super) param_name: String,
     /// Its declaration, if any.
     pub(super) param_decl: Option<Decl>,
+    /// What RenderMan renderers tolerate with a warning is an error ([`super::ReaderOptions`]).
+    pub(super) strict: bool,
 }
 
 impl Parser<'_> {
@@ -342,7 +344,7 @@ impl Parser<'_> {
                 }
             };
             self.next()?;
-            params.push(self.param(pos, token)?);
+            params.extend(self.param(pos, token)?);
         }
     }
 
@@ -350,16 +352,35 @@ impl Parser<'_> {
     /// parameters of RenderMan's RIS requests (`"reference color baseColor"`, `"bxdf"`...)
     /// are not interpreted: they are read as written, unchecked and untold (the request
     /// itself is told once by the state machine).
-    fn param(&mut self, pos: Pos, token: String) -> Result<Param, RibError> {
+    /// None: a parameter of an unknown type, read and skipped with a warning.
+    fn param(&mut self, pos: Pos, token: String) -> Result<Option<Param>, RibError> {
         let ris = self.kind.is_ris();
+        let mut skipped = false;
         let (inline, name) = match decl::parse_token(&token) {
             _ if ris => (None, token),
             Ok((inline, None)) => (inline, token),
             Ok((inline, Some(name))) => (inline, name),
+            // A type this reader does not know (PRMan's `mpoint` of blobby, a typo): RenderMan
+            // renderers skip the parameter with a message and go on; so does this one (its
+            // value is read as an undeclared one's, then dropped).
+            Err(m) if m.starts_with("unknown type") && !self.strict => {
+                self.warnings.push(Warning {
+                    at: self.frame.loc(pos),
+                    message: format!(
+                        "{}: parameter {}: {m}: the parameter is skipped",
+                        self.kind.name(),
+                        quote(&token)
+                    ),
+                });
+                skipped = true;
+                (None, token)
+            }
             Err(m) => {
+                let strict =
+                    if self.strict && m.starts_with("unknown type") { " (--strict)" } else { "" };
                 return Err(self.error(
                     pos,
-                    format!("parameter {}: bad inline declaration: {m}", quote(&token)),
+                    format!("parameter {}: bad inline declaration: {m}{strict}", quote(&token)),
                 ));
             }
         };
@@ -414,7 +435,7 @@ impl Parser<'_> {
                         }
                     }
                 };
-                if !ris {
+                if !ris && !skipped {
                     self.warnings.push(Warning {
                         at: self.frame.loc(pos),
                         message: format!(
@@ -443,7 +464,8 @@ impl Parser<'_> {
                 ));
             }
         }
-        Ok(Param { name: std::mem::take(&mut self.param_name), decl, data, at: pos })
+        let name = std::mem::take(&mut self.param_name);
+        Ok((!skipped).then_some(Param { name, decl, data, at: pos }))
     }
 
     /// The parameter being read, for messages: `parameter "Kd" (uniform float)`.

@@ -124,5 +124,8 @@ pub(crate) fn load_reporting(
 ) -> Result<Loaded, (RibError, Vec<Warning>)> {
     // The machine follows ReadArchive itself: an inline archive (ArchiveBegin) is replayed,
     // a file is looked up along the archive search path and read in place.
-    frame::Machine::new(Reader::new(source), options.clone(), permissions).run()
+    let reader_options =
+        crate::ReaderOptions { strict: options.strict, ..crate::ReaderOptions::default() };
+    let reader = Reader::with_options(source, reader_options);
+    frame::Machine::new(reader, options.clone(), permissions).run()
 }

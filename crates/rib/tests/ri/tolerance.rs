@@ -411,3 +411,42 @@ FrameEnd
         "test.rib:7:1: WorldBegin: opened inside the AttributeBegin block of 4:1 (--strict)"
     );
 }
+
+#[test]
+fn a_parameter_of_an_unknown_type_is_skipped() {
+    // PRMan's blobby examples declare "vertex mpoint Pref"; a typo does the same to a shader
+    // parameter. The request stands without the parameter.
+    let text = "Projection \"perspective\"
+WorldBegin
+Surface \"matte\" \"uniform flaot Kd\" 0.25 \"Ka\" 0.5
+Translate 0 0 5
+Sphere 1 -1 1 360 \"vertex mpoint Pref\" [1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16]
+WorldEnd
+";
+    let (loaded, shown) = warnings(text);
+    let kd = col(text, 3, "\"uniform flaot");
+    let pref = col(text, 5, "\"vertex mpoint");
+    assert_eq!(
+        shown,
+        [
+            format!(
+                "test.rib:3:{kd}: warning: Surface: parameter \"uniform flaot Kd\": unknown type \"flaot\": the parameter is skipped"
+            ),
+            format!(
+                "test.rib:5:{pref}: warning: Sphere: parameter \"vertex mpoint Pref\": unknown type \"mpoint\": the parameter is skipped"
+            ),
+        ]
+    );
+    documented(&shown[1].replace("Sphere", "Blobby"));
+    // The sphere is there, and its matte keeps Kd's default with the Ka given.
+    let scene = &loaded.frames[0].scene;
+    assert_eq!(scene.objects.len(), 1);
+    let material = format!("{:?}", scene.objects[0].material);
+    assert!(material.contains("ka: 0.5") && material.contains("kd: 1.0"), "{material}");
+    assert_eq!(
+        strict_error(text),
+        format!(
+            "test.rib:3:{kd}: Surface: parameter \"uniform flaot Kd\": bad inline declaration: unknown type \"flaot\" (--strict)"
+        )
+    );
+}
