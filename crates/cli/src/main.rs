@@ -1,20 +1,17 @@
 //! The `reyes-render` command: arguments, wiring, signals, exit codes and printing. Rendering
-//! is the reyes-render library's; frames in pieces (tiles, merge, checkpoints, progress
-//! lines, output names, Slurm jobs) are reyes-farm's.
+//! is the reyes-render library's; frames in pieces (tiles, merge, checkpoints, progress lines,
+//! output names, Slurm jobs) are reyes-farm's; shader tools are reyes-sl's.
 //!
-//! Exit codes: 0 success; 2 usage or scene errors (including bad overrides and an unknown
-//! output format); 1 render or I/O errors (a full disk, a file too large, a full standard
-//! output); 130 and 143 when SIGINT or SIGTERM stopped it. Every error is one line on stderr,
-//! usage errors included (control characters in it escaped, [`term::say`]), and no partial
-//! output file is ever left behind (the film stage writes atomically, through an unnamed
-//! temporary file where the system allows, and interrupted writes remove theirs). Scene
-//! warnings (RIB requests or features not supported) go to stderr, one line each, before
-//! rendering; nothing printed can panic ([`term`]).
+//! Exit codes: 0 success; 2 usage or scene errors (bad overrides, an unknown output format);
+//! 1 render or I/O errors (a full disk, a file too large, a full standard output); 130 and 143
+//! when SIGINT or SIGTERM stopped it. Every error is one line on stderr, usage errors included
+//! (control characters escaped, [`term::say`]), and no partial output file is ever left
+//! behind (the film stage writes atomically, and interrupted writes remove theirs). Scene
+//! warnings go to stderr, one line each, before rendering; nothing printed can panic.
 //!
-//! The first argument `measure` (FIG. 23's mass properties, `reyes_measure`), `merge` (the
-//! tiles of `--tile` renders reassembled) or `farm` (Slurm jobs, [`farm`]) chooses another
-//! command with the same exit codes; a scene file of one of those names is `./measure`,
-//! `./merge` or `./farm` (docs/farm.md).
+//! A first argument `measure` (FIG. 23's mass properties), `merge` (tiles reassembled), `farm`
+//! (Slurm jobs, [`farm`]) or `shader` (`check`, `info`) chooses another command with the same
+//! exit codes; a scene file of one of those names is `./measure` etc. (docs/farm.md).
 #![deny(clippy::print_stdout, clippy::print_stderr)]
 
 mod args;
@@ -78,6 +75,7 @@ fn main() -> ExitCode {
         Some("measure") => measure_main(rest()),
         Some("merge") => merge_main(rest()),
         Some("farm") => farm::main(rest()),
+        Some("shader") => shader_main(rest()),
         _ => render_main(),
     };
     match result {
@@ -136,6 +134,15 @@ fn measure_main(args: impl Iterator<Item = OsString>) -> Result<(), Exit> {
     let m = measure(&scene, &args.scene, &args.object, &opts)
         .map_err(|e| Exit::error(e.exit_code(), &e))?;
     term::print(&m.to_string())
+}
+
+/// `reyes-render shader check|info ...` ([`reyes_sl::tool`]): `args` starts at `shader`.
+fn shader_main(args: impl Iterator<Item = OsString>) -> Result<(), Exit> {
+    let out =
+        reyes_sl::tool::run(&args.skip(1).map(|a| a.to_string_lossy().into()).collect::<Vec<_>>());
+    out.errors.iter().for_each(say);
+    term::print(&out.stdout)?;
+    if out.code == 0 { Ok(()) } else { Err(Exit { code: out.code, message: None }) }
 }
 
 /// `reyes-render merge TILE... -o OUT`: `args` starts at `merge`.

@@ -35,7 +35,7 @@ pub(crate) fn install(stop: bool) -> Result<(), Exit> {
         let failed = |e: std::io::Error| Exit::error(1, format_args!("signals: {e}"));
         register(SIGXFSZ, &XFSZ).map_err(failed)?;
         let default = reyes_farm::testing::signals_default();
-        let wanted = |&s: &i32| stop && (default || !ignored_at_start(s));
+        let wanted = |&s: &i32| stop && (default || !reyes_render::cancel::ignored_at_start(s));
         for signal in [SIGINT, SIGTERM].into_iter().filter(wanted) {
             // In this order: whoever sees the cancel flag finds the signal recorded.
             register_usize(signal, &RECEIVED, 128 + signal as usize).map_err(failed)?;
@@ -45,20 +45,6 @@ pub(crate) fn install(stop: bool) -> Result<(), Exit> {
     #[cfg(not(unix))]
     let _ = stop;
     Ok(())
-}
-
-/// Whether `signal` was already ignored when the process started: a shell starts background
-/// jobs with SIGINT ignored so that Ctrl-C spares them, and such a signal stays ignored.
-/// Linux tells through the `SigIgn` mask of `/proc/self/status`; without it, not ignored.
-#[cfg(unix)]
-fn ignored_at_start(signal: i32) -> bool {
-    let Ok(status) = std::fs::read_to_string("/proc/self/status") else { return false };
-    let mask = status.lines().find_map(|l| l.strip_prefix("SigIgn:"));
-    let mask = mask.and_then(|m| u64::from_str_radix(m.trim(), 16).ok());
-    match (mask, u32::try_from(signal - 1)) {
-        (Some(mask), Ok(bit)) if bit < 64 => mask >> bit & 1 == 1,
-        _ => false,
-    }
 }
 
 /// The stopping signal received, if any.

@@ -28,3 +28,17 @@ pub fn request() {
 pub fn requested() -> bool {
     REQUESTED.load(Ordering::Relaxed)
 }
+
+/// Whether `signal` was already ignored when the process started: a shell starts background
+/// jobs with SIGINT ignored so that Ctrl-C spares them, and a front end installing a handler
+/// that cancels renders should leave such a signal ignored. Linux tells through the `SigIgn`
+/// mask of `/proc/self/status`; without it, not ignored.
+pub fn ignored_at_start(signal: i32) -> bool {
+    let Ok(status) = std::fs::read_to_string("/proc/self/status") else { return false };
+    let mask = status.lines().find_map(|l| l.strip_prefix("SigIgn:"));
+    let mask = mask.and_then(|m| u64::from_str_radix(m.trim(), 16).ok());
+    match (mask, u32::try_from(signal - 1)) {
+        (Some(mask), Ok(bit)) if bit < 64 => mask >> bit & 1 == 1,
+        _ => false,
+    }
+}

@@ -44,6 +44,7 @@ pub mod library;
 mod parser;
 mod pp;
 pub mod shaders;
+pub mod tool;
 pub mod types;
 
 use std::path::{Path, PathBuf};

@@ -345,6 +345,30 @@ impl<'a> GridContext<'a> {
         self.vars =
             sh.vars.iter().map(|v| Value::zero(v.ty, v.detail == Detail::Varying, n)).collect();
         self.frames = vec![stmt::FuncFrame::new(n)];
+        self.init_params()?;
+        self.exec_block(&sh.body, &Mask::all(n))?;
+        Ok(self.stats)
+    }
+
+    /// The parameters' values as a run starts the body with them: each one set, or its
+    /// default evaluated (in order, each seeing those before it). The body is not run. For
+    /// `sloinfo`-style listings.
+    pub fn defaults(&mut self) -> Result<Vec<(String, Value)>, ExecError> {
+        let sh = self.shader;
+        let n = self.n;
+        self.stats = Stats::default();
+        self.init_globals();
+        self.vars =
+            sh.vars.iter().map(|v| Value::zero(v.ty, v.detail == Detail::Varying, n)).collect();
+        self.frames = vec![stmt::FuncFrame::new(n)];
+        self.init_params()?;
+        Ok(sh.params.iter().map(|&id| (sh.vars[id].name.clone(), self.vars[id].clone())).collect())
+    }
+
+    /// Sets every parameter: the value given, or its default evaluated.
+    fn init_params(&mut self) -> Result<(), ExecError> {
+        let sh = self.shader;
+        let n = self.n;
         let all = Mask::all(n);
         for &id in &sh.params {
             let var = &sh.vars[id];
@@ -357,8 +381,7 @@ impl<'a> GridContext<'a> {
             value::store(&mut dst, &v, &all, n);
             self.vars[id] = dst;
         }
-        self.exec_block(&sh.body, &all)?;
-        Ok(self.stats)
+        Ok(())
     }
 
     fn init_globals(&mut self) {
