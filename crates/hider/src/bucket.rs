@@ -522,9 +522,8 @@ impl Bucket<'_> {
             Some([lo[0] + dx0, hi[0] + dx1, lo[1] + dy0, hi[1] + dy1])
         };
         let (recs, ns) = (&slices.by_lens[..p_count * self.ns], self.ns);
-        let rows = |lambda: usize| {
-            move |first, last| (first..=last).map(move |p| &recs[p * ns + lambda])
-        };
+        let rows =
+            |lambda: usize| move |first, last| (first..=last).map(move |p| &recs[p * ns + lambda]);
         self.scan(&place, surf, &smp.reach_lens, slice_box, |_, _, span| span, rows);
     }
 

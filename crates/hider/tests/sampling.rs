@@ -35,9 +35,8 @@ fn pixels(frame: &Frame, hider: &Hider) -> Vec<(Rc<BucketSamples>, usize, Vec<[f
         for pixel in 0..p_count {
             let (px, py) =
                 ((pixel as u32 % frame.bucket_w) as f32, (pixel as u32 / frame.bucket_w) as f32);
-            let offs = (0..ns)
-                .map(|s| [smp.x[pixel * ns + s] - px, smp.y[pixel * ns + s] - py])
-                .collect();
+            let offs =
+                (0..ns).map(|s| [smp.x[pixel * ns + s] - px, smp.y[pixel * ns + s] - py]).collect();
             out.push((Rc::clone(&smp), pixel, offs));
         }
     }
