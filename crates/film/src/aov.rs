@@ -42,7 +42,7 @@ pub struct AovWindow {
 
 /// What one bucket hands the AOV splat: its per-sample values, laid out
 /// `[(pixel * NS + s) * channels + c]`, each sample's front depth, and each sample's
-/// bucket-local position (`x[s * P + pixel]`, `y[...]`, P the bucket's pixel count).
+/// bucket-local position (`x[pixel * NS + s]`, `y[...]`, as the values).
 #[derive(Debug, Clone, Copy)]
 pub struct AovSamples<'a> {
     /// Channels per sample.
@@ -96,7 +96,7 @@ pub fn splat_aovs(
                     AovFilter::Min | AovFilter::Max => None,
                     AovFilter::Zmin => Some(pick(ns, |k| s.front_z[pixel * ns + k])),
                     AovFilter::Nearest => Some(pick(ns, |k| {
-                        let i = k * p_count + pixel;
+                        let i = pixel * ns + k;
                         let (dx, dy) = (s.x[i] - (x as f32 + 0.5), s.y[i] - (y as f32 + 0.5));
                         dx * dx + dy * dy
                     })),

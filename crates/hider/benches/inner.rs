@@ -20,7 +20,8 @@
 //! samples per pixel: with the work per sample test constant, its elem/s stays flat (issue #31
 //! asks for within 1.5x from 8x8 to 64x64). Occlusion culling's per-pixel depth once rescanned
 //! all of a pixel's samples on every sample's first occluder, `ns^2` a pixel, and this group is
-//! where that shows.
+//! where that shows; so did the sample-major sample arrays, which made a micropolygon's scan
+//! read a new cache line per sample index (docs/performance.md, 2026-12-05).
 //!
 //! Run with `cargo bench -p reyes-hider --bench inner` (or `-- hider_samples` for the second
 //! group alone).

@@ -451,7 +451,7 @@ impl Bucket<'_> {
     }
 
     /// Path P: static micropolygon, pinhole camera: the vertices translated to each sample.
-    /// Sample `s` of a row of pixels is a contiguous run of `smp.x` / `smp.y`.
+    /// Sample `s` of pixel `p` is `smp.x[p*NS + s]`, its list index too.
     // Inlined into `sample_bucket`, as LLVM did by itself before `scan` was shared: out of
     // line it ran 1-2% more instructions per bucket.
     #[inline(always)]
@@ -463,12 +463,14 @@ impl Bucket<'_> {
             vz: vertex.map(|p| p[2]),
         };
         let slice_box = |_| Some([lo[0], hi[0], lo[1], hi[1]]);
+        let (xs, ys) = (&smp.x[..p_count * ns], &smp.y[..p_count * ns]);
         let rows = |s: usize| {
-            let row_x = &smp.x[s * p_count..(s + 1) * p_count];
-            let row_y = &smp.y[s * p_count..(s + 1) * p_count];
             move |first, last| {
                 let pixels = first..=last;
-                pixels.map(move |p| PinholeSample { x: row_x[p], y: row_y[p], n: p * ns + s })
+                pixels.map(move |p| {
+                    let n = p * ns + s;
+                    PinholeSample { x: xs[n], y: ys[n], n }
+                })
             }
         };
         self.scan(&place, surf, &smp.reach_space, slice_box, |_, _, span| span, rows);
@@ -519,10 +521,9 @@ impl Bucket<'_> {
             );
             Some([lo[0] + dx0, hi[0] + dx1, lo[1] + dy0, hi[1] + dy1])
         };
-        let rows = |lambda: usize| {
-            let recs = &slices.by_lens[lambda * p_count..(lambda + 1) * p_count];
-            move |first, last| recs[first..=last].iter()
-        };
+        let (recs, ns) = (&slices.by_lens[..p_count * self.ns], self.ns);
+        let rows =
+            |lambda: usize| move |first, last| (first..=last).map(move |p| &recs[p * ns + lambda]);
         self.scan(&place, surf, &smp.reach_lens, slice_box, |_, _, span| span, rows);
     }
 
@@ -598,12 +599,13 @@ impl Bucket<'_> {
             let (x0, x1) = pixel_range(x_lo, x_hi, r[0], r[1], bw);
             (x0.max(span.0), x1.min(span.1))
         };
+        let (recs, ns) = (&slices.by_time[..p_count * self.ns], self.ns);
         let rows = |tau: usize| {
-            let recs = &slices.by_time[tau * p_count..(tau + 1) * p_count];
             move |first, last| {
                 // Outside this micropolygon's segment: not tested.
-                let in_segment =
-                    recs[first..=last].iter().filter(move |r| !(r.t < t0 || r.t >= t1));
+                let in_segment = (first..=last)
+                    .map(move |p| -> &SliceSample { &recs[p * ns + tau] })
+                    .filter(move |r| !(r.t < t0 || r.t >= t1));
                 in_segment.map(move |r| MovingSample { r, alpha: (r.t - t0) * inv_len })
             }
         };

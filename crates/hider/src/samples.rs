@@ -8,8 +8,12 @@
 //! lens     = lens stratum + (LXJitter[olx+i+3], LYJitter[oly+i+4])
 //! ```
 //!
-//! with `ox..oly` in 0..=22 drawn per bucket. Invariants: arrays are s-major
-//! (`k = s*P + pixel`) so the sampling loops read them contiguously along a row; sample `s`
+//! with `ox..oly` in 0..=22 drawn per bucket. Invariants: arrays are pixel-major
+//! (`k = pixel*NS + s`, the index of every per-sample array of the hider: visible-point
+//! lists, colours, depths), so a micropolygon's scan, which reads a few pixels for every
+//! sample index in turn, reads each pixel's samples in order, a cache line serving 16 of them
+//! (sample-major, `s*P + pixel`, read one line per sample from arrays of `4 NS P` bytes, which
+//! at 64x64 samples left the inside test waiting on memory: docs/performance.md); sample `s`
 //! of every pixel lies in spatial stratum `Location[s]` (for every pattern but
 //! [`Pattern::Random`], which is unstratified by definition: the hider's scan ranges come
 //! from each slice's actual reach, so it stays correct, only slower); the samples of time
@@ -126,7 +130,7 @@ pub enum LensShape {
 /// A bucket's samples, reused from bucket to bucket.
 #[derive(Debug, Default, Clone)]
 pub struct BucketSamples {
-    /// Bucket-local x of sample k = s*P + pixel.
+    /// Bucket-local x of sample k = pixel*NS + s.
     pub x: Vec<f32>,
     /// Bucket-local y.
     pub y: Vec<f32>,
@@ -136,9 +140,9 @@ pub struct BucketSamples {
     pub lx: Vec<f32>,
     /// Lens y.
     pub ly: Vec<f32>,
-    /// `by_time[tau*P + pixel]`: the sample index s of that pixel whose time is in slice tau.
+    /// `by_time[pixel*NS + tau]`: the sample index s of that pixel whose time is in slice tau.
     pub by_time: Vec<u32>,
-    /// `by_lens[lambda*P + pixel]`: the sample index s of that pixel in lens stratum lambda.
+    /// `by_lens[pixel*NS + lambda]`: the sample index s of that pixel in lens stratum lambda.
     pub by_lens: Vec<u32>,
     /// Per lens slice: (min lx, max lx, min ly, max ly) of its samples.
     pub lens_range: Vec<[f32; 4]>,
@@ -398,7 +402,7 @@ impl BucketSamples {
                 }
                 for s in 0..ns {
                     let i = 7 * s + 2 * pixel;
-                    let k = s * p_count + pixel;
+                    let k = pixel * ns + s;
                     let loc = tables.location[s];
                     let (jx, jy) = match pattern {
                         Pattern::Random | Pattern::Sobol | Pattern::SobolJoint => (0.0, 0.0), // not read
@@ -466,7 +470,7 @@ impl BucketSamples {
                             tau as f32 / fns + jt
                         };
                         self.t[k] = spec.shutter.warp(u.min(1.0));
-                        self.by_time[tau * p_count + pixel] = s as u32;
+                        self.by_time[pixel * ns + tau] = s as u32;
                     }
                     if !needs.lens {
                         continue;
@@ -474,7 +478,7 @@ impl BucketSamples {
                     let jlx = tables.get(Table::LensX, off[3] + i + 3);
                     let jly = tables.get(Table::LensY, off[4] + i + 4);
                     let lambda = lens_perm[s] as usize;
-                    self.by_lens[lambda * p_count + pixel] = s as u32;
+                    self.by_lens[pixel * ns + lambda] = s as u32;
                     let lens_cell = tables.location[lambda];
                     let (lx, ly) = match spec.lens_shape {
                         _ if sobol.is_some() => {
@@ -497,10 +501,6 @@ impl BucketSamples {
                 }
             }
         }
-        self.reach_space.clear();
-        self.reach_time.clear();
-        self.reach_lens.clear();
-        self.lens_range.clear();
         const EMPTY: [f32; 4] =
             [f32::INFINITY, f32::NEG_INFINITY, f32::INFINITY, f32::NEG_INFINITY];
         let grow = |r: &mut [f32; 4], x: f32, y: f32| {
@@ -509,26 +509,30 @@ impl BucketSamples {
             r[2] = r[2].min(y);
             r[3] = r[3].max(y);
         };
-        for slice in 0..ns {
-            let (mut rs, mut rt, mut rl, mut lr) = (EMPTY, EMPTY, EMPTY, EMPTY);
-            for pixel in 0..p_count {
-                let (px, py) = ((pixel as u32 % bw) as f32, (pixel as u32 / bw) as f32);
-                let ks = slice * p_count + pixel;
-                grow(&mut rs, self.x[ks] - px, self.y[ks] - py);
+        // Every slice's ranges over its pixels, each slice seeing the pixels in increasing
+        // order (as a slice-by-slice loop would), while the arrays are read in their order.
+        for r in [&mut self.reach_space, &mut self.reach_time, &mut self.reach_lens] {
+            r.clear();
+            r.resize(ns, EMPTY);
+        }
+        self.lens_range.clear();
+        self.lens_range.resize(ns, EMPTY);
+        for pixel in 0..p_count {
+            let (px, py) = ((pixel as u32 % bw) as f32, (pixel as u32 / bw) as f32);
+            let base = pixel * ns;
+            for slice in 0..ns {
+                let ks = base + slice;
+                grow(&mut self.reach_space[slice], self.x[ks] - px, self.y[ks] - py);
                 if needs.time {
-                    let kt = self.by_time[ks] as usize * p_count + pixel;
-                    grow(&mut rt, self.x[kt] - px, self.y[kt] - py);
+                    let kt = base + self.by_time[ks] as usize;
+                    grow(&mut self.reach_time[slice], self.x[kt] - px, self.y[kt] - py);
                 }
                 if needs.lens {
-                    let kl = self.by_lens[ks] as usize * p_count + pixel;
-                    grow(&mut rl, self.x[kl] - px, self.y[kl] - py);
-                    grow(&mut lr, self.lx[kl], self.ly[kl]);
+                    let kl = base + self.by_lens[ks] as usize;
+                    grow(&mut self.reach_lens[slice], self.x[kl] - px, self.y[kl] - py);
+                    grow(&mut self.lens_range[slice], self.lx[kl], self.ly[kl]);
                 }
             }
-            self.reach_space.push(rs);
-            self.reach_time.push(rt);
-            self.reach_lens.push(rl);
-            self.lens_range.push(lr);
         }
     }
 }
@@ -563,7 +567,7 @@ mod tests {
                 let (px, py) = ((pixel % 8) as f32, (pixel / 8) as f32);
                 let mut seen = [false; 12];
                 for s in 0..12 {
-                    let k = s * 64 + pixel;
+                    let k = pixel * 12 + s;
                     let cx = ((b.x[k] - px) * 4.0).floor();
                     let cy = ((b.y[k] - py) * 3.0).floor();
                     assert!((0.0..4.0).contains(&cx) && (0.0..3.0).contains(&cy), "{pattern:?}");
@@ -582,11 +586,11 @@ mod tests {
         let (_, b6) = make(Pattern::Fig6, Pairing::Original, 2, 2);
         let frac = |b: &BucketSamples, k: usize, p: usize| b.x[k] - (p % 8) as f32;
         for s in 0..4 {
-            let first5 = frac(&b5, s * 64, 0);
-            let first6 = frac(&b6, s * 64, 0);
+            let first5 = frac(&b5, s, 0);
+            let first6 = frac(&b6, s, 0);
             // Equal up to the rounding of `x + frac - x` at x < 8 (a few ulps of 8).
-            assert!((1..64).all(|p| (frac(&b5, s * 64 + p, p) - first5).abs() < 4e-6));
-            assert!((1..64).any(|p| (frac(&b6, s * 64 + p, p) - first6).abs() > 1e-3));
+            assert!((1..64).all(|p| (frac(&b5, p * 4 + s, p) - first5).abs() < 4e-6));
+            assert!((1..64).any(|p| (frac(&b6, p * 4 + s, p) - first6).abs() > 1e-3));
         }
     }
 
@@ -596,8 +600,8 @@ mod tests {
             let (_, b) = make(Pattern::Fig6, pairing, 4, 4);
             for tau in 0..16 {
                 for pixel in 0..64 {
-                    let s = b.by_time[tau * 64 + pixel] as usize;
-                    let t = b.t[s * 64 + pixel];
+                    let s = b.by_time[pixel * 16 + tau] as usize;
+                    let t = b.t[pixel * 16 + s];
                     assert!(t >= tau as f32 / 16.0 && t < (tau + 1) as f32 / 16.0);
                 }
             }

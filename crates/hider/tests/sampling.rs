@@ -35,9 +35,8 @@ fn pixels(frame: &Frame, hider: &Hider) -> Vec<(Rc<BucketSamples>, usize, Vec<[f
         for pixel in 0..p_count {
             let (px, py) =
                 ((pixel as u32 % frame.bucket_w) as f32, (pixel as u32 / frame.bucket_w) as f32);
-            let offs = (0..ns)
-                .map(|s| [smp.x[s * p_count + pixel] - px, smp.y[s * p_count + pixel] - py])
-                .collect();
+            let offs =
+                (0..ns).map(|s| [smp.x[pixel * ns + s] - px, smp.y[pixel * ns + s] - py]).collect();
             out.push((Rc::clone(&smp), pixel, offs));
         }
     }
@@ -163,21 +162,21 @@ fn sobol_pixels_are_02_nets_in_position_time_and_lens() {
             ..HiderConfig::default()
         };
         let (frame, h) = hider(cfg);
-        let p_count = frame.pixels_per_bucket();
+        let ns = ns as usize;
         for (smp, pixel, offs) in pixels(&frame, &h) {
             let pts: Vec<[f64; 2]> = offs.iter().map(|o| [o[0] as f64, o[1] as f64]).collect();
             assert_02_net(&pts, m, &format!("{nx}x{ny} positions"));
             // The square lens is the unit square shifted by -0.5/NS (exactly representable).
-            let lens: Vec<[f64; 2]> = (0..ns as usize)
+            let lens: Vec<[f64; 2]> = (0..ns)
                 .map(|s| {
-                    let k = s * p_count + pixel;
+                    let k = pixel * ns + s;
                     [(smp.lx[k] + 0.5 / ns as f32) as f64, (smp.ly[k] + 0.5 / ns as f32) as f64]
                 })
                 .collect();
             assert_02_net(&lens, m, &format!("{nx}x{ny} lens"));
-            for tau in 0..ns as usize {
-                let s = smp.by_time[tau * p_count + pixel] as usize;
-                let t = smp.t[s * p_count + pixel];
+            for tau in 0..ns {
+                let s = smp.by_time[pixel * ns + tau] as usize;
+                let t = smp.t[pixel * ns + s];
                 assert!(t >= tau as f32 / ns as f32 && t < (tau + 1) as f32 / ns as f32);
             }
         }
@@ -294,13 +293,12 @@ fn joint_pixels_have_one_sample_per_time_slice_and_lens_cell() {
                 ..HiderConfig::default()
             };
             let (frame, h) = hider(cfg);
-            let p_count = frame.pixels_per_bucket();
             let loc = &h.tables().location;
             let what = format!("{nx}x{ny} {pairing:?} {lens_shape:?}");
             for (smp, pixel, _) in pixels(&frame, &h) {
                 for tau in 0..ns {
-                    let s = smp.by_time[tau * p_count + pixel] as usize;
-                    let t = smp.t[s * p_count + pixel];
+                    let s = smp.by_time[pixel * ns + tau] as usize;
+                    let t = smp.t[pixel * ns + s];
                     assert!(
                         t >= tau as f32 / ns as f32 && t < (tau + 1) as f32 / ns as f32,
                         "{what}"
@@ -311,8 +309,8 @@ fn joint_pixels_have_one_sample_per_time_slice_and_lens_cell() {
                 }
                 let mut seen = vec![false; ns];
                 for (lambda, cell) in loc.iter().enumerate() {
-                    let s = smp.by_lens[lambda * p_count + pixel] as usize;
-                    let k = s * p_count + pixel;
+                    let s = smp.by_lens[pixel * ns + lambda] as usize;
+                    let k = pixel * ns + s;
                     // Back from the lens sample to its unit-square cell.
                     let (u, v) = match lens_shape {
                         LensShape::OriginalSquare => {
@@ -391,7 +389,7 @@ fn joint_samples_depend_only_on_the_seed_and_the_pixel() {
                 let key = (left + px as i32, top + py as i32);
                 let v: Vec<[u32; 5]> = (0..16)
                     .map(|q| {
-                        let k = q * p_count + pixel;
+                        let k = pixel * 16 + q;
                         [s.x[k] - px as f32, s.y[k] - py as f32, s.t[k], s.lx[k], s.ly[k]]
                             .map(f32::to_bits)
                     })

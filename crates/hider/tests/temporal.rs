@@ -197,7 +197,7 @@ fn time_patterns_of_figs_13_to_15() {
             let s = hider.bucket_samples(b);
             for (tau, offs) in per_tau.iter_mut().enumerate() {
                 for pixel in 0..256 {
-                    let k = s.by_time[tau * 256 + pixel] as usize * 256 + pixel;
+                    let k = pixel * 16 + s.by_time[pixel * 16 + tau] as usize;
                     let off = s.t[k] * 16.0 - tau as f32;
                     assert!((0.0..1.0).contains(&off), "{tp:?}: time outside its stratum");
                     offs.push(off);
@@ -260,7 +260,7 @@ fn render_hits(cfg: HiderConfig, mp: &Micropolygon) -> (Vec<(f64, f64)>, Vec<u32
     for pixel in 0..64 * 64 {
         for s in 0..ns {
             if out.rgba[pixel * ns + s][3] > 0.0 {
-                let k = s * 64 * 64 + pixel;
+                let k = pixel * ns + s;
                 hits.push((smp.x[k] as f64, smp.t[k] as f64));
             }
         }

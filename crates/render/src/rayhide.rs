@@ -120,7 +120,7 @@ where
                     let gy = top as i64 + (pixel / bw) as i64;
                     let set = hash(seed, &[PIXEL_SET, gx as u64, gy as u64]);
                     for s in 0..ns {
-                        let k = s * p_count + pixel;
+                        let k = pixel * ns + s;
                         let time = smp.t[k];
                         let raster = Vec2::new(left as f32 + smp.x[k], top as f32 + smp.y[k]);
                         let lens = (smp.lx[k], smp.ly[k]);

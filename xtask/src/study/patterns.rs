@@ -123,15 +123,14 @@ pub fn samples(
     for b in 0..frame.bucket_count() {
         let (left, top) = frame.bucket_origin(b);
         let bs = hider.bucket_samples(b);
-        let p_count = frame.pixels_per_bucket();
-        for pixel in 0..p_count {
+        for pixel in 0..frame.pixels_per_bucket() {
             let gx = left + (pixel as u32 % frame.bucket_w) as i32;
             let gy = top + (pixel as u32 / frame.bucket_w) as i32;
             if gx < 0 || gy < 0 || gx >= width as i32 || gy >= height as i32 {
                 continue;
             }
             for s in 0..ns {
-                let k = s * p_count + pixel;
+                let k = pixel * ns + s;
                 out[(gy as usize * width as usize + gx as usize) * ns + s] = Sample {
                     x: left as f32 + bs.x[k],
                     y: top as f32 + bs.y[k],

@@ -20,10 +20,12 @@ pub(crate) struct SliceSample {
     pub(super) n: u32,
 }
 
-/// A bucket's samples in time-slice order (`by_time[tau*P + pixel]`, path M) and lens-slice
-/// order (`by_lens[lambda*P + pixel]`, path D), so the paths read a row of a slice's samples
-/// contiguously instead of through `BucketSamples::by_time` / `by_lens`. Reused from bucket
-/// to bucket (no allocation once grown); each is built only when a bucket reads it.
+/// A bucket's samples by time slice (`by_time[pixel*NS + tau]`, path M) and by lens slice
+/// (`by_lens[pixel*NS + lambda]`, path D), so the paths read a pixel's sample of a slice
+/// directly instead of through `BucketSamples::by_time` / `by_lens`. Pixel-major, as
+/// [`BucketSamples`]: a micropolygon's scan takes the slices in turn over the same few
+/// pixels, so it reads each pixel's records in order. Reused from bucket to bucket (no
+/// allocation once grown); each is built only when a bucket reads it.
 #[derive(Debug, Default, Clone)]
 pub(crate) struct SliceSamples {
     pub(super) by_time: Vec<SliceSample>,
@@ -40,9 +42,8 @@ impl SliceSamples {
         p_count: usize,
     ) {
         let record = |slice_order: &[u32], slice: usize, pixel: usize| {
-            let s = slice_order[slice * p_count + pixel] as usize;
-            let k = s * p_count + pixel;
-            let n = (pixel * ns + s) as u32;
+            let k = pixel * ns + slice_order[pixel * ns + slice] as usize;
+            let n = k as u32;
             let t = if time { smp.t[k] } else { 0.0 };
             match &lens {
                 Some(l) => {
@@ -61,16 +62,16 @@ impl SliceSamples {
         };
         self.by_time.clear();
         if time {
-            for tau in 0..ns {
-                for pixel in 0..p_count {
+            for pixel in 0..p_count {
+                for tau in 0..ns {
                     self.by_time.push(record(&smp.by_time, tau, pixel));
                 }
             }
         }
         self.by_lens.clear();
         if static_lens && lens.is_some() {
-            for lambda in 0..ns {
-                for pixel in 0..p_count {
+            for pixel in 0..p_count {
+                for lambda in 0..ns {
                     self.by_lens.push(record(&smp.by_lens, lambda, pixel));
                 }
             }
