@@ -41,6 +41,7 @@ mod raytrace;
 mod shape;
 mod solid;
 mod subdivision;
+mod trim;
 
 use crate::model::Scene;
 use primitives::Check;
