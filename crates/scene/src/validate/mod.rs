@@ -55,6 +55,14 @@ pub struct Issue {
     pub message: String,
 }
 
+/// The first rule `loops` break (see [`crate::validate_trim`]).
+pub(crate) fn trim_loops(loops: &[crate::TrimLoop], domain: Option<[f32; 4]>) -> Check {
+    for (i, l) in loops.iter().enumerate() {
+        trim::trim_loop(&format!("trim[{i}]"), l, domain)?;
+    }
+    Ok(())
+}
+
 /// The first rule `scene` breaks, if any.
 pub(crate) fn check(scene: &Scene) -> Option<Issue> {
     check_scene(scene).err()

@@ -232,7 +232,7 @@ pub(super) fn shape(at: &str, shape: &Shape) -> Check {
             }
             let domain = [*umin, *umax, *vmin, *vmax];
             for (i, l) in trim.iter().enumerate() {
-                super::trim::trim_loop(&format!("{at}.trim[{i}]"), l, domain)?;
+                super::trim::trim_loop(&format!("{at}.trim[{i}]"), l, Some(domain))?;
             }
             Ok(())
         }

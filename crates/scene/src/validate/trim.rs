@@ -10,8 +10,9 @@ use crate::model::{TrimCurve, TrimLoop};
 use crate::patches::MAX_ORDER;
 use crate::patches::trim::REACH;
 
-/// Loop `l` at `at` of a patch drawn over `[umin, umax, vmin, vmax]`.
-pub(super) fn trim_loop(at: &str, l: &TrimLoop, domain: [f32; 4]) -> Check {
+/// Loop `l` at `at` of a patch drawn over `domain` = `[umin, umax, vmin, vmax]` (`None`: not
+/// known yet, and the reach of the control points is not checked).
+pub(super) fn trim_loop(at: &str, l: &TrimLoop, domain: Option<[f32; 4]>) -> Check {
     if l.curves.is_empty() {
         return fail(format!("{at}.curves"), "a trim loop needs at least one curve");
     }
@@ -21,7 +22,7 @@ pub(super) fn trim_loop(at: &str, l: &TrimLoop, domain: [f32; 4]) -> Check {
     Ok(())
 }
 
-fn curve(at: &str, c: &TrimCurve, [u0, u1, v0, v1]: [f32; 4]) -> Check {
+fn curve(at: &str, c: &TrimCurve, domain: Option<[f32; 4]>) -> Check {
     let field = |name: &str| format!("{at}.{name}");
     int_in(&field("order"), c.order, 2, MAX_ORDER)?;
     let n = c.points.len();
@@ -72,10 +73,6 @@ fn curve(at: &str, c: &TrimCurve, [u0, u1, v0, v1]: [f32; 4]) -> Check {
         return fail(field("max"), format!("must be > min ({}), got {}", c.min, c.max));
     }
     finite_each(&field("points"), &c.points)?;
-    let (du, dv) = (f64::from(u1) - f64::from(u0), f64::from(v1) - f64::from(v0));
-    let reach = REACH * du.max(dv);
-    let (ulo, uhi) = (f64::from(u0) - reach, f64::from(u1) + reach);
-    let (vlo, vhi) = (f64::from(v0) - reach, f64::from(v1) + reach);
     for (i, p) in c.points.iter().enumerate() {
         if p[2] <= 0.0 {
             return fail(
@@ -83,6 +80,13 @@ fn curve(at: &str, c: &TrimCurve, [u0, u1, v0, v1]: [f32; 4]) -> Check {
                 format!("the weight w must be > 0, got {}", p[2]),
             );
         }
+    }
+    let Some([u0, u1, v0, v1]) = domain else { return Ok(()) };
+    let (du, dv) = (f64::from(u1) - f64::from(u0), f64::from(v1) - f64::from(v0));
+    let reach = REACH * du.max(dv);
+    let (ulo, uhi) = (f64::from(u0) - reach, f64::from(u1) + reach);
+    let (vlo, vhi) = (f64::from(v0) - reach, f64::from(v1) + reach);
+    for (i, p) in c.points.iter().enumerate() {
         let (u, v) = (f64::from(p[0]) / f64::from(p[2]), f64::from(p[1]) / f64::from(p[2]));
         if !(ulo..=uhi).contains(&u) || !(vlo..=vhi).contains(&v) {
             return fail(
