@@ -78,6 +78,33 @@ pub fn domain(shape: &Shape) -> Option<[f64; 4]> {
     }
 }
 
+/// The parameter rectangle `[u0, u1, v0, v1]` each span of a valid `NuPatch` covers, in the
+/// order of [`super::bezier_patches`] (v spans outer, u spans inner): span `k`'s own `(s, t)`
+/// in `[0, 1]^2` is the patch's `(u0 + s (u1 - u0), v0 + t (v1 - v0))`. Empty for other
+/// shapes.
+pub fn span_domains(shape: &Shape) -> Vec<[f64; 4]> {
+    let Shape::NuPatch { nu, uorder, uknot, umin, umax, nv, vorder, vknot, vmin, vmax, .. } = shape
+    else {
+        return Vec::new();
+    };
+    let direction = |knots: &[f32], order: u32, n: u32, lo: f32, hi: f32| {
+        if knots.len() != n as usize + order as usize || order < 1 || n < order {
+            return Vec::new();
+        }
+        let k: Vec<f64> = knots.iter().map(|&k| f64::from(k)).collect();
+        spans_of(&k, order as usize, n as usize, f64::from(lo), f64::from(hi))
+    };
+    let us = direction(uknot, *uorder, *nu, *umin, *umax);
+    let vs = direction(vknot, *vorder, *nv, *vmin, *vmax);
+    let mut out = Vec::with_capacity(us.len() * vs.len());
+    for (_, [v0, v1]) in &vs {
+        for (_, [u0, u1]) in &us {
+            out.push([*u0, *u1, *v0, *v1]);
+        }
+    }
+    out
+}
+
 impl TrimRegion {
     /// The region of a valid `NuPatch`, or `None` when it has no trim loops (or is another
     /// shape).
