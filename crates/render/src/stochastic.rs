@@ -415,5 +415,7 @@ fn dice_summary(d: &DiceStats) -> DiceSummary {
         culled: d.culled,
         peak_micropolygons: 0,
         eager: false,
+        trimmed: d.trimmed,
+        trim_boundary: d.trim_boundary,
     }
 }
