@@ -92,8 +92,10 @@ fn curve(at: &str, c: &TrimCurve, domain: Option<[f32; 4]>) -> Check {
             return fail(
                 format!("{at}.points[{i}]"),
                 format!(
-                    "the point (u, v) = ({u}, {v}) is more than {REACH} domain extent outside \
-                     the patch's drawn domain [{u0}, {u1}] x [{v0}, {v1}]"
+                    "the point (u, v) = ({}, {}) is more than {REACH} domain extent outside \
+                     the patch's drawn domain [{u0}, {u1}] x [{v0}, {v1}]",
+                    p[0] / p[2],
+                    p[1] / p[2]
                 ),
             );
         }
