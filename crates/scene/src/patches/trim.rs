@@ -50,13 +50,54 @@ pub enum Coverage {
     Boundary,
 }
 
-/// One loop's polyline and its bound.
+/// One loop's polyline, its bound, and its segments binned by height.
 #[derive(Debug, Clone, PartialEq)]
 struct Polyline {
-    /// Closed: the last point joins the first.
+    /// Closed: segment `k` joins point `k` to point `k + 1` (the last to the first).
     points: Vec<DVec2>,
     lo: DVec2,
     hi: DVec2,
+    /// Bin `b` lists the segments whose height range meets `[lo.y + b h, lo.y + (b + 1) h]`
+    /// (`h = bin_height`), by [`Polyline::bin`] of their ends, so every segment meeting a
+    /// height lies in that height's bin.
+    bins: Vec<Vec<u32>>,
+    bin_height: f64,
+}
+
+impl Polyline {
+    fn new(points: Vec<DVec2>) -> Polyline {
+        let lo = points.iter().fold(DVec2::INFINITY, |a, p| a.min(*p));
+        let hi = points.iter().fold(DVec2::NEG_INFINITY, |a, p| a.max(*p));
+        let n = points.len();
+        // About eight segments a bin on a round loop; at most 4096 bins.
+        let count = (n / 8).clamp(1, 4096);
+        let span = hi.y - lo.y;
+        let bin_height = if span > 0.0 && span.is_finite() { span / count as f64 } else { 0.0 };
+        let mut line = Polyline { points, lo, hi, bins: vec![Vec::new(); count], bin_height };
+        for k in 0..n {
+            let (a, b) = line.segment(k);
+            let (first, last) = (line.bin(a.y.min(b.y)), line.bin(a.y.max(b.y)));
+            for bin in &mut line.bins[first..=last] {
+                bin.push(k as u32);
+            }
+        }
+        line
+    }
+
+    /// The bin of height `y`, clamped to the bins (monotone in `y`).
+    fn bin(&self, y: f64) -> usize {
+        if self.bin_height <= 0.0 {
+            return 0;
+        }
+        let b = ((y - self.lo.y) / self.bin_height).floor();
+        if b.is_nan() || b < 0.0 { 0 } else { (b as usize).min(self.bins.len() - 1) }
+    }
+
+    /// Segment `k`'s ends.
+    fn segment(&self, k: usize) -> (DVec2, DVec2) {
+        let n = self.points.len();
+        (self.points[k], self.points[(k + 1) % n])
+    }
 }
 
 /// The trim loops of one patch, flattened.
@@ -130,9 +171,7 @@ impl TrimRegion {
                 if points.len() > 1 && points.first() == points.last() {
                     points.pop();
                 }
-                let lo = points.iter().fold(DVec2::INFINITY, |a, p| a.min(*p));
-                let hi = points.iter().fold(DVec2::NEG_INFINITY, |a, p| a.max(*p));
-                Polyline { points, lo, hi }
+                Polyline::new(points)
             })
             .collect();
         TrimRegion { loops, outside, tolerance }
@@ -154,12 +193,12 @@ impl TrimRegion {
     pub fn removes(&self, u: f64, v: f64) -> bool {
         let mut inside = false;
         for l in &self.loops {
-            let n = l.points.len();
-            if n < 2 || v < l.lo.y || v > l.hi.y || u > l.hi.x {
+            if l.points.len() < 2 || v < l.lo.y || v > l.hi.y || u > l.hi.x {
                 continue;
             }
-            let mut a = l.points[n - 1];
-            for &b in &l.points {
+            // A segment that crosses height v has v in its height range, so in v's bin.
+            for &k in &l.bins[l.bin(v)] {
+                let (a, b) = l.segment(k as usize);
                 // A vertex exactly at height v counts as above: each crossing counted once.
                 if (a.y > v) != (b.y > v) {
                     let x = a.x + (v - a.y) * (b.x - a.x) / (b.y - a.y);
@@ -167,7 +206,6 @@ impl TrimRegion {
                         inside = !inside;
                     }
                 }
-                a = b;
             }
         }
         inside != self.outside
@@ -180,16 +218,18 @@ impl TrimRegion {
     /// side of its line by more than the rounding of the cross products.
     pub fn classify(&self, [u0, u1, v0, v1]: [f64; 4]) -> Coverage {
         for l in &self.loops {
-            let n = l.points.len();
-            if n < 2 || l.hi.x < u0 || l.lo.x > u1 || l.hi.y < v0 || l.lo.y > v1 {
+            if l.points.len() < 2 || l.hi.x < u0 || l.lo.x > u1 || l.hi.y < v0 || l.lo.y > v1 {
                 continue;
             }
-            let mut a = l.points[n - 1];
-            for &b in &l.points {
-                if segment_meets_rect(a, b, [u0, u1, v0, v1]) {
-                    return Coverage::Boundary;
+            // A segment meeting the rectangle meets its height range: it is in those bins
+            // (some more than once, which only repeats a test).
+            for bin in &l.bins[l.bin(v0)..=l.bin(v1)] {
+                for &k in bin {
+                    let (a, b) = l.segment(k as usize);
+                    if segment_meets_rect(a, b, [u0, u1, v0, v1]) {
+                        return Coverage::Boundary;
+                    }
                 }
-                a = b;
             }
         }
         if self.removes(0.5 * (u0 + u1), 0.5 * (v0 + v1)) {
@@ -330,6 +370,7 @@ mod tests {
         // The chord count a circle needs: pi / acos(1 - tol / r), within a factor of 2.
         let need = std::f64::consts::PI / (1.0 - tol / 0.25).acos();
         let got = l.points.len() as f64;
+        eprintln!("circle of radius 0.25 at tolerance {tol}: {got} segments ({need:.0} needed)");
         assert!(got >= need * 0.99 && got <= 2.0 * need + 8.0, "{got} for {need}");
         assert!(region.removes(0.5, 0.5));
         assert!(region.removes(0.5 + 0.2499, 0.5));
@@ -337,6 +378,76 @@ mod tests {
         assert!(!region.removes(0.0, 0.0));
         let outside = TrimRegion::new(&[circle(0.5, 0.5, 0.25)], true, tol);
         assert!(!outside.removes(0.5, 0.5) && outside.removes(0.0, 0.0));
+    }
+
+    /// The even-odd test over every segment, without bins.
+    fn removes_brute(r: &TrimRegion, u: f64, v: f64) -> bool {
+        let mut inside = false;
+        for l in &r.loops {
+            for k in 0..l.points.len() {
+                let (a, b) = l.segment(k);
+                if (a.y > v) != (b.y > v) && a.x + (v - a.y) * (b.x - a.x) / (b.y - a.y) > u {
+                    inside = !inside;
+                }
+            }
+        }
+        inside != r.outside
+    }
+
+    #[test]
+    fn binned_tests_equal_the_tests_over_every_segment() {
+        // Two circles and a thin sliver loop, points on a grid that hits vertex heights.
+        let sliver = TrimLoop {
+            curves: vec![TrimCurve {
+                order: 2,
+                knot: vec![0.0, 0.0, 0.5, 1.0, 1.0],
+                min: 0.0,
+                max: 1.0,
+                points: vec![[0.1, 0.1, 1.0], [0.9, 0.15, 1.0], [0.1, 0.2, 1.0]],
+            }],
+        };
+        let region =
+            TrimRegion::new(&[circle(0.5, 0.5, 0.3), circle(0.3, 0.6, 0.1), sliver], false, 1e-5);
+        for i in 0..=200 {
+            for j in 0..=200 {
+                let (u, v) = (f64::from(i) / 200.0, f64::from(j) / 200.0);
+                assert_eq!(region.removes(u, v), removes_brute(&region, u, v), "({u}, {v})");
+            }
+        }
+        // Rectangles of every size along the grid: as classified over every segment.
+        let brute = |rect: [f64; 4]| {
+            let crossed = region.loops.iter().any(|l| {
+                (0..l.points.len()).any(|k| {
+                    let (a, b) = l.segment(k);
+                    segment_meets_rect(a, b, rect)
+                })
+            });
+            match (
+                crossed,
+                removes_brute(&region, 0.5 * (rect[0] + rect[1]), 0.5 * (rect[2] + rect[3])),
+            ) {
+                (true, _) => Coverage::Boundary,
+                (false, true) => Coverage::Removed,
+                (false, false) => Coverage::Kept,
+            }
+        };
+        for i in 0..40 {
+            for j in 0..40 {
+                let (u, v) = (f64::from(i) / 40.0, f64::from(j) / 40.0);
+                for size in [0.001, 0.013, 0.1] {
+                    let rect = [u, u + size, v, v + size * 0.7];
+                    assert_eq!(region.classify(rect), brute(rect), "{rect:?}");
+                }
+            }
+        }
+        for l in &region.loops {
+            for k in 0..l.points.len() {
+                let (a, b) = l.segment(k);
+                let v = 0.5 * (a.y + b.y);
+                assert_eq!(region.removes(a.x, v), removes_brute(&region, a.x, v));
+                assert_eq!(region.removes(b.x, a.y), removes_brute(&region, b.x, a.y));
+            }
+        }
     }
 
     #[test]
