@@ -27,6 +27,8 @@
 //! labels, hooks) is `object.rs`.
 
 use glam::Vec3;
+use reyes_hider::flags;
+use reyes_scene::patches::trim::Coverage;
 
 use crate::bucket::{BucketRange, Bucketer};
 use crate::camera::CameraSetup;
@@ -88,6 +90,12 @@ pub(crate) struct Emitter<'b> {
     pub shaded: u64,
     /// Shade every vertex of a grid, used or not ([`crate::DiceOptions::shade_every_vertex`]).
     pub shade_all: bool,
+    /// Cells of trimmed patches dropped whole ([`crate::trim`]).
+    pub trimmed: u64,
+    /// Micropolygons flagged `TRIMMED`.
+    pub trim_boundary: u64,
+    /// Flag bits of the cell being emitted beyond the object's (`TRIMMED`).
+    cell_flags: u32,
 }
 
 impl<'b> Emitter<'b> {
@@ -106,6 +114,8 @@ impl<'b> Emitter<'b> {
                 extra: Vec::new(),
                 aov: Vec::new(),
                 aov_stride: 0,
+                uv: Vec::new(),
+                trim_region: 0,
             },
             ranges: Vec::new(),
             bucketer,
@@ -123,6 +133,9 @@ impl<'b> Emitter<'b> {
             warp: false,
             shaded: 0,
             shade_all: false,
+            trimmed: 0,
+            trim_boundary: 0,
+            cell_flags: 0,
         }
     }
 
@@ -170,6 +183,8 @@ impl<'b> Emitter<'b> {
         let moving = poses.len() > 1;
         g.aov.clear();
         g.aov_stride = object.aov.as_ref().map_or(0, |(a, _)| a.stride());
+        g.uv.clear();
+        g.trim_region = object.trim.as_ref().map_or(0, |t| t.index);
         self.ranges.clear();
         self.ranges.reserve_exact(nu * nv);
         let project = |p_camera: Vec3| {
@@ -239,6 +254,9 @@ impl<'b> Emitter<'b> {
                         if moving {
                             g.cam.push(p_camera);
                         }
+                        if let Some(t) = &object.trim {
+                            g.uv.push(t.uv(surface, u, v));
+                        }
                         opens.push(Open {
                             p_lookup,
                             p_object: sp.p,
@@ -279,6 +297,19 @@ impl<'b> Emitter<'b> {
         }
         let mut quads = std::mem::take(&mut self.quads);
         for cell in 0..(nu * nv) as u32 {
+            // A trimmed patch's cell: dropped whole in the trimmed region, flagged for the
+            // hider's per-sample test where a trim curve crosses it.
+            if let Some(t) = &object.trim {
+                let uv = self.grid.corners(cell).map(|c| self.grid.uv[c]);
+                self.cell_flags = match t.classify(uv) {
+                    Coverage::Removed => {
+                        self.trimmed += 1;
+                        continue;
+                    }
+                    Coverage::Boundary => flags::TRIMMED,
+                    Coverage::Kept => 0,
+                };
+            }
             let v = self.grid.quad(cell, 0);
             if poses.len() == 1 {
                 // No motion: the whole shutter, still.

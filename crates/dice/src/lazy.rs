@@ -199,6 +199,8 @@ pub struct Dicer<'a> {
     charged: AtomicU64,
     over_budget: AtomicBool,
     stats: DiceStats,
+    /// The trim regions of the scene's trimmed NURBS patches, in object order.
+    trims: Vec<std::sync::Arc<reyes_scene::patches::trim::TrimRegion>>,
 }
 
 impl<'a> Dicer<'a> {
@@ -266,6 +268,7 @@ impl<'a> Dicer<'a> {
             charged: AtomicU64::new(0),
             over_budget: AtomicBool::new(false),
             stats: DiceStats::default(),
+            trims: Vec::new(),
         };
         for (i, object) in scene.objects.iter().enumerate() {
             let leaf = csg.leaf.get(i).copied().flatten();
@@ -286,6 +289,8 @@ impl<'a> Dicer<'a> {
                 options.vertex_shader.map(|shader| dice::Hook { shader, object: i, surface: 0 });
             ctx.aov = aovs.as_ref().map(|a| (a.clone(), ids[i]));
             ctx.look = lookdev.and_then(|l| l.object(i));
+            ctx.trim = crate::trim::TrimSetup::of(&object.shape, dicer.trims.len());
+            dicer.trims.extend(ctx.trim.as_ref().map(|t| t.region.clone()));
             let reach = ctx.look.as_ref().map_or(0.0, |l| l.object.bound);
             if ctx.look.as_ref().is_some_and(|l| l.object.may_be_transparent()) {
                 ctx.labels.flags &= !reyes_hider::flags::OPAQUE;
@@ -353,6 +358,11 @@ impl<'a> Dicer<'a> {
     /// The CSG tree of every solid ([`CsgSetup::trees`]).
     pub fn csg_trees(&self) -> &[CsgTree] {
         &self.csg_trees
+    }
+
+    /// The trim regions of the scene's trimmed patches, for [`reyes_hider::Hider::with_trims`].
+    pub fn trim_regions(&self) -> Vec<std::sync::Arc<reyes_scene::patches::trim::TrimRegion>> {
+        self.trims.clone()
     }
 
     /// Rows of buckets.
@@ -516,6 +526,16 @@ impl<'a> Dicer<'a> {
         }
     }
 
+    /// Copy the trim data of the micropolygons touching bucket `b` into `out`, in
+    /// [`Dicer::copy_bucket`]'s order (zeros for a micropolygon that is not trimmed).
+    pub fn copy_bucket_trims(&self, b: usize, out: &mut Vec<reyes_hider::TrimRef>) {
+        out.clear();
+        for &(s, i) in self.lists.get(b).map_or(&[][..], Vec::as_slice) {
+            let grid = self.slots[s as usize].grid.as_ref();
+            out.push(grid.expect("a listed grid is kept until its last row").trim_ref(i as usize));
+        }
+    }
+
     /// Drop the lists of row `row`'s buckets and every grid whose last row it is.
     pub fn release_row(&mut self, row: u32) {
         for b in self.row_buckets(row) {
@@ -583,6 +603,8 @@ impl<'a> Dicer<'a> {
         out.stats.moving += em.moving;
         out.stats.displacement_escapes += em.escaped;
         out.stats.shaded += em.shaded;
+        out.stats.trimmed += em.trimmed;
+        out.stats.trim_boundary += em.trim_boundary;
         if em.grid.len() > 0 {
             em.grid.shrink_to_fit();
             out.grids.push(NewGrid { key: task.key, grid: em.grid, ranges: em.ranges });

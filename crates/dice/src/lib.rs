@@ -118,6 +118,7 @@ mod shade;
 mod shapes;
 mod split;
 mod spot;
+mod trim;
 
 pub use aov::{VertexAovs, object_ids};
 pub use bucket::screen_bound;
@@ -194,6 +195,12 @@ pub struct DiceStats {
     /// Of `vertices`, those shaded: the corners of kept micropolygons (a grid is shaded
     /// after its cells are decided, so vertices only culled micropolygons use are not).
     pub shaded: u64,
+    /// Diced cells of trimmed NURBS patches dropped whole: their parameter rectangle lies
+    /// in the trimmed region (not counted in `culled`).
+    pub trimmed: u64,
+    /// Emitted micropolygons flagged `TRIMMED` (a trim curve crosses them: the hider tests
+    /// each sample inside them).
+    pub trim_boundary: u64,
 }
 
 impl DiceStats {
@@ -216,6 +223,8 @@ impl DiceStats {
             displacement_escapes,
             vertices,
             shaded,
+            trimmed,
+            trim_boundary,
         } = *other;
         self.primitives += primitives;
         self.splits += splits;
@@ -233,6 +242,8 @@ impl DiceStats {
         self.displacement_escapes += displacement_escapes;
         self.vertices += vertices;
         self.shaded += shaded;
+        self.trimmed += trimmed;
+        self.trim_boundary += trim_boundary;
     }
 }
 

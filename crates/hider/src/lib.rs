@@ -16,6 +16,7 @@ pub mod lens;
 pub mod mpoly;
 pub mod samples;
 pub mod tables;
+pub mod trim;
 
 pub use aov::{AovPlan, AovValue, bilinear_weights};
 pub use bucket::{Adaptive, RefinedSample, disagree, gouraud};
@@ -27,6 +28,7 @@ pub use samples::{
     BucketSamples, LensShape, Needs, Pairing, Pattern, SampleSpec, ShutterShape, TimePattern,
 };
 pub use tables::Tables;
+pub use trim::TrimRef;
 
 /// Everything the hider needs to know about a frame (the arguments of `VisParam`,
 /// `VisCamera` and `VisNewFrame`).
@@ -120,6 +122,8 @@ pub struct Hider {
     csg: Vec<CsgTree>,
     /// Most visible points one bucket keeps ([`Hider::with_max_points`]).
     max_points: u64,
+    /// Trim regions of trimmed NURBS patches ([`Hider::with_trims`]).
+    trims: Vec<std::sync::Arc<reyes_scene::patches::trim::TrimRegion>>,
 }
 
 /// Hider statistics (Appendix A `VisPrint("stat")`), summed over buckets.
@@ -152,6 +156,10 @@ pub struct Stats {
     pub occlusion_culled: u64,
     /// Candidate samples not tested because an opaque surface is nearer there.
     pub occluded_tests: u64,
+    /// Samples inside a trimmed micropolygon tested against its trim curves.
+    pub trim_tests: u64,
+    /// Of `trim_tests`, the samples trimmed away (counted as misses).
+    pub trimmed: u64,
 }
 
 impl Stats {
@@ -170,6 +178,8 @@ impl Stats {
         self.extra_samples += o.extra_samples;
         self.occlusion_culled += o.occlusion_culled;
         self.occluded_tests += o.occluded_tests;
+        self.trim_tests += o.trim_tests;
+        self.trimmed += o.trimmed;
     }
 }
 
@@ -192,6 +202,8 @@ pub struct Scratch {
     steps: aov::Steps,
     refine: bucket::RefineScratch,
     occlusion: bucket::Occlusion,
+    /// The trim data of the bucket's micropolygons, in their order ([`Scratch::trims_mut`]).
+    trims: Vec<TrimRef>,
     /// Statistics accumulated by every bucket this scratch has rendered.
     pub stats: Stats,
 }
@@ -200,6 +212,13 @@ impl Scratch {
     /// Empty scratch.
     pub fn new() -> Scratch {
         Scratch::default()
+    }
+
+    /// The trim data of the micropolygons the next bucket renders, one per micropolygon in
+    /// their order, for a frame with trimmed patches (the renderer fills it before
+    /// [`Hider::render_bucket`]; only micropolygons flagged `TRIMMED` read theirs).
+    pub fn trims_mut(&mut self) -> &mut Vec<TrimRef> {
+        &mut self.trims
     }
 }
 
@@ -257,7 +276,16 @@ impl Hider {
                 [config.shutter.warp(a), config.shutter.warp(b)]
             })
             .collect();
-        Hider { config, frame, tables, spec, slice_times, csg: Vec::new(), max_points: u64::MAX }
+        Hider {
+            config,
+            frame,
+            tables,
+            spec,
+            slice_times,
+            csg: Vec::new(),
+            max_points: u64::MAX,
+            trims: Vec::new(),
+        }
     }
 
     /// Register the scene's CSG trees (port of `CSGNewTree`); tree `n` resolves the
@@ -265,6 +293,22 @@ impl Hider {
     pub fn with_csg(mut self, trees: Vec<CsgTree>) -> Hider {
         self.csg = trees;
         self
+    }
+
+    /// Register the trim regions of the scene's trimmed patches: a micropolygon flagged
+    /// `TRIMMED` is trimmed by region `TrimRef::region` of its [`Scratch::trims_mut`] entry.
+    pub fn with_trims(
+        mut self,
+        regions: Vec<std::sync::Arc<reyes_scene::patches::trim::TrimRegion>>,
+    ) -> Hider {
+        self.trims = regions;
+        self
+    }
+
+    /// Whether the frame has trimmed patches (the renderer must then fill
+    /// [`Scratch::trims_mut`]).
+    pub fn has_trims(&self) -> bool {
+        !self.trims.is_empty()
     }
 
     /// The same hider keeping at most `max` visible points in one bucket (the memory

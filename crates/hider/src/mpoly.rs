@@ -22,6 +22,9 @@ pub mod flags {
     pub const GOURAUD: u32 = 1 << 6;
     /// Appendix A `glasshack`: tint what is seen through by the colour behind.
     pub const GLASS: u32 = 1 << 9;
+    /// A trim curve crosses it: each sample inside is tested against the trim region
+    /// (`crate::trim`).
+    pub const TRIMMED: u32 = 1 << 10;
 }
 
 /// One micropolygon: a quadrilateral with per-vertex position, motion and colour.

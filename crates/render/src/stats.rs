@@ -29,6 +29,11 @@ pub struct DiceSummary {
     /// The whole scene was diced up front, because lazy dicing met a patch bound that
     /// missed (the image is the same).
     pub eager: bool,
+    /// Cells of trimmed NURBS patches dropped whole in the trimmed region, and
+    /// micropolygons a trim curve crosses (tested per sample by the hider).
+    pub trimmed: u64,
+    /// See `trimmed`.
+    pub trim_boundary: u64,
 }
 
 /// The distributed ray tracing's counts: of the ray-tracing hider (Appendix B), in place of
@@ -232,6 +237,13 @@ impl RenderStats {
             pct(h.occlusion_culled, h.micropolygons),
             h.occluded_tests
         );
+        if self.dice.trimmed + self.dice.trim_boundary + h.trim_tests > 0 {
+            let _ = writeln!(
+                s,
+                " Trimming: {} cells dropped in trimmed regions, {} micropolygons on trim curves, {} samples tested against trim curves ({} trimmed away)",
+                self.dice.trimmed, self.dice.trim_boundary, h.trim_tests, h.trimmed
+            );
+        }
         let tests = h.hits + h.misses;
         let _ = writeln!(
             s,

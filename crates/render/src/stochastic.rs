@@ -181,8 +181,9 @@ fn render_rows(
         Dicer::new(scene, &frame, dice_options)
     }?;
     let mut t_dice = t0.elapsed();
-    let Stages { hider, table, .. } =
-        Stages::with_frame(scene, frame, |hider| hider.with_csg(dicer.csg_trees().to_vec()))?;
+    let Stages { hider, table, .. } = Stages::with_frame(scene, frame, |hider| {
+        hider.with_csg(dicer.csg_trees().to_vec()).with_trims(dicer.trim_regions())
+    })?;
     let max_points = opts.memory_limit.map(|limit| {
         let threads = rayon::current_num_threads();
         crate::budget::Estimate::new(scene, threads).points_left(limit, threads)
@@ -355,6 +356,9 @@ fn render_bucket(
         return Default::default();
     }
     diced.copy_bucket(b, &mut buf.mpolys);
+    if hider.has_trims() {
+        diced.copy_bucket_trims(b, buf.scratch.trims_mut());
+    }
     let n = buf.mpolys.len() as u32;
     if (buf.list.len() as u32) < n {
         buf.list.extend(buf.list.len() as u32..n);
@@ -411,5 +415,7 @@ fn dice_summary(d: &DiceStats) -> DiceSummary {
         culled: d.culled,
         peak_micropolygons: 0,
         eager: false,
+        trimmed: d.trimmed,
+        trim_boundary: d.trim_boundary,
     }
 }

@@ -319,6 +319,7 @@ pub const STANDARD: &[(&str, Class, Type, Option<u32>)] = {
         ("name", Uniform, String, None),
         ("sphere", Uniform, Float, None),
         ("coordinatesystem", Uniform, String, None),
+        ("sense", Uniform, String, None),
         ("origin", Uniform, Integer, Some(2)),
         ("jitter", Uniform, Integer, None),
     ]

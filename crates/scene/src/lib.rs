@@ -102,6 +102,13 @@ pub fn validate(scene: Scene) -> Result<Scene, Issue> {
     }
 }
 
+/// Validates trim loops on their own (`RiTrimCurve`, before any patch takes them): every rule
+/// of [`Shape::NuPatch`]'s `trim` but the one that needs the patch's domain, which `domain`
+/// supplies when given. Paths start at `trim`, e.g. `trim[0].curves[1].knot[3]`.
+pub fn validate_trim(loops: &[TrimLoop], domain: Option<[f32; 4]>) -> Result<(), Issue> {
+    validate::trim_loops(loops, domain)
+}
+
 /// The scene with every relative texture file name joined to the folder of `file`, the
 /// scene file it was read from (a name already absolute, or a scene read from standard input,
 /// keeps its name).

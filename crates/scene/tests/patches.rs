@@ -290,6 +290,8 @@ fn a_nurbs_with_bezier_knots_is_the_bezier_patch() {
         vmin: 0.0,
         vmax: 1.0,
         points: points.iter().map(|p| [p[0], p[1], p[2], 1.0]).collect(),
+        trim: Vec::new(),
+        trim_outside: false,
     };
     let (a, b) = (bezier_patches(&bezier, None), bezier_patches(&nurbs, None));
     assert_eq!(a, b, "the same control net, exactly");

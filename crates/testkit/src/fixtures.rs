@@ -155,6 +155,8 @@ pub fn nurbs_ruled(nu: u32, uorder: u32, uknot: Vec<f32>, points: Vec<[f32; 4]>)
         vmin: 0.0,
         vmax: 1.0,
         points,
+        trim: Vec::new(),
+        trim_outside: false,
     }
 }
 

@@ -11,6 +11,7 @@
 use glam::{DMat4, DVec3, Vec3};
 use reyes_scene::object_to_world;
 use reyes_scene::patches;
+use reyes_scene::patches::trim::TrimRegion;
 use reyes_scene::{Object, PatchType, Scene, Shape, V3};
 
 use crate::Tracer;
@@ -79,6 +80,21 @@ pub(crate) struct ObjectData {
     /// World to object for an object whose still, affine transform was baked into its
     /// points (placement `Identity` but not object space), to report `Hit::p_object`.
     pub(crate) unbake: Option<DMat4>,
+    /// A trimmed NURBS patch's trim region and the parameter rectangle of each span: a hit
+    /// on a span at its own `(s, t)` is dropped where the patch's `(u, v)` is trimmed away.
+    pub(crate) trim: Option<Box<(TrimRegion, Vec<[f64; 4]>)>>,
+}
+
+impl ObjectData {
+    /// Whether the hit at `(s, t)` of surface `surface` lies in the trimmed region.
+    pub(crate) fn trimmed(&self, surface: u32, s: f64, t: f64) -> bool {
+        let Some(trim) = &self.trim else { return false };
+        let (region, spans) = &**trim;
+        match spans.get(surface as usize) {
+            Some([u0, u1, v0, v1]) => region.removes(u0 + s * (u1 - u0), v0 + t * (v1 - v0)),
+            None => false,
+        }
+    }
 }
 
 /// Keys with strictly increasing normalised times (later keys at or before an earlier
@@ -191,7 +207,7 @@ impl Builder {
         let mut placement = Placement::from_keys(keys);
         let mut unbake = None;
         if placement == Placement::Degenerate {
-            return ObjectData { placement, deform: Vec::new(), unbake: None };
+            return ObjectData { placement, deform: Vec::new(), unbake: None, trim: None };
         }
 
         // Points of a mesh or patch, per deformation key (one key when still).
@@ -386,7 +402,9 @@ impl Builder {
             }
         }
         let deform = if deforming { point_keys } else { Vec::new() };
-        ObjectData { placement, deform, unbake }
+        let trim = TrimRegion::of(&object.shape)
+            .map(|r| Box::new((r, reyes_scene::patches::trim::span_domains(&object.shape))));
+        ObjectData { placement, deform, unbake, trim }
     }
 }
 

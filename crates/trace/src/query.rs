@@ -274,7 +274,7 @@ impl Tracer {
                 }
             }
         };
-        match &prim.geometry {
+        let c = match &prim.geometry {
             Geometry::Triangle(tri) => triangle(tri),
             Geometry::Quadric(q) => {
                 let local = local_ray(&space)?;
@@ -312,7 +312,10 @@ impl Tracer {
                 let local = local_ray(&space)?;
                 from_local(&space, &local, patch::bilinear(&p, &local)?)
             }
-        }
+        }?;
+        // A trimmed NURBS patch has no surface where its trim curves remove it.
+        let object = self.objects.get(prim.object as usize)?;
+        (!object.trimmed(prim.surface, c.u, c.v)).then_some(c)
     }
 
     /// The reported hit of a candidate.

@@ -154,7 +154,7 @@ impl Emitter<'_> {
             return;
         }
         let crossing = zmin < self.hither || zmax > self.yon;
-        let mut flags = self.grid.labels.flags;
+        let mut flags = self.grid.labels.flags | self.cell_flags;
         if crossing {
             flags |= flags::HITHER_YON_CROSSING;
         }
@@ -176,6 +176,9 @@ impl Emitter<'_> {
         }
         if flags & flags::MOVING != 0 {
             self.moving += 1;
+        }
+        if flags & flags::TRIMMED != 0 {
+            self.trim_boundary += 1;
         }
     }
 }

@@ -62,6 +62,9 @@ pub(crate) struct Grid {
     /// Per-vertex AOV values, `aov_stride` floats per vertex (empty without AOVs).
     pub(crate) aov: Vec<f32>,
     pub(crate) aov_stride: usize,
+    /// A trimmed patch's `(u, v)` at each vertex and its trim region (`uv` empty otherwise).
+    pub(crate) uv: Vec<[f32; 2]>,
+    pub(crate) trim_region: u32,
 }
 
 impl Grid {
@@ -76,6 +79,7 @@ impl Grid {
         self.trans.shrink_to_fit();
         self.pos.shrink_to_fit();
         self.aov.shrink_to_fit();
+        self.uv.shrink_to_fit();
         self.kept.shrink_to_fit();
         self.cam = Vec::new();
         self.extra.shrink_to_fit();
@@ -117,6 +121,18 @@ impl Grid {
         }
         for c in self.corners(self.kept[k].cell) {
             out.extend_from_slice(&self.aov[c * st..(c + 1) * st]);
+        }
+    }
+
+    /// Kept micropolygon `k`'s trim data (zeros unless it is flagged `TRIMMED`).
+    pub fn trim_ref(&self, k: usize) -> reyes_hider::TrimRef {
+        let m = &self.kept[k];
+        if m.flags & reyes_hider::flags::TRIMMED == 0 || self.uv.is_empty() {
+            return reyes_hider::TrimRef::default();
+        }
+        reyes_hider::TrimRef {
+            region: self.trim_region,
+            uv: self.corners(m.cell).map(|c| self.uv.get(c).copied().unwrap_or_default()),
         }
     }
 

@@ -49,6 +49,8 @@ pub(crate) struct ObjectContext<'a> {
     /// Push crack-free grids' boundary vertices out by [`crate::split::OVERLAP`] (not for CSG operands,
     /// for which a sample seeing a surface twice is as wrong as one seeing it not at all).
     pub overlap: bool,
+    /// The trim loops of a trimmed NURBS patch ([`crate::trim`]).
+    pub trim: Option<crate::trim::TrimSetup>,
 }
 
 /// What every micropolygon of one object carries besides its geometry and colour.
@@ -101,5 +103,6 @@ pub(crate) fn object_context(
         aov: None,
         look: None,
         overlap: csg.is_none(),
+        trim: None,
     }
 }

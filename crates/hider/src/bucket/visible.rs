@@ -27,6 +27,19 @@ impl Hider {
         v: &[[f32; 3]; 4],
         scratch: &mut Scratch,
     ) -> bool {
+        if s.mp.has(flags::TRIMMED) {
+            scratch.stats.trim_tests += 1;
+            let t = scratch.trims.get(s.index as usize);
+            let region = t.and_then(|t| self.trims.get(t.region as usize));
+            // A micropolygon flagged without its data is drawn untrimmed (never happens: the
+            // renderer fills one entry per micropolygon).
+            if let (Some(t), Some(region)) = (t, region)
+                && crate::trim::trimmed_at(region, t, v)
+            {
+                scratch.stats.trimmed += 1;
+                return false;
+            }
+        }
         if s.crossing && self.config.original_moving_clip && s.mp.has(flags::MOVING) {
             // Appendix A: a moving micropolygon straddling hither or yon at this sample's time
             // is rejected outright instead of clipped (appendix-a.md 3.6).

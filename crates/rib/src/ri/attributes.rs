@@ -25,6 +25,21 @@ impl Machine {
                         return Err(r.param_error(p, "\"sphere\" must be one number >= 0"));
                     }
                 },
+                ("trimcurve", "sense") => {
+                    match p.strings().and_then(|s| s.first()).map(String::as_str) {
+                        Some("inside") => self.attributes.trim_outside = false,
+                        Some("outside") => self.attributes.trim_outside = true,
+                        other => {
+                            return Err(r.param_error(
+                                p,
+                                format!(
+                                    "\"sense\" must be \"inside\" or \"outside\", got {}",
+                                    other.map_or("no string".into(), |s| format!("\"{s}\""))
+                                ),
+                            ));
+                        }
+                    }
+                }
                 ("displacementbound", "coordinatesystem") => {
                     let space = p.strings().and_then(|s| s.first()).map_or("", String::as_str);
                     if space != "object" {

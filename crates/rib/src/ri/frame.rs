@@ -453,6 +453,7 @@ impl Machine {
                 Ok(())
             }
             K::Attribute => self.attribute(&r),
+            K::TrimCurve => self.trim_curve(&r),
             K::LightSource => self.light_source(&r),
             K::AreaLightSource => self.area_light_source(&r),
             K::RelativeDetail => self.relative_detail(&r),

@@ -29,6 +29,7 @@ pub(crate) mod state;
 mod subdivision;
 pub mod teapot;
 mod triangulate;
+mod trim;
 pub(crate) mod xform;
 
 use reyes_scene::Scene;

@@ -353,6 +353,8 @@ impl Machine {
                     vmin: r.float(8).unwrap_or(0.0),
                     vmax: r.float(9).unwrap_or(1.0),
                     points,
+                    trim: self.attributes.trim.as_ref().clone(),
+                    trim_outside: self.attributes.trim_outside,
                 }
             }
             K::Hyperboloid => {

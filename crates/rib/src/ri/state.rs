@@ -170,6 +170,10 @@ pub(crate) struct Attributes {
     pub displacement_bound: Option<f32>,
     /// `TextureCoordinates` as a scale: `s = repeat.0 u`, `t = repeat.1 v`.
     pub repeat: (f32, f32),
+    /// `TrimCurve`: the loops every `NuPatch` of the block is trimmed by (empty: none).
+    pub trim: std::sync::Arc<Vec<reyes_scene::TrimLoop>>,
+    /// `Attribute "trimcurve" "sense" "outside"`: keep the inside of the loops instead.
+    pub trim_outside: bool,
 }
 
 impl Default for Attributes {
@@ -194,6 +198,8 @@ impl Default for Attributes {
             displacement: SurfaceShader { name: None, params: Vec::new(), at: None },
             displacement_bound: None,
             repeat: (1.0, 1.0),
+            trim: Default::default(),
+            trim_outside: false,
         }
     }
 }

@@ -14,6 +14,7 @@ mod peers;
 mod program;
 mod renderman;
 mod tolerance;
+mod trim;
 
 use reyes_rib::{Loaded, RiOptions, RibError, Source, load};
 

@@ -142,8 +142,9 @@ pub enum Shape {
         #[serde(default)]
         vstep: Option<u32>,
     },
-    /// RenderMan NURBS patch (`RiNuPatch`), rational, without trim curves. Knot vectors have
-    /// `n + order` entries; the surface is drawn over `[umin, umax] x [vmin, vmax]`.
+    /// RenderMan NURBS patch (`RiNuPatch`), rational, with optional trim loops
+    /// (`RiTrimCurve`). Knot vectors have `n + order` entries; the surface is drawn over
+    /// `[umin, umax] x [vmin, vmax]`, less the trimmed region.
     NuPatch {
         /// Control points along u.
         nu: u32,
@@ -168,6 +169,15 @@ pub enum Shape {
         /// The `nu * nv` homogeneous control points `(x, y, z, w)` (RenderMan's `Pw`; the
         /// point is `(x/w, y/w, z/w)`, `w > 0`; `P` is `w = 1`), u-major.
         points: Vec<[f32; 4]>,
+        /// Trim loops in the patch's `(u, v)` parameter space (`RiTrimCurve`), each a closed
+        /// chain of curves; the region inside an odd number of loops is removed (the
+        /// Specification's, PRMan's `"trimcurve" "sense" "inside"`). Empty: untrimmed.
+        #[serde(default, skip_serializing_if = "Vec::is_empty")]
+        trim: Vec<TrimLoop>,
+        /// Keep the region inside the loops and remove the rest instead (PRMan's
+        /// `Attribute "trimcurve" "sense" "outside"`).
+        #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+        trim_outside: bool,
     },
     /// Polygon mesh: triangles, quads (planar or not) and larger convex polygons (fanned
     /// into triangles around their first index).
@@ -339,4 +349,29 @@ pub enum Transform {
     Scale(V3),
     /// A 4x4 matrix, rows written top to bottom, acting on column vectors `(x, y, z, 1)`.
     Matrix([[f32; 4]; 4]),
+}
+
+/// One closed trim loop of a [`Shape::NuPatch`]: its curves, end to end.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TrimLoop {
+    /// The curves in order; the loop closes from the last curve's end to the first's start.
+    pub curves: Vec<TrimCurve>,
+}
+
+/// One curve of a trim loop: a rational NURBS curve in the patch's parameter space
+/// (`RiTrimCurve`'s `order`, `knot`, `min`, `max`, `n` and `u`, `v`, `w` of one curve).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TrimCurve {
+    /// Order (degree + 1), `2..=16`.
+    pub order: u32,
+    /// `points.len() + order` non-decreasing knots.
+    pub knot: Vec<f32>,
+    /// Start of the drawn parameter range, `>= knot[order - 1]`.
+    pub min: f32,
+    /// End of the drawn parameter range, `> min`, `<= knot[n]`.
+    pub max: f32,
+    /// Homogeneous control points `(u w, v w, w)`, `w > 0`: the point is `(u, v)`.
+    pub points: Vec<[f32; 3]>,
 }

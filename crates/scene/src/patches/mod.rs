@@ -12,6 +12,7 @@
 
 mod bezier;
 mod nurbs;
+pub mod trim;
 
 pub use bezier::{BezierPatch, PatchEval};
 

@@ -12,7 +12,13 @@ use crate::model::Shape;
 
 /// The Bezier pieces of one direction: for each non-empty span `[U_s, U_s+1]` meeting
 /// `[lo, hi]`, its index `s` and the clipped interval `[a, b]`.
-fn spans_of(knots: &[f64], order: usize, n: usize, lo: f64, hi: f64) -> Vec<(usize, [f64; 2])> {
+pub(super) fn spans_of(
+    knots: &[f64],
+    order: usize,
+    n: usize,
+    lo: f64,
+    hi: f64,
+) -> Vec<(usize, [f64; 2])> {
     let p = order - 1;
     let mut out = Vec::new();
     for s in p..n {
@@ -41,7 +47,13 @@ fn blossom(knots: &[f64], ctrl: &[DVec4], p: usize, s: usize, ts: &[f64]) -> DVe
 }
 
 /// The Bezier control points over `[a, b]` of span `s`: blossoms at `a^(p-k) b^k`.
-fn extract(knots: &[f64], ctrl: &[DVec4], p: usize, s: usize, [a, b]: [f64; 2]) -> Vec<DVec4> {
+pub(super) fn extract(
+    knots: &[f64],
+    ctrl: &[DVec4],
+    p: usize,
+    s: usize,
+    [a, b]: [f64; 2],
+) -> Vec<DVec4> {
     let mut ts = vec![0.0; p];
     (0..=p)
         .map(|k| {
@@ -71,8 +83,9 @@ pub(super) fn span_counts(shape: &Shape) -> (usize, usize) {
 
 /// Every span of a valid `NuPatch` as a rational Bezier patch (v spans outer, u inner).
 pub(super) fn spans(shape: &Shape, positions: Option<&[DVec3]>) -> Vec<BezierPatch> {
-    let Shape::NuPatch { nu, uorder, uknot, umin, umax, nv, vorder, vknot, vmin, vmax, points } =
-        shape
+    let Shape::NuPatch {
+        nu, uorder, uknot, umin, umax, nv, vorder, vknot, vmin, vmax, points, ..
+    } = shape
     else {
         return Vec::new();
     };
@@ -176,6 +189,8 @@ mod tests {
             vmin: 0.0,
             vmax: 1.0,
             points: points.clone(),
+            trim: Vec::new(),
+            trim_outside: false,
         };
         let patches = spans(&shape, None);
         // u spans [0.1, 0.4], [0.4, 0.9]; v spans [0, 0.5], [0.5, 1].

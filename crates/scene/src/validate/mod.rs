@@ -41,6 +41,7 @@ mod raytrace;
 mod shape;
 mod solid;
 mod subdivision;
+mod trim;
 
 use crate::model::Scene;
 use primitives::Check;
@@ -52,6 +53,14 @@ pub struct Issue {
     pub path: String,
     /// What is wrong, e.g. `must be > 0, got -1`.
     pub message: String,
+}
+
+/// The first rule `loops` break (see [`crate::validate_trim`]).
+pub(crate) fn trim_loops(loops: &[crate::TrimLoop], domain: Option<[f32; 4]>) -> Check {
+    for (i, l) in loops.iter().enumerate() {
+        trim::trim_loop(&format!("trim[{i}]"), l, domain)?;
+    }
+    Ok(())
 }
 
 /// The first rule `scene` breaks, if any.

@@ -203,7 +203,21 @@ pub(super) fn shape(at: &str, shape: &Shape) -> Check {
             point_count(&field("points"), points.len(), *nu, *nv)?;
             finite_each(&field("points"), points)
         }
-        Shape::NuPatch { nu, uorder, uknot, umin, umax, nv, vorder, vknot, vmin, vmax, points } => {
+        Shape::NuPatch {
+            nu,
+            uorder,
+            uknot,
+            umin,
+            umax,
+            nv,
+            vorder,
+            vknot,
+            vmin,
+            vmax,
+            points,
+            trim,
+            ..
+        } => {
             knots(at, "u", *nu, *uorder, uknot, *umin, *umax)?;
             knots(at, "v", *nv, *vorder, vknot, *vmin, *vmax)?;
             point_count(&field("points"), points.len(), *nu, *nv)?;
@@ -215,6 +229,10 @@ pub(super) fn shape(at: &str, shape: &Shape) -> Check {
                         format!("the weight must be > 0, got {}", p[3]),
                     );
                 }
+            }
+            let domain = [*umin, *umax, *vmin, *vmax];
+            for (i, l) in trim.iter().enumerate() {
+                super::trim::trim_loop(&format!("{at}.trim[{i}]"), l, Some(domain))?;
             }
             Ok(())
         }
@@ -241,7 +259,15 @@ fn point_count(path: &str, len: usize, nu: u32, nv: u32) -> Check {
 /// One direction of a NURBS patch (`dir` is `u` or `v`): the order in `2..=MAX_ORDER`, at
 /// least `order` points, `n + order` finite non-decreasing knots, and a drawn range
 /// `min < max` inside the valid range `[knot[order - 1], knot[n]]`.
-fn knots(at: &str, dir: &str, n: u32, order: u32, knot: &[f32], min: f32, max: f32) -> Check {
+pub(super) fn knots(
+    at: &str,
+    dir: &str,
+    n: u32,
+    order: u32,
+    knot: &[f32],
+    min: f32,
+    max: f32,
+) -> Check {
     let field = |name: &str| format!("{at}.{dir}{name}");
     int_in(&field("order"), order, 2, MAX_ORDER)?;
     if n < order {
