@@ -344,6 +344,7 @@ impl FrameBuild {
             raytrace: Default::default(),
             outputs: reyes_scene::Outputs { aovs: o.aovs.clone(), ..Default::default() },
             texture_cache: Default::default(),
+            shaders: Default::default(),
         };
         let displays = self.options.displays.clone();
         match reyes_scene::validate(scene) {
