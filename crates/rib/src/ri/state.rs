@@ -69,6 +69,8 @@ pub(crate) struct FrameOptions {
     pub camera: Xform,
     /// `Option "searchpath"`.
     pub search: crate::ri::search::SearchPaths,
+    /// A shading-language `Imager`.
+    pub imager: Option<reyes_scene::ShaderInstance>,
     /// Where each option family was last set, for messages about the values it produced.
     pub origins: Vec<(&'static str, Location, &'static str)>,
 }
@@ -101,6 +103,7 @@ impl Default for FrameOptions {
             max_grid_size: None,
             camera: Xform::default(),
             search: Default::default(),
+            imager: None,
             origins: Vec::new(),
         }
     }
@@ -170,6 +173,8 @@ pub(crate) struct Attributes {
     pub displacement_bound: Option<f32>,
     /// `TextureCoordinates` as a scale: `s = repeat.0 u`, `t = repeat.1 v`.
     pub repeat: (f32, f32),
+    /// The `Atmosphere` shader (its name None: none).
+    pub atmosphere: SurfaceShader,
 }
 
 impl Default for Attributes {
@@ -194,6 +199,7 @@ impl Default for Attributes {
             displacement: SurfaceShader { name: None, params: Vec::new(), at: None },
             displacement_bound: None,
             repeat: (1.0, 1.0),
+            atmosphere: SurfaceShader { name: None, params: Vec::new(), at: None },
         }
     }
 }
