@@ -39,6 +39,7 @@ mod facing;
 mod grid;
 mod object;
 mod shading;
+mod slgrid;
 
 pub(crate) use facing::cull_back_faces;
 pub(crate) use grid::Grid;
@@ -88,6 +89,9 @@ pub(crate) struct Emitter<'b> {
     pub shaded: u64,
     /// Shade every vertex of a grid, used or not ([`crate::DiceOptions::shade_every_vertex`]).
     pub shade_all: bool,
+    /// What the shading-language machine counted, and its first error.
+    pub sl_counts: crate::sl::SlCounts,
+    pub sl_error: Option<String>,
 }
 
 impl<'b> Emitter<'b> {
@@ -123,6 +127,8 @@ impl<'b> Emitter<'b> {
             warp: false,
             shaded: 0,
             shade_all: false,
+            sl_counts: Default::default(),
+            sl_error: None,
         }
     }
 
@@ -155,6 +161,16 @@ impl<'b> Emitter<'b> {
         let hook = object.hook.map(|h| Hook { surface, ..h });
         let (nu, nv) = (nu as usize, nv as usize);
         let count = (nu + 1) * (nv + 1);
+        // Look development hook (crate::displace), or the shading language's displacement
+        // (`slgrid.rs`): the grid displaced along its normals at every breakpoint, and its
+        // shading normals recomputed, before anything is shaded or projected; the lookups'
+        // footprint is the grid's parameter spacing.
+        let displaced = match &object.sl {
+            Some(sl) if sl.shaders.displacement.is_some() => {
+                self.sl_displace(sl, poses, patch, (nu, nv))
+            }
+            _ => object.look.as_ref().and_then(|l| displace::grid(l, poses, patch, (nu, nv))),
+        };
         let g = &mut self.grid;
         g.nu = nu as u32;
         g.count = count as u32;
@@ -185,11 +201,6 @@ impl<'b> Emitter<'b> {
         let mut cosines = Vec::new();
         // What shading each vertex at shutter open will need, once the cells are decided.
         let mut opens = Vec::with_capacity(count);
-        // Look development hook (crate::displace): the grid displaced along its normals at
-        // every breakpoint, and its shading normals recomputed, before anything is shaded
-        // or projected; the lookups' footprint is the grid's parameter spacing.
-        let displaced =
-            object.look.as_ref().and_then(|l| displace::grid(l, poses, patch, (nu, nv)));
         self.escaped += displaced.as_ref().map_or(0, |d| d.escaped);
         let boundary = |b: usize, u: f32, v: f32, i: usize, j: usize| {
             patch.sides.as_ref().and_then(|s| s.boundary(b, (u, v), (i, j), (nu, nv)))

@@ -33,6 +33,7 @@
 //!   [`Dicer::new_eager`], which dices everything in row 0 (the whole scene in memory, as
 //!   before lazy dicing) and so cannot miss.
 
+use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 
 use rayon::prelude::*;
@@ -45,7 +46,8 @@ use crate::camera::{self, CameraSetup};
 use crate::csg::CsgSetup;
 use crate::dice::{self, Emitter, Grid, ObjectContext};
 use crate::hook::DiceOptions;
-use crate::motion::{CameraMotion, ObjectMotion, Pose, ShutterTime};
+use crate::motion::{CameraMotion, ObjectMotion, Placement, Pose, ShutterTime};
+use crate::sl::SlSetup;
 use crate::split::{Decision, MAX_SPLIT_DEPTH, Patch, Splitter};
 use crate::{DiceError, DiceStats, check_frame};
 
@@ -105,10 +107,15 @@ pub(crate) struct Wave {
     leaves: Vec<Leaf>,
     /// Counts.
     pub stats: DiceStats,
+    /// The first shading-language failure (which ends the render).
+    pub shader_error: Option<String>,
 }
 
 impl Wave {
     fn append(&mut self, mut other: Wave) {
+        if self.shader_error.is_none() {
+            self.shader_error = other.shader_error.take();
+        }
         self.grids.append(&mut other.grids);
         self.deferred.append(&mut other.deferred);
         self.leaves.append(&mut other.leaves);
@@ -198,6 +205,8 @@ pub struct Dicer<'a> {
     /// went over `max_alive` (its remaining patches are then dropped: the row fails).
     charged: AtomicU64,
     over_budget: AtomicBool,
+    /// A shading-language shader failed: the remaining grids are not diced.
+    shader_failed: AtomicBool,
     stats: DiceStats,
 }
 
@@ -265,6 +274,7 @@ impl<'a> Dicer<'a> {
             max_alive: options.max_micropolygons.unwrap_or(u64::MAX),
             charged: AtomicU64::new(0),
             over_budget: AtomicBool::new(false),
+            shader_failed: AtomicBool::new(false),
             stats: DiceStats::default(),
         };
         for (i, object) in scene.objects.iter().enumerate() {
@@ -286,7 +296,19 @@ impl<'a> Dicer<'a> {
                 options.vertex_shader.map(|shader| dice::Hook { shader, object: i, surface: 0 });
             ctx.aov = aovs.as_ref().map(|a| (a.clone(), ids[i]));
             ctx.look = lookdev.and_then(|l| l.object(i));
-            let reach = ctx.look.as_ref().map_or(0.0, |l| l.object.bound);
+            let budget = options.shader_budget.unwrap_or(reyes_scene::sl::exec::DEFAULT_BUDGET);
+            let (Placement::Matrix(m) | Placement::Between { from: m, .. }) = &open.place;
+            ctx.sl = SlSetup::new(scene, i, m, &dicer.camera, &ctx.shader, budget).map(Arc::new);
+            let mut reach = ctx.look.as_ref().map_or(0.0, |l| l.object.bound);
+            if let Some(sl) = &ctx.sl {
+                // The machine shades the grids: no vertex hook, and the opacity is the
+                // shader's, so the object is not taken as opaque.
+                ctx.hook = None;
+                ctx.labels.flags &= !reyes_hider::flags::OPAQUE;
+                if sl.shaders.displacement.is_some() {
+                    reach = f32::max(reach, sl.shaders.displacement_bound);
+                }
+            }
             if ctx.look.as_ref().is_some_and(|l| l.object.may_be_transparent()) {
                 ctx.labels.flags &= !reyes_hider::flags::OPAQUE;
             }
@@ -426,7 +448,10 @@ impl<'a> Dicer<'a> {
     ///
     /// Errors as [`Dicer::dice_row`].
     pub fn finish_row(&mut self, wave: RowWave) -> Result<(), DiceError> {
-        let RowWave { row, wave } = wave;
+        let RowWave { row, mut wave } = wave;
+        if let Some(message) = wave.shader_error.take() {
+            return Err(DiceError::Shader { message });
+        }
         if self.over_budget.load(Ordering::Relaxed) {
             let limit = self.max_alive;
             let mb = limit.saturating_mul(MICROPOLYGON_BYTES) >> 20;
@@ -576,7 +601,17 @@ impl<'a> Dicer<'a> {
         let mut em = Emitter::new(&self.bucketer, hither, yon, self.splitter.near());
         em.warp = self.warp;
         em.shade_all = self.shade_all;
+        if self.shader_failed.load(Ordering::Relaxed) {
+            return;
+        }
         em.dice(&self.camera, &object.ctx, task.key.surface as usize, poses, &task.patch, (nu, nv));
+        out.stats.shader_nonfinite += em.sl_counts.nonfinite;
+        out.stats.shader_instructions += em.sl_counts.instructions;
+        if let Some(e) = em.sl_error.take() {
+            self.shader_failed.store(true, Ordering::Relaxed);
+            out.shader_error.get_or_insert(e);
+            return;
+        }
         out.stats.culled += em.culled;
         out.stats.backfacing += em.backfacing;
         out.stats.crossing += em.crossing;

@@ -49,6 +49,9 @@ pub(crate) struct ObjectContext<'a> {
     /// Push crack-free grids' boundary vertices out by [`crate::split::OVERLAP`] (not for CSG operands,
     /// for which a sample seeing a surface twice is as wrong as one seeing it not at all).
     pub overlap: bool,
+    /// Shading-language shaders, which shade the object's grids instead of `shader` and
+    /// `hook` ([`crate::sl`]).
+    pub sl: Option<std::sync::Arc<crate::sl::SlSetup>>,
 }
 
 /// What every micropolygon of one object carries besides its geometry and colour.
@@ -101,5 +104,6 @@ pub(crate) fn object_context(
         aov: None,
         look: None,
         overlap: csg.is_none(),
+        sl: None,
     }
 }

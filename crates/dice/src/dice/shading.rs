@@ -52,6 +52,11 @@ impl Emitter<'_> {
         (nu, nv): (usize, usize),
         opens: &[Open],
     ) {
+        if let Some(sl) = &object.sl {
+            let material = (object.shader.color(), object.shader.opacity());
+            self.sl_shade(sl, camera, material, open, patch, (nu, nv), opens);
+            return;
+        }
         let count = opens.len();
         let mut used = vec![self.shade_all; count];
         if !self.shade_all {

@@ -56,6 +56,7 @@ pub trait Lights {
     fn lights(&mut self, q: &LightQuery<'_>) -> Result<Vec<LightSample>, ExecError>;
 }
 
+#[derive(Clone)]
 /// A light shader instance: the shader, its parameter values, its coordinate systems (its
 /// "shader" space is where it was declared), and its categories.
 pub struct ShaderLight {
