@@ -22,6 +22,7 @@ pub mod buckets;
 pub mod budget;
 pub mod cancel;
 mod error;
+mod imager;
 pub mod pool;
 pub mod rayhide;
 pub mod settings;
@@ -123,11 +124,23 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<Rendered, RenderErr
             });
         }
     }
-    match scene.hider.method {
+    let mut rendered = match scene.hider.method {
         HiderMethod::RayTrace if scene.has_shaders() => Err(RenderError::Shader {
             message: "the ray-tracing hider shades with the native materials only: a scene with shading-language shaders renders with the stochastic hider (Hider \"hidden\")".into(),
         }),
         HiderMethod::RayTrace => rayhide::render_raytraced(scene, opts),
         HiderMethod::Stochastic => stochastic::render_stochastic(scene, opts),
+    }?;
+    if scene.shaders.imager.is_some() {
+        let budget = opts.shader_budget.unwrap_or(reyes_scene::sl::exec::DEFAULT_BUDGET);
+        let film = std::mem::replace(&mut rendered.film, Film::new(0, 0));
+        let (film, nonfinite) = imager::apply(scene, film, budget)?;
+        rendered.film = film;
+        if nonfinite > 0 {
+            rendered.warnings.push(format!(
+                "the imager produced {nonfinite} non-finite values (NaN or infinite), written as 0"
+            ));
+        }
     }
+    Ok(rendered)
 }
