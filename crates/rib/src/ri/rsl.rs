@@ -118,6 +118,15 @@ impl Machine {
         let Some((shader, file)) = self.compiled(name, kind, at, request)? else {
             return Ok(None);
         };
+        // The shader declares its parameters: the reader's warnings that a parameter of the
+        // request is not declared are answered, for those the shader has.
+        let declared: Vec<Location> = s
+            .params
+            .iter()
+            .filter(|p| p.decl.is_none() && shader.param(&p.name).is_some())
+            .map(|p| at.at(p.at))
+            .collect();
+        self.warnings.retain(|w| !(declared.contains(&w.at) && w.message.contains("is not declared")));
         let mut warnings = Vec::new();
         let params = bind(&shader, &s.params, at, &mut warnings);
         for w in warnings {
