@@ -119,11 +119,11 @@ impl Machine {
             return Ok(None);
         };
         // The shader declares its parameters: the reader's warnings that a parameter of the
-        // request is not declared are answered, for those the shader has.
+        // request is not declared are answered (those it lacks get a warning of their own).
         let declared: Vec<Location> = s
             .params
             .iter()
-            .filter(|p| p.decl.is_none() && shader.param(&p.name).is_some())
+            .filter(|p| p.decl.is_none())
             .map(|p| at.at(p.at))
             .collect();
         self.warnings.retain(|w| !(declared.contains(&w.at) && w.message.contains("is not declared")));

@@ -7,6 +7,7 @@
 //! along each axis, symmetrically), and `PixelFilter "box" 1 1` weighs the four equally and
 //! nothing else, so a pixel is exactly the mean of the four samples' colours.
 
+mod binding;
 mod grid;
 mod lights;
 mod volume;
