@@ -31,7 +31,11 @@ fn stderr(o: &Output) -> String {
 #[test]
 fn a_runaway_loop_stops_the_render_with_one_line_and_no_output() {
     let dir = tempfile::tempdir().unwrap();
-    let rib = scene(dir.path(), "spin", "surface spin() { float x = 0; while (1 > 0) { x += 1; } Ci = x; }");
+    let rib = scene(
+        dir.path(),
+        "spin",
+        "surface spin() { float x = 0; while (1 > 0) { x += 1; } Ci = x; }",
+    );
     let out = dir.path().join("out.png");
     let o = render(&["-q", rib.to_str().unwrap(), "-o", out.to_str().unwrap()]);
     let err = stderr(&o);
@@ -62,7 +66,8 @@ fn a_shader_that_does_not_compile_stops_the_load_at_its_line() {
 fn a_shader_producing_nan_renders_finite_pixels_and_counts_them() {
     let dir = tempfile::tempdir().unwrap();
     // sqrt of a negative number on the left half of the ball (x < 0 in camera space).
-    let rib = scene(dir.path(), "nan", "surface nan() { Oi = 1; Ci = color(sqrt(xcomp(P)), 0.5, 0); }");
+    let rib =
+        scene(dir.path(), "nan", "surface nan() { Oi = 1; Ci = color(sqrt(xcomp(P)), 0.5, 0); }");
     let out = dir.path().join("out.exr");
     let o = render(&["-q", "--stats", rib.to_str().unwrap(), "-o", out.to_str().unwrap()]);
     let err = stderr(&o);

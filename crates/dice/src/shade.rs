@@ -309,7 +309,9 @@ impl Shader {
                 let d2 = d.length_squared();
                 (d2.is_finite() && d2 > MIN_DIST2).then(|| (d, cl / d2))
             }
-            DirectLight::Spot(spot) => spot.arriving(p_world).map(|(_, cl)| (p_world - spot.from(), cl)),
+            DirectLight::Spot(spot) => {
+                spot.arriving(p_world).map(|(_, cl)| (p_world - spot.from(), cl))
+            }
         })
     }
 

@@ -28,6 +28,11 @@ use reyes_scene::{ObjectShaders, PrimitiveValue, Scene, ShaderInstance};
 use crate::camera::CameraSetup;
 use crate::shade::Shader;
 
+/// A transformation of a triple by a matrix (a point's, a vector's or a normal's).
+type Carry = fn(&Mat, [f32; 3]) -> [f32; 3];
+/// Per vertex: colours and transmittances (or positions and normals).
+type PerVertex<T> = (Vec<T>, Vec<T>);
+
 /// A glam matrix (column vectors) as the shading language's (row vectors, row by row).
 fn sl(m: &Mat4) -> Mat {
     m.to_cols_array()
@@ -80,13 +85,11 @@ impl SlSetup {
         let w2c = camera.world_to_camera();
         let world_to_camera = sl(&w2c);
         let rman_world = mat_mul(&scene.shaders.world_to_model, &world_to_camera);
-        let mut spaces = Spaces {
-            clipping: Some((camera.hither(), camera.yon())),
-            ..Spaces::default()
-        }
-        .with("world", rman_world)
-        .with("object", sl(&(w2c * *object_to_world)))
-        .with("camera", reyes_scene::sl::exec::space::IDENTITY);
+        let mut spaces =
+            Spaces { clipping: Some((camera.hither(), camera.yon())), ..Spaces::default() }
+                .with("world", rman_world)
+                .with("object", sl(&(w2c * *object_to_world)))
+                .with("camera", reyes_scene::sl::exec::space::IDENTITY);
         spaces = with_raster(spaces, camera);
         let lights = scene
             .shaders
@@ -167,13 +170,12 @@ fn params_in_current(instance: &ShaderInstance, to_current: &Mat) -> Vec<(String
         .params
         .iter()
         .map(|(name, v)| {
-            let f: Option<fn(&Mat, [f32; 3]) -> [f32; 3]> =
-                match shader.param(name).map(|p| p.ty.base) {
-                    Some(BaseType::Point) => Some(xform_point),
-                    Some(BaseType::Vector) => Some(xform_vector),
-                    Some(BaseType::Normal) => Some(xform_normal),
-                    _ => None,
-                };
+            let f: Option<Carry> = match shader.param(name).map(|p| p.ty.base) {
+                Some(BaseType::Point) => Some(xform_point),
+                Some(BaseType::Vector) => Some(xform_vector),
+                Some(BaseType::Normal) => Some(xform_normal),
+                _ => None,
+            };
             let Some(f) = f else { return (name.clone(), v.clone()) };
             let one = |x: &Value| match x {
                 Value::Num(n) if n.w == 3 && n.data.len() == 3 => {
@@ -278,7 +280,7 @@ impl SlSetup {
         &self,
         grid: &GridInput<'_>,
         counts: &mut SlCounts,
-    ) -> Result<(Vec<[f32; 3]>, Vec<[f32; 3]>), String> {
+    ) -> Result<PerVertex<[f32; 3]>, String> {
         let n = grid.nu * grid.nv;
         let named = |e: ExecError| format!("object \"{}\": {e}", self.object);
         let (mut ci, mut oi) = match &self.shaders.surface {
@@ -327,8 +329,7 @@ impl SlSetup {
             a.map(|x| if x.is_finite() { x } else { 0.0 })
         };
         let color: Vec<[f32; 3]> = ci.into_iter().map(&mut finite).collect();
-        let trans: Vec<[f32; 3]> =
-            oi.into_iter().map(|o| finite(o).map(|x| 1.0 - x)).collect();
+        let trans: Vec<[f32; 3]> = oi.into_iter().map(|o| finite(o).map(|x| 1.0 - x)).collect();
         Ok((color, trans))
     }
 
@@ -338,7 +339,7 @@ impl SlSetup {
         &self,
         grid: &GridInput<'_>,
         counts: &mut SlCounts,
-    ) -> Result<Option<(Vec<Vec3>, Vec<Vec3>)>, String> {
+    ) -> Result<Option<PerVertex<Vec3>>, String> {
         let Some(d) = &self.shaders.displacement else { return Ok(None) };
         let named = |e: ExecError| format!("object \"{}\": {e}", self.object);
         let n = grid.nu * grid.nv;

@@ -334,7 +334,7 @@ fn render_rows(
         t_dice,
         t_hide,
         t_film,
-        shaders: scene.objects.iter().any(|o| o.shaders.is_some()).then(|| ShaderSummary {
+        shaders: scene.objects.iter().any(|o| o.shaders.is_some()).then_some(ShaderSummary {
             instructions: dice_stats.shader_instructions,
             nonfinite: dice_stats.shader_nonfinite,
         }),

@@ -24,7 +24,12 @@ fn parameters(patch: &Patch, (nu, nv): (usize, usize)) -> (Vec<f32>, Vec<f32>, f
 }
 
 /// Texture coordinates of every vertex (the surface's, else `u`, `v`).
-fn texture_coordinates(open: &Pose<'_>, u: &[f32], v: &[f32], duv: [f32; 2]) -> (Vec<f32>, Vec<f32>) {
+fn texture_coordinates(
+    open: &Pose<'_>,
+    u: &[f32],
+    v: &[f32],
+    duv: [f32; 2],
+) -> (Vec<f32>, Vec<f32>) {
     u.iter().zip(v).map(|(&u, &v)| open.surface.st(u, v, duv).0).map(|st| (st[0], st[1])).unzip()
 }
 
@@ -97,7 +102,8 @@ impl Emitter<'_> {
         let mut escaped = 0;
         for j in 0..nv {
             for i in 0..nu {
-                escaped += u64::from(far(i, j) || far(i + 1, j) || far(i, j + 1) || far(i + 1, j + 1));
+                escaped +=
+                    u64::from(far(i, j) || far(i + 1, j) || far(i, j + 1) || far(i + 1, j + 1));
             }
         }
         Some(Displaced::from_parts(count, pos, normals, escaped))
@@ -105,6 +111,7 @@ impl Emitter<'_> {
 
     /// Shade the whole grid with the surface (and atmosphere) shaders of `sl`, at shutter
     /// open (`open`); `opens` holds each vertex's surface point.
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn sl_shade(
         &mut self,
         sl: &SlSetup,

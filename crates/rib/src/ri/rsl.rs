@@ -17,9 +17,9 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use glam::DMat4;
-use reyes_scene::{PrimitiveValue, ShaderInstance, ShaderValue};
 use reyes_scene::sl::exec::Num;
 use reyes_scene::sl::{BaseType, CheckedShader, ShaderKind};
+use reyes_scene::{PrimitiveValue, ShaderInstance, ShaderValue};
 
 use super::frame::Machine;
 use super::search::{Kind, Lookup};
@@ -32,7 +32,8 @@ pub(super) const NATIVE_SURFACES: &[&str] =
 /// Displacement shaders the renderer has natively.
 pub(super) const NATIVE_DISPLACEMENTS: &[&str] = &["bumpy"];
 /// Light shaders the renderer has natively.
-pub(super) const NATIVE_LIGHTS: &[&str] = &["ambientlight", "distantlight", "pointlight", "spotlight"];
+pub(super) const NATIVE_LIGHTS: &[&str] =
+    &["ambientlight", "distantlight", "pointlight", "spotlight"];
 
 /// The shaders compiled during one load, by source text.
 #[derive(Default)]
@@ -57,9 +58,11 @@ impl Machine {
     ) -> Result<Option<(Arc<CheckedShader>, String)>, RibError> {
         let file = format!("{name}.sl");
         let reader = &self.reader;
-        let found = match self.frame_options.search.find(Kind::Shader, &file, |n| {
-            reader.resolve_archive(n, at)
-        }) {
+        let found = match self
+            .frame_options
+            .search
+            .find(Kind::Shader, &file, |n| reader.resolve_archive(n, at))
+        {
             Lookup::Unsearched(p) | Lookup::Found(p) if p.is_file() => Some(p),
             _ => None,
         };
@@ -120,13 +123,10 @@ impl Machine {
         };
         // The shader declares its parameters: the reader's warnings that a parameter of the
         // request is not declared are answered (those it lacks get a warning of their own).
-        let declared: Vec<Location> = s
-            .params
-            .iter()
-            .filter(|p| p.decl.is_none())
-            .map(|p| at.at(p.at))
-            .collect();
-        self.warnings.retain(|w| !(declared.contains(&w.at) && w.message.contains("is not declared")));
+        let declared: Vec<Location> =
+            s.params.iter().filter(|p| p.decl.is_none()).map(|p| at.at(p.at)).collect();
+        self.warnings
+            .retain(|w| !(declared.contains(&w.at) && w.message.contains("is not declared")));
         let mut warnings = Vec::new();
         let params = bind(&shader, &s.params, at, &mut warnings);
         for w in warnings {
@@ -277,16 +277,19 @@ impl Machine {
         r: &crate::Request,
         to_world: &DMat4,
     ) -> Result<Option<Arc<reyes_scene::ObjectShaders>>, RibError> {
-        let native = |s: &SurfaceShader, list: &[&str]| {
-            s.name.as_deref().is_none_or(|n| list.contains(&n))
-        };
+        let native =
+            |s: &SurfaceShader, list: &[&str]| s.name.as_deref().is_none_or(|n| list.contains(&n));
         let mut o = reyes_scene::ObjectShaders::default();
         if !native(&a.surface, NATIVE_SURFACES) {
             o.surface = self.sl_instance(&a.surface, ShaderKind::Surface, "Surface", to_world)?;
         }
         if !native(&a.displacement, NATIVE_DISPLACEMENTS) {
-            o.displacement =
-                self.sl_instance(&a.displacement, ShaderKind::Displacement, "Displacement", to_world)?;
+            o.displacement = self.sl_instance(
+                &a.displacement,
+                ShaderKind::Displacement,
+                "Displacement",
+                to_world,
+            )?;
         }
         if a.atmosphere.name.is_some() {
             o.atmosphere =
@@ -303,7 +306,9 @@ impl Machine {
                 }
                 let w = Warning {
                     at: at.clone(),
-                    message: format!("Atmosphere: unknown shader \"{name}\" (no {name}.sl): ignored"),
+                    message: format!(
+                        "Atmosphere: unknown shader \"{name}\" (no {name}.sl): ignored"
+                    ),
                 };
                 self.warn_once(format!("atmosphere {name}"), w);
             }
@@ -365,7 +370,8 @@ impl Machine {
     /// `Imager` of a shading-language imager shader: true if it names one with a source.
     pub(super) fn sl_imager(&mut self, r: &crate::Request) -> Result<bool, RibError> {
         let s = SurfaceShader::of(r);
-        let Some(instance) = self.sl_instance(&s, ShaderKind::Imager, "Imager", &DMat4::IDENTITY)?
+        let Some(instance) =
+            self.sl_instance(&s, ShaderKind::Imager, "Imager", &DMat4::IDENTITY)?
         else {
             return Ok(false);
         };

@@ -98,7 +98,8 @@ fn shaders_are_found_along_the_shader_search_path() {
     assert!(loaded.frames[0].scene.objects[0].shaders.is_none());
     assert!(loaded.warnings.iter().any(|w| w.to_string().contains("unknown shader \"far\"")));
     // Along the path ("&" the previous path, "@" the RIB file's folder).
-    let loaded = files.load(&format!("Option \"searchpath\" \"shader\" [\"lib:&\"]\n{body}")).unwrap();
+    let loaded =
+        files.load(&format!("Option \"searchpath\" \"shader\" [\"lib:&\"]\n{body}")).unwrap();
     let shaders = loaded.frames[0].scene.objects[0].shaders.clone().expect("bound");
     assert_eq!(shaders.surface.as_ref().map(|s| s.name()), Some("far"));
     let f = render(&loaded.frames[0].scene);
@@ -119,7 +120,7 @@ fn one_source_is_compiled_once_per_load() {
 #[test]
 fn a_compile_error_is_the_compilers_one_line() {
     let files = Files::new(&[("bad", "surface bad() {\n  Ci = 1 +;\n}\n")]);
-    let e = files.load(&rib("Surface \"bad\"", PATCH)).err().expect("an error").to_string();
+    let e = files.load(&rib("Surface \"bad\"", PATCH)).expect_err("an error").to_string();
     let file = files.0.path().join("bad.sl");
     assert!(e.starts_with(&format!("{}:2:", file.display())), "{e}");
     assert_eq!(e.lines().count(), 1, "{e}");

@@ -147,7 +147,8 @@ fn a_surface_reads_a_lights_output_parameter_through_lightsource() {
         }
     }";
     let files = Files::new(&[("reader", reader), ("cone", CONE)]);
-    let light = "LightSource \"cone\" 1 \"from\" [0 0 0] \"to\" [0 0 1] \"angle\" [1.2] \"__tag\" [0.375]";
+    let light =
+        "LightSource \"cone\" 1 \"from\" [0 0 0] \"to\" [0 0 1] \"angle\" [1.2] \"__tag\" [0.375]";
     let f = picture(&files, light, "reader");
     // Every sample of the square is within the cone (1.2 radians > atan(sqrt 2 / 3)).
     let mut n = 0;
