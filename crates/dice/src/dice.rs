@@ -44,7 +44,7 @@ mod slgrid;
 pub(crate) use facing::cull_back_faces;
 pub(crate) use grid::Grid;
 use grid::overlap;
-pub(crate) use object::{Hook, Labels, ObjectContext, object_context};
+pub(crate) use object::{Hook, Labels, ObjectContext, attach_sl, object_context};
 use shading::Open;
 
 /// A micropolygon's vertices at one time: raster x, raster y, eye z (x and y NaN where z is

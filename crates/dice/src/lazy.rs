@@ -33,7 +33,6 @@
 //!   [`Dicer::new_eager`], which dices everything in row 0 (the whole scene in memory, as
 //!   before lazy dicing) and so cannot miss.
 
-use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 
 use rayon::prelude::*;
@@ -46,8 +45,7 @@ use crate::camera::{self, CameraSetup};
 use crate::csg::CsgSetup;
 use crate::dice::{self, Emitter, Grid, ObjectContext};
 use crate::hook::DiceOptions;
-use crate::motion::{CameraMotion, ObjectMotion, Placement, Pose, ShutterTime};
-use crate::sl::SlSetup;
+use crate::motion::{CameraMotion, ObjectMotion, Pose, ShutterTime};
 use crate::split::{Decision, MAX_SPLIT_DEPTH, Patch, Splitter};
 use crate::{DiceError, DiceStats, check_frame};
 
@@ -296,19 +294,10 @@ impl<'a> Dicer<'a> {
                 options.vertex_shader.map(|shader| dice::Hook { shader, object: i, surface: 0 });
             ctx.aov = aovs.as_ref().map(|a| (a.clone(), ids[i]));
             ctx.look = lookdev.and_then(|l| l.object(i));
-            let budget = options.shader_budget.unwrap_or(reyes_scene::sl::exec::DEFAULT_BUDGET);
-            let (Placement::Matrix(m) | Placement::Between { from: m, .. }) = &open.place;
-            ctx.sl = SlSetup::new(scene, i, m, &dicer.camera, &ctx.shader, budget).map(Arc::new);
             let mut reach = ctx.look.as_ref().map_or(0.0, |l| l.object.bound);
-            if let Some(sl) = &ctx.sl {
-                // The machine shades the grids: no vertex hook, and the opacity is the
-                // shader's, so the object is not taken as opaque.
-                ctx.hook = None;
-                ctx.labels.flags &= !reyes_hider::flags::OPAQUE;
-                if sl.shaders.displacement.is_some() {
-                    reach = f32::max(reach, sl.shaders.displacement_bound);
-                }
-            }
+            let budget = options.shader_budget;
+            reach =
+                reach.max(dice::attach_sl(&mut ctx, scene, i, &open.place, &dicer.camera, budget));
             if ctx.look.as_ref().is_some_and(|l| l.object.may_be_transparent()) {
                 ctx.labels.flags &= !reyes_hider::flags::OPAQUE;
             }

@@ -107,3 +107,26 @@ pub(crate) fn object_context(
         sl: None,
     }
 }
+
+/// Sets up the shading-language shaders of object `index` of `scene`, placed by `place` at
+/// shutter open, on `ctx` (with the instruction budget `budget`, default
+/// `reyes_scene::sl::exec::DEFAULT_BUDGET`), and returns how far its displacement may move a
+/// point (0 without one). The machine then shades the grids: no vertex hook, and the opacity
+/// is the shader's, so the object is not taken as opaque.
+pub(crate) fn attach_sl(
+    ctx: &mut ObjectContext<'_>,
+    scene: &reyes_scene::Scene,
+    index: usize,
+    place: &Placement,
+    camera: &crate::camera::CameraSetup,
+    budget: Option<u64>,
+) -> f32 {
+    let budget = budget.unwrap_or(reyes_scene::sl::exec::DEFAULT_BUDGET);
+    let (Placement::Matrix(m) | Placement::Between { from: m, .. }) = place;
+    ctx.sl = crate::sl::SlSetup::new(scene, index, m, camera, &ctx.shader, budget)
+        .map(std::sync::Arc::new);
+    let Some(sl) = &ctx.sl else { return 0.0 };
+    ctx.hook = None;
+    ctx.labels.flags &= !flags::OPAQUE;
+    if sl.shaders.displacement.is_some() { sl.shaders.displacement_bound } else { 0.0 }
+}
