@@ -66,6 +66,7 @@ impl Machine {
             Lookup::Unsearched(p) | Lookup::Found(p) if p.is_file() => Some(p),
             _ => None,
         };
+        let builtin = found.is_none();
         let (text, shown, dir) = match &found {
             Some(path) => match std::fs::read_to_string(path) {
                 Ok(text) => {
@@ -94,6 +95,11 @@ impl Machine {
                 s
             }
         };
+        if shader.kind != kind && builtin {
+            // A standard shader of another type (`Surface "fog"`) names no shader of this
+            // one: unknown, as before shaders were compiled.
+            return Ok(None);
+        }
         if shader.kind != kind {
             return Err(RibError::Request {
                 at: at.clone(),

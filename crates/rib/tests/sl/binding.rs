@@ -125,3 +125,36 @@ fn a_compile_error_is_the_compilers_one_line() {
     assert!(e.starts_with(&format!("{}:2:", file.display())), "{e}");
     assert_eq!(e.lines().count(), 1, "{e}");
 }
+
+#[test]
+fn a_standard_shader_of_another_type_names_no_shader() {
+    // fog is a volume shader: as a surface it is unknown, with the stand-in and its warning.
+    let loaded = Files::new(&[]).load(&rib("Surface \"fog\"", PATCH)).unwrap();
+    assert!(loaded.frames[0].scene.objects[0].shaders.is_none());
+    assert!(loaded.warnings.iter().any(|w| w.to_string().contains("unknown shader \"fog\"")));
+}
+
+#[test]
+fn objects_shaded_by_shaders_write_the_geometric_aovs() {
+    let files = Files::new(&[("flat", "surface flat() { Oi = 1; Ci = color(0.5); }")]);
+    let text = rib("Surface \"flat\"", PATCH).replacen(
+        "WorldBegin",
+        "Display \"+n\" \"file\" \"N\"\nDisplay \"+st\" \"file\" \"s\"\nWorldBegin",
+        1,
+    );
+    let scene = files.scene(&text);
+    assert_eq!(scene.outputs.aovs.len(), 2);
+    let rendered = reyes_render::render(&scene, &reyes_render::RenderOptions::default()).unwrap();
+    let aovs = rendered.aovs.expect("AOVs");
+    // The patch faces the camera: N is (0, 0, -1) or (0, 0, 1) (its z within rounding of
+    // a unit vector's), and s at the centre is within a micropolygon (at most half the patch)
+    // of 0.5.
+    let layer = |name: &str| aovs.layers.iter().find(|l| l.name == name).expect(name).start;
+    let (n, st) = (layer("N"), layer("s"));
+    let (x, y) = (SIZE / 2, SIZE / 2);
+    let nz = aovs.film.value(x, y, n + 2);
+    assert!((nz.abs() - 1.0).abs() < 1e-5, "{nz}");
+    let s = aovs.film.value(x, y, st);
+    assert!(s > 0.0 && s < 1.0, "{s}");
+    assert_eq!(pixel(&rendered.film, SIZE / 2, SIZE / 2)[0], 0.5);
+}
