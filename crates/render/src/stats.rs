@@ -120,6 +120,8 @@ pub struct ShaderSummary {
     pub instructions: u64,
     /// Non-finite floats the shaders produced (replaced by 0 before the hider).
     pub nonfinite: u64,
+    /// Diced cells displaced beyond their object's declared bound (all displacements).
+    pub escapes: u64,
 }
 
 /// Look development's counts (docs/lookdev.md).

@@ -48,6 +48,12 @@ pub(crate) fn render_stochastic(
     } else {
         render_diced(scene, opts, &DiceOptions { lookdev: lookdev.as_ref(), ..Default::default() })
     }?;
+    if let Some(s) = rendered.stats.shaders.filter(|s| s.escapes > 0 && lookdev.is_none()) {
+        rendered.warnings.push(format!(
+            "{} micropolygons were displaced beyond their object's declared displacement bound (Attribute \"displacementbound\"); parts of them may be missing",
+            s.escapes
+        ));
+    }
     if let Some(s) = rendered.stats.shaders.filter(|s| s.nonfinite > 0) {
         rendered.warnings.push(format!(
             "shaders produced {} non-finite values (NaN or infinite), rendered as 0",
@@ -337,6 +343,7 @@ fn render_rows(
         shaders: scene.objects.iter().any(|o| o.shaders.is_some()).then_some(ShaderSummary {
             instructions: dice_stats.shader_instructions,
             nonfinite: dice_stats.shader_nonfinite,
+            escapes: dice_stats.displacement_escapes,
         }),
         lookdev: scene.has_lookdev().then(|| LookdevSummary {
             vertices: dice_stats.shaded,

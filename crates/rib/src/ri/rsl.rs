@@ -323,6 +323,18 @@ impl Machine {
             return Ok(None);
         }
         o.displacement_bound = a.displacement_bound.unwrap_or(0.0);
+        if let (Some(d), None) = (&o.displacement, a.displacement_bound)
+            && let Some(at) = &a.displacement.at
+        {
+            let w = Warning {
+                at: at.clone(),
+                message: format!(
+                    "Displacement: shader \"{}\" without Attribute \"displacementbound\": its bound is taken as 0, so displaced points may be cut at bucket edges (and are counted as escaped)",
+                    d.name()
+                ),
+            };
+            self.warn_once(format!("sl displacement bound {at}"), w);
+        }
         let mut warnings = Vec::new();
         for s in [&o.surface, &o.displacement].into_iter().flatten() {
             for (name, v) in primitive_values(&s.shader, &r.params, &r.at, &mut warnings) {

@@ -158,3 +158,19 @@ fn objects_shaded_by_shaders_write_the_geometric_aovs() {
     assert!(s > 0.0 && s < 1.0, "{s}");
     assert_eq!(pixel(&rendered.film, SIZE / 2, SIZE / 2)[0], 0.5);
 }
+
+#[test]
+fn a_displacement_without_a_bound_is_named_in_a_warning() {
+    let d = "displacement push() { P += 0.01 * normalize(N); }";
+    let files = Files::new(&[("push", d)]);
+    let loaded = files.load(&rib("Displacement \"push\"", PATCH)).unwrap();
+    let shown: Vec<String> = loaded.warnings.iter().map(|w| w.to_string()).collect();
+    assert!(
+        shown.iter().any(|w| w.contains("\"push\"") && w.contains("displacementbound")),
+        "{shown:?}"
+    );
+    let bounded =
+        rib("Attribute \"displacementbound\" \"sphere\" [0.01]\nDisplacement \"push\"", PATCH);
+    let loaded = files.load(&bounded).unwrap();
+    assert!(!loaded.warnings.iter().any(|w| w.to_string().contains("displacementbound")));
+}
