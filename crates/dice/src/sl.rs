@@ -90,7 +90,7 @@ impl SlSetup {
                 .with("world", rman_world)
                 .with("object", sl(&(w2c * *object_to_world)))
                 .with("camera", reyes_scene::sl::exec::space::IDENTITY);
-        spaces = with_raster(spaces, camera);
+        spaces = with_raster(spaces, camera, scene.camera.screen_window);
         let lights = scene
             .shaders
             .lights
@@ -129,9 +129,10 @@ impl SlSetup {
     }
 }
 
-/// "raster" and "NDC": the camera's projection to pixels (and to the unit square), with the
-/// depth mapped as a projective z so that the matrix inverts.
-fn with_raster(spaces: Spaces, camera: &CameraSetup) -> Spaces {
+/// "raster", "NDC" and "screen": the camera's projection to pixels (to the unit square; to
+/// the screen window, RenderMan's default for the image's aspect ratio when none is given),
+/// with the depth mapped as a projective z so that the matrix inverts.
+fn with_raster(spaces: Spaces, camera: &CameraSetup, window: Option<[f32; 4]>) -> Spaces {
     let (k, c, size) = (camera.raster_scale(), camera.raster_centre(), camera.image_size());
     let (n, f) = (camera.hither(), camera.yon().min(1e30));
     // Row vectors: [x y z 1] M = (kx x + cx z, -ky y + cy z, a z + b, z) for perspective.
@@ -149,7 +150,20 @@ fn with_raster(spaces: Spaces, camera: &CameraSetup) -> Spaces {
         [1. / size.x, 0., 0., 0., 0., 1. / size.y, 0., 0., 0., 0., 1., 0., 0., 0., 0., 1.];
     let from_raster = reyes_scene::sl::exec::space::mat_inverse(&to_raster);
     let ndc_to_raster = reyes_scene::sl::exec::space::mat_inverse(&raster_to_ndc);
-    spaces.with("raster", from_raster).with("NDC", mat_mul(&ndc_to_raster, &from_raster))
+    // Screen to raster: x from the window's left edge, y down from its top.
+    let aspect = size.x / size.y;
+    let [l, r, b, t] = window.unwrap_or(if aspect >= 1.0 {
+        [-aspect, aspect, -1.0, 1.0]
+    } else {
+        [-1.0, 1.0, -1.0 / aspect, 1.0 / aspect]
+    });
+    let (sx, sy) = (size.x / (r - l), size.y / (t - b));
+    let screen_to_raster: Mat =
+        [sx, 0., 0., 0., 0., -sy, 0., 0., 0., 0., 1., 0., -l * sx, t * sy, 0., 1.];
+    spaces
+        .with("raster", from_raster)
+        .with("NDC", mat_mul(&ndc_to_raster, &from_raster))
+        .with("screen", mat_mul(&screen_to_raster, &from_raster))
 }
 
 /// A light's categories (its `__category` parameter, comma-separated).

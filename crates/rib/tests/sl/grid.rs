@@ -216,3 +216,34 @@ fn calculatenormal_of_a_sphere_displaced_by_a_constant_is_the_sphere_normal() {
         assert!(p[0] >= 1.0 - tol && p[0] <= 1.0 + 1e-5, "({x}, {y}): {p:?}, tolerance {tol}");
     }
 }
+
+#[test]
+fn screen_and_raster_space_positions_are_the_pixel_positions() {
+    let px = pixels(inside_patch);
+    let ([du, dv], _) = steps("", PATCH, &px);
+    let screen_p = picture("color(transform(\"screen\", P))", "", PATCH);
+    let raster_p = picture("color(transform(\"raster\", P))", "", PATCH);
+    let ndc_p = picture("color(transform(\"NDC\", P))", "", PATCH);
+    let pixel_size = 2.0 * W / SIZE as f32;
+    for &(x, y) in &px {
+        // Orthographic over the screen window [-W, W]^2: a point's screen x, y are its
+        // camera x, y, linear in the screen, so the mean over the symmetric samples is the
+        // value at the pixel centre; a sample's value is its micropolygon's first corner's,
+        // within a micropolygon: x moves 2 per unit of u (the patch is 2 wide), y 2 per v.
+        let (cx, cy) = screen(SIZE, W, x, y, (0.0, 0.0));
+        let (ex, ey) = (2.0 * du + 1e-5, 2.0 * dv + 1e-5);
+        let p = pixel(&screen_p, x, y);
+        assert!((p[0] - cx).abs() <= ex && (p[1] - cy).abs() <= ey, "({x}, {y}): {p:?}");
+        // Raster is in pixels from the top-left, NDC the same over the picture's size.
+        let (rx, ry) = (x as f32 + 0.5, y as f32 + 0.5);
+        let (erx, ery) = (ex / pixel_size, ey / pixel_size);
+        let p = pixel(&raster_p, x, y);
+        assert!((p[0] - rx).abs() <= erx && (p[1] - ry).abs() <= ery, "({x}, {y}): {p:?}");
+        let p = pixel(&ndc_p, x, y);
+        let n = SIZE as f32;
+        assert!(
+            (p[0] - rx / n).abs() <= erx / n && (p[1] - ry / n).abs() <= ery / n,
+            "({x}, {y}): {p:?}"
+        );
+    }
+}
