@@ -163,3 +163,29 @@ fn a_surface_reads_a_lights_output_parameter_through_lightsource() {
     }
     assert!(n > 400, "{n}");
 }
+
+#[test]
+fn shaded_pictures_do_not_depend_on_the_thread_count() {
+    let noisy = "surface noisy() {
+        normal Nn = faceforward(normalize(N), I);
+        Oi = 1;
+        Ci = color noise(P * 7) * diffuse(Nn) + 0.1 * cellnoise(s * 20, t * 20);
+    }";
+    let files = Files::new(&[("noisy", noisy), ("cone", CONE)]);
+    let rib = format!(
+        "{}WorldBegin\nLightSource \"cone\" 1 \"intensity\" [0.8] \"angle\" [0.5]\n\
+         LightSource \"pointlight\" 2 \"from\" [1 1 0] \"intensity\" [3]\n\
+         Surface \"noisy\"\n{QUAD}\nTranslate 0 0 3\nSphere 0.6 -0.6 0.6 360\nWorldEnd\n",
+        ortho(SIZE, W)
+    );
+    let scene = files.scene(&rib);
+    let bits = |threads: usize| {
+        let opts = reyes_render::RenderOptions { threads: Some(threads), ..Default::default() };
+        let film = reyes_render::render(&scene, &opts).unwrap().film;
+        film.rgba().iter().flatten().map(|v| v.to_bits()).collect::<Vec<u32>>()
+    };
+    let one = bits(1);
+    assert!(one.iter().any(|&b| f32::from_bits(b) > 0.05));
+    assert_eq!(one, bits(2));
+    assert_eq!(one, bits(3));
+}
