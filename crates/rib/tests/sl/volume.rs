@@ -74,3 +74,20 @@ fn the_background_imager_fills_what_the_scene_leaves_uncovered() {
     }
     assert!(covered > 100 && empty > 100, "{covered} {empty}");
 }
+
+#[test]
+fn the_ray_tracing_hider_refuses_shading_language_shaders_in_one_line() {
+    let files = Files::new(&[("white", WHITE)]);
+    let rib = format!(
+        "{}Hider \"raytrace\"\nWorldBegin\nSurface \"white\"\nTranslate 0 0 3\nSphere 1 -1 1 360\nWorldEnd\n",
+        ortho(SIZE, W)
+    );
+    let scene = files.scene(&rib);
+    let e = reyes_render::render(&scene, &reyes_render::RenderOptions::default())
+        .err()
+        .map(|e| (e.to_string(), e.exit_code()));
+    let (message, code) = e.expect("refused");
+    assert_eq!(code, 1);
+    assert_eq!(message.lines().count(), 1);
+    assert!(message.contains("ray-tracing hider"), "{message}");
+}
