@@ -41,11 +41,12 @@ mod facing;
 mod grid;
 mod object;
 mod shading;
+mod slgrid;
 
 pub(crate) use facing::cull_back_faces;
 pub(crate) use grid::Grid;
 use grid::overlap;
-pub(crate) use object::{Hook, Labels, ObjectContext, object_context};
+pub(crate) use object::{Hook, Labels, ObjectContext, setup_object};
 use shading::Open;
 
 /// A micropolygon's vertices at one time: raster x, raster y, eye z (x and y NaN where z is
@@ -96,6 +97,9 @@ pub(crate) struct Emitter<'b> {
     pub trim_boundary: u64,
     /// Flag bits of the cell being emitted beyond the object's (`TRIMMED`).
     cell_flags: u32,
+    /// What the shading-language machine counted, and its first error.
+    pub sl_counts: crate::sl::SlCounts,
+    pub sl_error: Option<String>,
 }
 
 impl<'b> Emitter<'b> {
@@ -136,6 +140,8 @@ impl<'b> Emitter<'b> {
             trimmed: 0,
             trim_boundary: 0,
             cell_flags: 0,
+            sl_counts: Default::default(),
+            sl_error: None,
         }
     }
 
@@ -168,6 +174,16 @@ impl<'b> Emitter<'b> {
         let hook = object.hook.map(|h| Hook { surface, ..h });
         let (nu, nv) = (nu as usize, nv as usize);
         let count = (nu + 1) * (nv + 1);
+        // Look development hook (crate::displace), or the shading language's displacement
+        // (`slgrid.rs`): the grid displaced along its normals at every breakpoint, and its
+        // shading normals recomputed, before anything is shaded or projected; the lookups'
+        // footprint is the grid's parameter spacing.
+        let displaced = match &object.sl {
+            Some(sl) if sl.shaders.displacement.is_some() => {
+                self.sl_displace(sl, poses, patch, (nu, nv))
+            }
+            _ => object.look.as_ref().and_then(|l| displace::grid(l, poses, patch, (nu, nv))),
+        };
         let g = &mut self.grid;
         g.nu = nu as u32;
         g.count = count as u32;
@@ -200,11 +216,6 @@ impl<'b> Emitter<'b> {
         let mut cosines = Vec::new();
         // What shading each vertex at shutter open will need, once the cells are decided.
         let mut opens = Vec::with_capacity(count);
-        // Look development hook (crate::displace): the grid displaced along its normals at
-        // every breakpoint, and its shading normals recomputed, before anything is shaded
-        // or projected; the lookups' footprint is the grid's parameter spacing.
-        let displaced =
-            object.look.as_ref().and_then(|l| displace::grid(l, poses, patch, (nu, nv)));
         self.escaped += displaced.as_ref().map_or(0, |d| d.escaped);
         let boundary = |b: usize, u: f32, v: f32, i: usize, j: usize| {
             patch.sides.as_ref().and_then(|s| s.boundary(b, (u, v), (i, j), (nu, nv)))

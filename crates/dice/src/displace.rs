@@ -37,6 +37,12 @@ pub(crate) struct Displaced {
 }
 
 impl Displaced {
+    /// A displaced grid from its parts: `count` vertices per breakpoint, positions at every
+    /// breakpoint, unit normals at shutter open, escaped cells.
+    pub fn from_parts(count: usize, pos: Vec<Vec3>, n: Vec<Vec3>, escaped: u64) -> Displaced {
+        Displaced { count, pos, n, escaped }
+    }
+
     /// The displaced position of vertex `c` at breakpoint `b`, if the grid is displaced.
     #[inline]
     pub fn position(&self, b: usize, c: usize) -> Option<Vec3> {

@@ -64,4 +64,7 @@ pub struct DiceOptions<'a> {
     /// The image is the same either way; for tests and measurements of culling before
     /// shading.
     pub shade_every_vertex: bool,
+    /// The instruction budget of a shading-language shader on one grid; `None`:
+    /// `reyes_scene::sl::exec::DEFAULT_BUDGET`.
+    pub shader_budget: Option<u64>,
 }

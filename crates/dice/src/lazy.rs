@@ -105,10 +105,15 @@ pub(crate) struct Wave {
     leaves: Vec<Leaf>,
     /// Counts.
     pub stats: DiceStats,
+    /// The first shading-language failure (which ends the render).
+    pub shader_error: Option<String>,
 }
 
 impl Wave {
     fn append(&mut self, mut other: Wave) {
+        if self.shader_error.is_none() {
+            self.shader_error = other.shader_error.take();
+        }
         self.grids.append(&mut other.grids);
         self.deferred.append(&mut other.deferred);
         self.leaves.append(&mut other.leaves);
@@ -198,6 +203,8 @@ pub struct Dicer<'a> {
     /// went over `max_alive` (its remaining patches are then dropped: the row fails).
     charged: AtomicU64,
     over_budget: AtomicBool,
+    /// A shading-language shader failed: the remaining grids are not diced.
+    shader_failed: AtomicBool,
     stats: DiceStats,
     /// The trim regions of the scene's trimmed NURBS patches, in object order.
     trims: Vec<std::sync::Arc<reyes_scene::patches::trim::TrimRegion>>,
@@ -267,6 +274,7 @@ impl<'a> Dicer<'a> {
             max_alive: options.max_micropolygons.unwrap_or(u64::MAX),
             charged: AtomicU64::new(0),
             over_budget: AtomicBool::new(false),
+            shader_failed: AtomicBool::new(false),
             stats: DiceStats::default(),
             trims: Vec::new(),
         };
@@ -278,31 +286,10 @@ impl<'a> Dicer<'a> {
                 dicer.objects.push(None);
                 continue;
             };
-            let mut ctx = dice::object_context(
-                object,
-                &scene.lights,
-                dicer.camera.viewer(),
-                &open.place,
-                leaf,
-            );
-            ctx.hook =
-                options.vertex_shader.map(|shader| dice::Hook { shader, object: i, surface: 0 });
-            ctx.aov = aovs.as_ref().map(|a| (a.clone(), ids[i]));
-            ctx.look = lookdev.and_then(|l| l.object(i));
-            ctx.trim = crate::trim::TrimSetup::of(&object.shape, dicer.trims.len());
-            dicer.trims.extend(ctx.trim.as_ref().map(|t| t.region.clone()));
-            let reach = ctx.look.as_ref().map_or(0.0, |l| l.object.bound);
-            if ctx.look.as_ref().is_some_and(|l| l.object.may_be_transparent()) {
-                ctx.labels.flags &= !reyes_hider::flags::OPAQUE;
-            }
-            ctx.cull_back = reach == 0.0
-                && (scene.hider.cull_back_faces || object.one_sided)
-                && dice::cull_back_faces(
-                    object,
-                    &ctx.labels,
-                    leaf.is_some(),
-                    dicer.camera.lens().is_none(),
-                );
+            let (place, looks) =
+                ((&open.place, leaf, &dicer.camera), (aovs.as_ref(), &ids[..], lookdev));
+            let (mut ctx, reach) =
+                dice::setup_object(scene, i, place, options, looks, &mut dicer.trims);
             // RenderMan's ShadingRate and flatness are attributes: an object may dice at its
             // own rate and accuracy.
             let rate = object.shading_rate.filter(|&rate| rate != hider.shading_rate);
@@ -436,7 +423,10 @@ impl<'a> Dicer<'a> {
     ///
     /// Errors as [`Dicer::dice_row`].
     pub fn finish_row(&mut self, wave: RowWave) -> Result<(), DiceError> {
-        let RowWave { row, wave } = wave;
+        let RowWave { row, mut wave } = wave;
+        if let Some(message) = wave.shader_error.take() {
+            return Err(DiceError::Shader { message });
+        }
         if self.over_budget.load(Ordering::Relaxed) {
             let limit = self.max_alive;
             let mb = limit.saturating_mul(MICROPOLYGON_BYTES) >> 20;
@@ -596,7 +586,17 @@ impl<'a> Dicer<'a> {
         let mut em = Emitter::new(&self.bucketer, hither, yon, self.splitter.near());
         em.warp = self.warp;
         em.shade_all = self.shade_all;
+        if self.shader_failed.load(Ordering::Relaxed) {
+            return;
+        }
         em.dice(&self.camera, &object.ctx, task.key.surface as usize, poses, &task.patch, (nu, nv));
+        out.stats.shader_nonfinite += em.sl_counts.nonfinite;
+        out.stats.shader_instructions += em.sl_counts.instructions;
+        if let Some(e) = em.sl_error.take() {
+            self.shader_failed.store(true, Ordering::Relaxed);
+            out.shader_error.get_or_insert(e);
+            return;
+        }
         out.stats.culled += em.culled;
         out.stats.backfacing += em.backfacing;
         out.stats.crossing += em.crossing;

@@ -116,6 +116,7 @@ mod motion;
 mod roots;
 mod shade;
 mod shapes;
+mod sl;
 mod split;
 mod spot;
 mod trim;
@@ -193,7 +194,8 @@ pub struct DiceStats {
     /// Grid vertices diced (`(nu + 1) (nv + 1)` per grid).
     pub vertices: u64,
     /// Of `vertices`, those shaded: the corners of kept micropolygons (a grid is shaded
-    /// after its cells are decided, so vertices only culled micropolygons use are not).
+    /// after its cells are decided, so vertices only culled micropolygons use are not;
+    /// a grid shaded by a shading-language shader is shaded whole).
     pub shaded: u64,
     /// Diced cells of trimmed NURBS patches dropped whole: their parameter rectangle lies
     /// in the trimmed region (not counted in `culled`).
@@ -201,6 +203,11 @@ pub struct DiceStats {
     /// Emitted micropolygons flagged `TRIMMED` (a trim curve crosses them: the hider tests
     /// each sample inside them).
     pub trim_boundary: u64,
+    /// Floats a shading-language shader left non-finite (replaced by 0 before the hider) or
+    /// stored so while it ran.
+    pub shader_nonfinite: u64,
+    /// Instructions the shading-language machine ran.
+    pub shader_instructions: u64,
 }
 
 impl DiceStats {
@@ -225,6 +232,8 @@ impl DiceStats {
             shaded,
             trimmed,
             trim_boundary,
+            shader_nonfinite,
+            shader_instructions,
         } = *other;
         self.primitives += primitives;
         self.splits += splits;
@@ -244,6 +253,8 @@ impl DiceStats {
         self.shaded += shaded;
         self.trimmed += trimmed;
         self.trim_boundary += trim_boundary;
+        self.shader_nonfinite += shader_nonfinite;
+        self.shader_instructions += shader_instructions;
     }
 }
 
@@ -291,6 +302,13 @@ pub enum DiceError {
         limit: u64,
         /// What they take, in MB (at the budget's bytes per micropolygon).
         mb: u64,
+    },
+    /// A shading-language shader failed on a grid (its instruction budget spent, most
+    /// likely): the message names the object and the shader.
+    #[error("{message}")]
+    Shader {
+        /// The one-line message.
+        message: String,
     },
     /// More micropolygons than bucket lists can index.
     #[error("more than {limit} micropolygons; raise the shading rate or simplify the scene")]
@@ -349,7 +367,10 @@ pub fn dice_scene_with(
     frame: &Frame,
     options: &DiceOptions,
 ) -> Result<Diced, DiceError> {
-    let (wave, bucketer, csg_trees) = Dicer::new_eager(scene, frame, options)?.dice_all();
+    let (mut wave, bucketer, csg_trees) = Dicer::new_eager(scene, frame, options)?.dice_all();
+    if let Some(message) = wave.shader_error.take() {
+        return Err(DiceError::Shader { message });
+    }
     let mut stats = wave.stats;
     let total: usize = wave.grids.iter().map(|g| g.grid.len()).sum();
     if total > MAX_MICROPOLYGONS {

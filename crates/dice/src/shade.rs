@@ -293,6 +293,28 @@ impl Shader {
         ((os * ci).to_array(), (Vec3::ONE - os).to_array())
     }
 
+    /// The number of direct (non-ambient) lights.
+    pub fn direct_lights(&self) -> usize {
+        self.lights.len()
+    }
+
+    /// For the shading-language machine: per direct light, in order, the vector from the
+    /// light to `p_world` (a distant light's unit direction) and the colour arriving there
+    /// (as [`Shader::shade`] computes it), or `None` where nothing arrives.
+    pub fn light_vectors(&self, p_world: Vec3) -> impl Iterator<Item = Option<(Vec3, Vec3)>> + '_ {
+        self.lights.iter().map(move |light| match *light {
+            DirectLight::Distant { l, cl } => Some((-l, cl)),
+            DirectLight::Point { from, cl } => {
+                let d = p_world - from;
+                let d2 = d.length_squared();
+                (d2.is_finite() && d2 > MIN_DIST2).then(|| (d, cl / d2))
+            }
+            DirectLight::Spot(spot) => {
+                spot.arriving(p_world).map(|(_, cl)| (p_world - spot.from(), cl))
+            }
+        })
+    }
+
     /// The direct lights arriving at `p_world`: each one's position in `lights`, unit vector
     /// toward it and colour arriving (a point light at the point contributes nothing).
     fn arriving(&self, p_world: Vec3) -> impl Iterator<Item = (usize, Vec3, Vec3)> + '_ {

@@ -396,6 +396,7 @@ impl<'a> FrameJob<'a> {
             on_result: checkpoint.map(|_| &save as &reyes_render::OnResult),
             keep_buckets: self.request.tile.is_some(),
             shade_every_vertex: false,
+            shader_budget: None,
         };
         let started = Instant::now();
         let rendered = reyes_render::render(&self.frame.scene, &opts);

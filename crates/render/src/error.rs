@@ -27,6 +27,14 @@ pub enum RenderError {
         /// Its exit code: 1 for I/O, 2 for a file that is not a usable image.
         code: u8,
     },
+    /// A shading-language shader failed (its instruction budget spent, most likely), or a
+    /// scene with such shaders asked for a hider that cannot run them; one line naming the
+    /// shader and the object.
+    #[error("{message}")]
+    Shader {
+        /// The message.
+        message: String,
+    },
     /// The film stage failed (e.g. a degenerate filter).
     #[error("{0}")]
     Film(#[from] reyes_film::FilmError),
@@ -71,6 +79,7 @@ impl From<reyes_dice::DiceError> for RenderError {
             reyes_dice::DiceError::Texture { message, code } => {
                 RenderError::Texture { message, code }
             }
+            reyes_dice::DiceError::Shader { message } => RenderError::Shader { message },
             e => RenderError::Dice(e),
         }
     }

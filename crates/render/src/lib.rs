@@ -22,6 +22,7 @@ pub mod buckets;
 pub mod budget;
 pub mod cancel;
 mod error;
+mod imager;
 pub mod pool;
 pub mod rayhide;
 pub mod settings;
@@ -32,7 +33,7 @@ pub use buckets::BucketResult;
 pub use error::RenderError;
 pub use reyes_film::Film;
 pub use settings::{filter_table, frame_for, hider_config, shutter_shape};
-pub use stats::{DiceSummary, LookdevSummary, RaySummary, RenderStats, peak_memory};
+pub use stats::{DiceSummary, LookdevSummary, RaySummary, RenderStats, ShaderSummary, peak_memory};
 pub use stochastic::render_diced;
 
 use reyes_scene::{HiderMethod, Scene};
@@ -77,6 +78,10 @@ pub struct RenderOptions<'a> {
     /// ([`reyes_dice::DiceOptions::shade_every_vertex`]): the image is the same, for tests
     /// and measurements of culling before shading.
     pub shade_every_vertex: bool,
+    /// The instruction budget of a shading-language shader on one grid (None:
+    /// `reyes_scene::sl::exec::DEFAULT_BUDGET`); running out ends the render with
+    /// [`RenderError::Shader`].
+    pub shader_budget: Option<u64>,
 }
 
 /// A rendered frame.
@@ -119,8 +124,23 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<Rendered, RenderErr
             });
         }
     }
-    match scene.hider.method {
+    let mut rendered = match scene.hider.method {
+        HiderMethod::RayTrace if scene.has_shaders() => Err(RenderError::Shader {
+            message: "the ray-tracing hider shades with the native materials only: a scene with shading-language shaders renders with the stochastic hider (Hider \"hidden\")".into(),
+        }),
         HiderMethod::RayTrace => rayhide::render_raytraced(scene, opts),
         HiderMethod::Stochastic => stochastic::render_stochastic(scene, opts),
+    }?;
+    if scene.shaders.imager.is_some() {
+        let budget = opts.shader_budget.unwrap_or(reyes_scene::sl::exec::DEFAULT_BUDGET);
+        let film = std::mem::replace(&mut rendered.film, Film::new(0, 0));
+        let (film, nonfinite) = imager::apply(scene, film, budget)?;
+        rendered.film = film;
+        if nonfinite > 0 {
+            rendered.warnings.push(format!(
+                "the imager produced {nonfinite} non-finite values (NaN or infinite), written as 0"
+            ));
+        }
     }
+    Ok(rendered)
 }

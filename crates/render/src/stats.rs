@@ -114,6 +114,19 @@ pub struct RenderStats {
     /// Look development's counts, when the scene has texture maps, displacement, bump or
     /// emission.
     pub lookdev: Option<LookdevSummary>,
+    /// The shading-language machine's counts, when some object is shaded by an RSL shader.
+    pub shaders: Option<ShaderSummary>,
+}
+
+/// The shading-language machine's counts (docs/shading.md).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct ShaderSummary {
+    /// Instructions run (IR nodes evaluated and loop iterations, over every grid).
+    pub instructions: u64,
+    /// Non-finite floats the shaders produced (replaced by 0 before the hider).
+    pub nonfinite: u64,
+    /// Diced cells displaced beyond their object's declared bound (all displacements).
+    pub escapes: u64,
 }
 
 /// Look development's counts (docs/lookdev.md).
@@ -162,6 +175,7 @@ impl RenderStats {
             peak_memory: None,
             rays: None,
             lookdev: None,
+            shaders: None,
         }
     }
 
@@ -282,6 +296,13 @@ impl RenderStats {
                 r.vertices, r.vertex_rays, r.primitives, r.nodes
             );
             let _ = writeln!(s, "{}", r.secondary_line());
+        }
+        if let Some(sh) = &self.shaders {
+            let _ = writeln!(
+                s,
+                " Shaders: {} instructions, {} non-finite values replaced by 0",
+                sh.instructions, sh.nonfinite
+            );
         }
         if let Some(l) = &self.lookdev {
             let t = &l.textures;

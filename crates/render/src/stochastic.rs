@@ -30,7 +30,7 @@ use crate::buckets::{self, BucketResult};
 use crate::cancel;
 use crate::pool::{self, Pool};
 use crate::settings::{Stages, frame_for, shutter_shape};
-use crate::stats::{DiceSummary, LookdevSummary, RaySummary, RenderStats};
+use crate::stats::{DiceSummary, LookdevSummary, RaySummary, RenderStats, ShaderSummary};
 use crate::{RenderError, RenderOptions, Rendered};
 
 /// Render `scene` with the stochastic hider, shading vertices with distributed rays where
@@ -48,6 +48,18 @@ pub(crate) fn render_stochastic(
     } else {
         render_diced(scene, opts, &DiceOptions { lookdev: lookdev.as_ref(), ..Default::default() })
     }?;
+    if let Some(s) = rendered.stats.shaders.filter(|s| s.escapes > 0 && lookdev.is_none()) {
+        rendered.warnings.push(format!(
+            "{} micropolygons were displaced beyond their object's declared displacement bound (Attribute \"displacementbound\"); parts of them may be missing",
+            s.escapes
+        ));
+    }
+    if let Some(s) = rendered.stats.shaders.filter(|s| s.nonfinite > 0) {
+        rendered.warnings.push(format!(
+            "shaders produced {} non-finite values (NaN or infinite), rendered as 0",
+            s.nonfinite
+        ));
+    }
     if let Some(l) = &lookdev {
         if l.read_failed() {
             return Err(RenderError::TextureRead);
@@ -111,6 +123,7 @@ pub fn render_diced(
     let pool = Pool::new(opts.threads)?;
     let mut dice_options = *dice_options;
     dice_options.shade_every_vertex |= opts.shade_every_vertex;
+    dice_options.shader_budget = dice_options.shader_budget.or(opts.shader_budget);
     if let Some(limit) = opts.memory_limit {
         let threads = opts.threads.unwrap_or_else(|| pool.install(rayon::current_num_threads));
         let left = crate::budget::Estimate::new(scene, threads).micropolygons_left(limit);
@@ -328,6 +341,11 @@ fn render_rows(
         t_dice,
         t_hide,
         t_film,
+        shaders: scene.objects.iter().any(|o| o.shaders.is_some()).then_some(ShaderSummary {
+            instructions: dice_stats.shader_instructions,
+            nonfinite: dice_stats.shader_nonfinite,
+            escapes: dice_stats.displacement_escapes,
+        }),
         lookdev: scene.has_lookdev().then(|| LookdevSummary {
             vertices: dice_stats.shaded,
             escapes: dice_stats.displacement_escapes,

@@ -113,6 +113,15 @@ pub enum RibError {
         /// The underlying failure.
         source: io::Error,
     },
+    /// A shading-language shader that does not compile (or cannot be read): the compiler's
+    /// one line, `file:line:col: message`.
+    #[error("{}", OneLine(message))]
+    Shader {
+        /// The request naming the shader.
+        at: Location,
+        /// The compiler's message.
+        message: String,
+    },
     /// A `ReadArchive` whose file cannot be opened; the including stream goes on.
     #[error("{at}: ReadArchive: cannot read \"{}\": {}", OneLine(file), OneLine(&source.to_string()))]
     Archive {
@@ -132,7 +141,8 @@ impl RibError {
             RibError::Syntax { at, .. }
             | RibError::Request { at, .. }
             | RibError::Binary { at, .. }
-            | RibError::Archive { at, .. } => Some(at),
+            | RibError::Archive { at, .. }
+            | RibError::Shader { at, .. } => Some(at),
             RibError::Io { .. } => None,
         }
     }

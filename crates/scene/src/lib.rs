@@ -12,6 +12,9 @@ pub mod filter;
 mod locate;
 mod meshfile;
 pub mod model;
+/// The shading-language compiler and grid machine whose shaders the model holds (re-exported
+/// so that front ends and stages name the same crate through the scene).
+pub use reyes_sl as sl;
 pub mod patches;
 mod roll;
 pub mod subdiv;

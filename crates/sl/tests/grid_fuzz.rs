@@ -76,7 +76,7 @@ const SNIPPETS: &[&str] = &[
 
 fn lights() -> ShaderLights {
     let light = |name: &str, params: Vec<(String, Value)>| ShaderLight {
-        shader: compile(reyes_sl::shaders::standard(name).unwrap()),
+        shader: std::sync::Arc::new(compile(reyes_sl::shaders::standard(name).unwrap())),
         params,
         spaces: Spaces::default(),
         categories: vec![],

@@ -129,7 +129,7 @@ fn matte_under_the_standard_light_shaders() {
     let mut lights = ShaderLights {
         lights: vec![
             ShaderLight {
-                shader: std_shader("pointlight"),
+                shader: std::sync::Arc::new(std_shader("pointlight")),
                 params: vec![
                     ("intensity".into(), Value::Num(Num::scalar(4.0))),
                     ("from".into(), Value::Num(Num::uniform(&[1.0, 1.5, -2.0]))),
@@ -138,7 +138,7 @@ fn matte_under_the_standard_light_shaders() {
                 categories: vec![],
             },
             ShaderLight {
-                shader: std_shader("ambientlight"),
+                shader: std::sync::Arc::new(std_shader("ambientlight")),
                 params: vec![("intensity".into(), Value::Num(Num::scalar(0.25)))],
                 spaces: Spaces::default(),
                 categories: vec![],
@@ -166,7 +166,7 @@ fn spotlight_cone_and_illuminance_cone() {
     // than tan(30 deg) from the centre get no light.
     let mut lights = ShaderLights {
         lights: vec![ShaderLight {
-            shader: std_shader("spotlight"),
+            shader: std::sync::Arc::new(std_shader("spotlight")),
             params: vec![
                 ("from".into(), Value::Num(Num::uniform(&[1.0, 1.5, -1.0]))),
                 ("to".into(), Value::Num(Num::uniform(&[1.0, 1.5, 0.0]))),
@@ -220,7 +220,7 @@ fn spotlight_cone_and_illuminance_cone() {
 fn distantlight_through_solar() {
     let mut lights = ShaderLights {
         lights: vec![ShaderLight {
-            shader: std_shader("distantlight"),
+            shader: std::sync::Arc::new(std_shader("distantlight")),
             params: vec![("to".into(), Value::Num(Num::uniform(&[0.0, 0.0, 1.0])))],
             spaces: Spaces::default(),
             categories: vec![],
@@ -238,7 +238,7 @@ fn distantlight_through_solar() {
 fn illuminance_categories() {
     // Two distant lights, one in category "key": illuminance("key", ...) sees only it.
     let light = |intensity: f32, cats: Vec<String>| ShaderLight {
-        shader: std_shader("distantlight"),
+        shader: std::sync::Arc::new(std_shader("distantlight")),
         params: vec![("intensity".into(), Value::Num(Num::scalar(intensity)))],
         spaces: Spaces::default(),
         categories: cats,
@@ -347,7 +347,7 @@ fn lightsource_messages_and_nonspecular() {
     );
     let mut lights = ShaderLights {
         lights: vec![ShaderLight {
-            shader: light,
+            shader: std::sync::Arc::new(light),
             params: vec![],
             spaces: Spaces::default(),
             categories: vec![],
@@ -390,7 +390,7 @@ fn break_inside_illuminance_leaves_the_enclosing_loop() {
     // Two lights of 1 and 10; the loop runs once, and a point with s > 0.5 breaks out after
     // the first light, so it sums only 1; the others sum 11.
     let light = |intensity: f32| ShaderLight {
-        shader: std_shader("distantlight"),
+        shader: std::sync::Arc::new(std_shader("distantlight")),
         params: vec![("intensity".into(), Value::Num(Num::scalar(intensity)))],
         spaces: Spaces::default(),
         categories: vec![],

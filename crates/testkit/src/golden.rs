@@ -32,7 +32,7 @@ use reyes_render::{RenderOptions, render};
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Case {
-    /// Scene name: `scenes/NAME.ron`, reference `golden/NAME.exr`.
+    /// Scene name: `scenes/NAME.ron` (else `scenes/NAME.rib`), reference `golden/NAME.exr`.
     pub scene: String,
     /// Render width (at most about 256).
     pub width: u32,
@@ -152,7 +152,15 @@ pub fn render_case(root: &Path, case: &Case) -> Result<(Film, f32), GoldenError>
 /// The case's scene at the case's size.
 fn case_scene(root: &Path, case: &Case) -> Result<reyes_scene::Scene, GoldenError> {
     let path = root.join("scenes").join(format!("{}.ron", case.scene));
-    let mut scene = load_scene(&path, case.frame).map_err(err)?;
+    let rib = root.join("scenes").join(format!("{}.rib", case.scene));
+    // A scene only in RIB (one whose shaders RON cannot name): its first frame.
+    let mut scene = if !path.exists() && rib.exists() {
+        let source = reyes_rib::Source::open(&rib).map_err(err)?;
+        let loaded = reyes_rib::load(source, &reyes_rib::RiOptions::default()).map_err(err)?;
+        loaded.frames.into_iter().next().ok_or_else(|| err("the RIB file has no frame"))?.scene
+    } else {
+        load_scene(&path, case.frame).map_err(err)?
+    };
     scene.image.width = case.width;
     scene.image.height = case.height;
     if let Some(method) = case.method {

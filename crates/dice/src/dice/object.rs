@@ -51,6 +51,9 @@ pub(crate) struct ObjectContext<'a> {
     pub overlap: bool,
     /// The trim loops of a trimmed NURBS patch ([`crate::trim`]).
     pub trim: Option<crate::trim::TrimSetup>,
+    /// Shading-language shaders, which shade the object's grids instead of `shader` and
+    /// `hook` ([`crate::sl`]).
+    pub sl: Option<std::sync::Arc<crate::sl::SlSetup>>,
 }
 
 /// What every micropolygon of one object carries besides its geometry and colour.
@@ -104,5 +107,62 @@ pub(crate) fn object_context(
         look: None,
         overlap: csg.is_none(),
         trim: None,
+        sl: None,
     }
+}
+
+/// Sets up the shading-language shaders of object `index` of `scene`, placed by `place` at
+/// shutter open, on `ctx` (with the instruction budget `budget`, default
+/// `reyes_scene::sl::exec::DEFAULT_BUDGET`), and returns how far its displacement may move a
+/// point (0 without one). The machine then shades the grids: no vertex hook, and the opacity
+/// is the shader's, so the object is not taken as opaque.
+pub(crate) fn attach_sl(
+    ctx: &mut ObjectContext<'_>,
+    scene: &reyes_scene::Scene,
+    index: usize,
+    place: &Placement,
+    camera: &crate::camera::CameraSetup,
+    budget: Option<u64>,
+) -> f32 {
+    let budget = budget.unwrap_or(reyes_scene::sl::exec::DEFAULT_BUDGET);
+    let (Placement::Matrix(m) | Placement::Between { from: m, .. }) = place;
+    ctx.sl = crate::sl::SlSetup::new(scene, index, m, camera, &ctx.shader, budget)
+        .map(std::sync::Arc::new);
+    let Some(sl) = &ctx.sl else { return 0.0 };
+    ctx.hook = None;
+    ctx.labels.flags &= !flags::OPAQUE;
+    if sl.shaders.displacement.is_some() { sl.shaders.displacement_bound } else { 0.0 }
+}
+
+/// Everything object `i` of `scene` brings to its grids but its geometry, placed at shutter
+/// open by `open.0` (a CSG leaf `open.1`, seen by the camera `open.2`): its context with the
+/// vertex hook of `options`, its AOVs (`aov.0` and the ids `aov.1`), its look development
+/// (`aov.2`), its trim loops (registered in `trims`, whose index the micropolygons carry) and
+/// its shading-language shaders; whether its back faces are culled; and how far
+/// displacement may move a point (its reach; 0 without displacement).
+pub(crate) fn setup_object<'a>(
+    scene: &reyes_scene::Scene,
+    i: usize,
+    open: (&Placement, Option<(u16, u16)>, &crate::camera::CameraSetup),
+    options: &crate::DiceOptions<'a>,
+    aov: (Option<&std::sync::Arc<VertexAovs>>, &[[f32; 2]], Option<&crate::Lookdev>),
+    trims: &mut Vec<std::sync::Arc<reyes_scene::patches::trim::TrimRegion>>,
+) -> (ObjectContext<'a>, f32) {
+    let (place, leaf, camera) = open;
+    let object = &scene.objects[i];
+    let mut ctx = object_context(object, &scene.lights, camera.viewer(), place, leaf);
+    ctx.hook = options.vertex_shader.map(|shader| Hook { shader, object: i, surface: 0 });
+    ctx.aov = aov.0.map(|a| (a.clone(), aov.1[i]));
+    ctx.look = aov.2.and_then(|l| l.object(i));
+    ctx.trim = crate::trim::TrimSetup::of(&object.shape, trims.len());
+    trims.extend(ctx.trim.as_ref().map(|t| t.region.clone()));
+    let mut reach = ctx.look.as_ref().map_or(0.0, |l| l.object.bound);
+    reach = reach.max(attach_sl(&mut ctx, scene, i, place, camera, options.shader_budget));
+    if ctx.look.as_ref().is_some_and(|l| l.object.may_be_transparent()) {
+        ctx.labels.flags &= !flags::OPAQUE;
+    }
+    ctx.cull_back = reach == 0.0
+        && (scene.hider.cull_back_faces || object.one_sided)
+        && super::cull_back_faces(object, &ctx.labels, leaf.is_some(), camera.lens().is_none());
+    (ctx, reach)
 }

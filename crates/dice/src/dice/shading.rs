@@ -52,6 +52,29 @@ impl Emitter<'_> {
         (nu, nv): (usize, usize),
         opens: &[Open],
     ) {
+        if let Some(sl) = &object.sl {
+            let material = (object.shader.color(), object.shader.opacity());
+            self.sl_shade(sl, camera, material, open, patch, (nu, nv), opens);
+            // AOVs: the geometric ones as the native path writes them; the shading
+            // components are 0 (a shader's output variables are not AOVs yet).
+            let stride = self.grid.aov_stride;
+            self.grid.aov.resize(opens.len() * stride, 0.0);
+            if let Some((_, ids)) = &object.aov {
+                let w2c = camera.world_to_camera();
+                for (vertex, o) in opens.iter().enumerate() {
+                    let (i, j) = (vertex % (nu + 1), vertex / (nu + 1));
+                    let (u, v) = (Patch::at(patch.u, i, nu), Patch::at(patch.v, j, nv));
+                    let n = w2c.transform_vector3(o.n_world).normalize_or_zero();
+                    let a = &mut self.grid.aov[vertex * stride..(vertex + 1) * stride];
+                    let head = [n.x, n.y, n.z, o.p_shaded.x, o.p_shaded.y, o.p_shaded.z];
+                    let values = head.into_iter().chain([u, v, ids[0], ids[1]]);
+                    for (slot, value) in a.iter_mut().zip(values) {
+                        *slot = value;
+                    }
+                }
+            }
+            return;
+        }
         let count = opens.len();
         let mut used = vec![self.shade_all; count];
         if !self.shade_all {

@@ -70,6 +70,9 @@ impl Machine {
     pub(super) fn light_source(&mut self, r: &Request) -> Result<(), RibError> {
         let name = r.string(0).unwrap_or_default().to_string();
         let h = handle(r, 1).ok_or_else(|| r.error("expected a light handle"))?;
+        if self.sl_light(r, &name, &h)? {
+            return Ok(());
+        }
         let to_world = self.to_world();
         let mut tolerated = Vec::new();
         let made = super::shaders::light(

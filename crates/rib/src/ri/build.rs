@@ -73,6 +73,8 @@ pub(super) struct FrameBuild {
     solid_origins: Vec<Location>,
     solid_stack: Vec<SolidNode>,
     leaves: usize,
+    /// Shading-language lights (the imager comes from the options).
+    pub shaders: reyes_scene::SceneShaders,
 }
 
 impl FrameBuild {
@@ -95,6 +97,7 @@ impl FrameBuild {
             solid_origins: Vec::new(),
             solid_stack: Vec::new(),
             leaves: 0,
+            shaders: Default::default(),
         }
     }
 
@@ -129,6 +132,11 @@ impl FrameBuild {
         let index = self.lights.len() - 1;
         self.slots[slot].push(index);
         index
+    }
+
+    /// The number of lights of the model so far.
+    pub fn light_count(&self) -> usize {
+        self.lights.len()
     }
 
     /// The light slot with `handle`.
@@ -344,6 +352,11 @@ impl FrameBuild {
             raytrace: Default::default(),
             outputs: reyes_scene::Outputs { aovs: o.aovs.clone(), ..Default::default() },
             texture_cache: Default::default(),
+            shaders: reyes_scene::SceneShaders {
+                imager: o.imager.clone(),
+                world_to_model: super::rsl::sl_matrix(&o.camera.at(f32::NEG_INFINITY)),
+                ..std::mem::take(&mut self.shaders)
+            },
         };
         let displays = self.options.displays.clone();
         match reyes_scene::validate(scene) {

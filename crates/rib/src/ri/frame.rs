@@ -79,6 +79,8 @@ pub(crate) struct Machine {
     pub(super) coordinate_systems: HashMap<String, (Xform, bool)>,
     /// Lights declared before `WorldBegin`, added to each world block.
     pub(super) pending_lights: Vec<(String, Light, Location)>,
+    /// The shading-language shaders compiled so far (`rsl.rs`).
+    pub(super) sl: super::rsl::ShaderTable,
     /// The lights declared outside the frame, saved at `FrameBegin` and restored at
     /// `FrameEnd`: like every option and attribute declared outside a frame, they hold for
     /// every frame, while those declared inside one end with it.
@@ -146,6 +148,7 @@ impl Machine {
             motion: None,
             coordinate_systems: HashMap::new(),
             pending_lights: Vec::new(),
+            sl: Default::default(),
             saved_lights: Vec::new(),
             build: None,
             frame_number: None,
@@ -385,6 +388,10 @@ impl Machine {
             }
             K::Displacement => {
                 self.attributes.displacement = SurfaceShader::of(&r);
+                Ok(())
+            }
+            K::Atmosphere => {
+                self.attributes.atmosphere = SurfaceShader::of(&r);
                 Ok(())
             }
             K::ShadingRate => {

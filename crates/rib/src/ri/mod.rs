@@ -21,6 +21,7 @@ pub(crate) mod geometry;
 mod options;
 mod primitives;
 mod program;
+mod rsl;
 mod search;
 mod shaders;
 mod solids;

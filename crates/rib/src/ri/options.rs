@@ -24,6 +24,9 @@ impl Machine {
                 "ignored for this frame",
             );
         }
+        if r.kind == K::Imager && self.sl_imager(r)? {
+            return Ok(());
+        }
         let mut warnings = Vec::new();
         self.set_option(r, &mut warnings)?;
         for (key, w) in warnings {

@@ -154,8 +154,14 @@ impl Machine {
             .at
             .as_ref()
             .is_some_and(|at| self.warned.insert(format!("surface params {at}")));
+        let to_world = self.to_world();
+        let sl = self.object_shaders(&a, r, &to_world.at(f32::NEG_INFINITY))?;
+        let has = |f: fn(&reyes_scene::ObjectShaders) -> bool| sl.as_deref().is_some_and(f);
         let mat = match material(&a.surface, cs, a.opacity, &mut self.warnings, report) {
             SurfaceResult::Material(m) => m,
+            // A shading-language surface: the stand-in material is kept for what the
+            // renderer reads of it besides shading (none of its colours are used).
+            SurfaceResult::Unknown(m, _) if has(|s| s.surface.is_some()) => m,
             SurfaceResult::Unknown(m, name) => {
                 if self.options.strict {
                     let at = a.surface.at.clone().unwrap_or_else(|| r.at.clone());
@@ -200,6 +206,7 @@ impl Machine {
                 object.maps = maps;
                 object.displacement = displacement;
             }
+            Err(_) if has(|s| s.displacement.is_some()) => object.maps = Default::default(),
             Err(name) => {
                 let at = a.displacement.at.clone().unwrap_or_else(|| r.at.clone());
                 if self.options.strict {
@@ -226,7 +233,7 @@ impl Machine {
         object.motion_factor = a.motion_factor;
         object.focus_factor = a.focus_factor;
         object.one_sided = a.sides == 1;
-        let to_world = self.to_world();
+        object.shaders = sl;
         if let Some(area) = &a.area_light {
             self.emitter(r, area, &mut object, &to_world);
         }

@@ -69,6 +69,8 @@ pub(crate) struct FrameOptions {
     pub camera: Xform,
     /// `Option "searchpath"`.
     pub search: crate::ri::search::SearchPaths,
+    /// A shading-language `Imager`.
+    pub imager: Option<reyes_scene::ShaderInstance>,
     /// Where each option family was last set, for messages about the values it produced.
     pub origins: Vec<(&'static str, Location, &'static str)>,
 }
@@ -101,6 +103,7 @@ impl Default for FrameOptions {
             max_grid_size: None,
             camera: Xform::default(),
             search: Default::default(),
+            imager: None,
             origins: Vec::new(),
         }
     }
@@ -174,6 +177,8 @@ pub(crate) struct Attributes {
     pub trim: std::sync::Arc<Vec<reyes_scene::TrimLoop>>,
     /// `Attribute "trimcurve" "sense" "outside"`: keep the inside of the loops instead.
     pub trim_outside: bool,
+    /// The `Atmosphere` shader (its name None: none).
+    pub atmosphere: SurfaceShader,
 }
 
 impl Default for Attributes {
@@ -200,6 +205,7 @@ impl Default for Attributes {
             repeat: (1.0, 1.0),
             trim: Default::default(),
             trim_outside: false,
+            atmosphere: SurfaceShader { name: None, params: Vec::new(), at: None },
         }
     }
 }

@@ -21,6 +21,7 @@ mod material;
 mod object;
 mod output;
 mod raytrace;
+mod rsl;
 mod shape;
 mod solid;
 
@@ -33,6 +34,7 @@ pub use material::*;
 pub use object::*;
 pub use output::*;
 pub use raytrace::*;
+pub use rsl::*;
 pub use shape::*;
 pub use solid::*;
 
@@ -73,6 +75,9 @@ pub struct Scene {
     /// The texture cache's memory bound (docs/lookdev.md).
     #[serde(default)]
     pub texture_cache: TextureCache,
+    /// Shading-language light shaders and imager (a RIB scene's; not in RON).
+    #[serde(skip)]
+    pub shaders: SceneShaders,
 }
 
 impl Scene {
@@ -80,6 +85,7 @@ impl Scene {
     /// area light, a reflecting or refracting object, or a pattern (then the distributed rays
     /// of reyes-shade shade the vertices). Here so that validation and the renderer agree.
     pub fn needs_ray_shading(&self) -> bool {
+        // (Shading-language shaders are shaded by the dicer's grid machine, not by rays.)
         let lights = self.lights.iter().any(|l| match l {
             Light::Ambient { .. } => false,
             Light::Distant { shadows, .. }
@@ -96,6 +102,12 @@ impl Scene {
 }
 
 impl Scene {
+    /// True if some object or light is shaded by a shading-language shader, or the scene
+    /// has an imager.
+    pub fn has_shaders(&self) -> bool {
+        !self.shaders.is_empty() || self.objects.iter().any(|o| o.shaders.is_some())
+    }
+
     /// Every texture map of the scene, in object order, then the order of the fields
     /// (maps, displacement, bump), for setting up and for resolving file names.
     pub fn texture_maps_mut(&mut self) -> impl Iterator<Item = &mut TextureMap> {

@@ -108,6 +108,10 @@ pub struct Object {
     /// not shadow its own light; it still shadows every other light.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub area_light: Option<u32>,
+    /// Shading-language surface, displacement and atmosphere shaders (a RIB scene's; not in
+    /// RON): when set they shade the object instead of `material`.
+    #[serde(skip)]
+    pub shaders: Option<std::sync::Arc<super::ObjectShaders>>,
 }
 
 impl Object {
@@ -154,6 +158,7 @@ impl Object {
             bump: None,
             emission: None,
             area_light: None,
+            shaders: None,
         }
     }
 

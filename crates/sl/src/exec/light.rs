@@ -56,11 +56,12 @@ pub trait Lights {
     fn lights(&mut self, q: &LightQuery<'_>) -> Result<Vec<LightSample>, ExecError>;
 }
 
+#[derive(Clone)]
 /// A light shader instance: the shader, its parameter values, its coordinate systems (its
 /// "shader" space is where it was declared), and its categories.
 pub struct ShaderLight {
-    /// The compiled light shader.
-    pub shader: CheckedShader,
+    /// The compiled light shader (shared: one compile serves every instance).
+    pub shader: std::sync::Arc<CheckedShader>,
     /// Parameter values by name (others take their defaults).
     pub params: Vec<(String, Value)>,
     /// Its coordinate systems.

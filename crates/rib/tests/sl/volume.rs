@@ -1,0 +1,93 @@
+//! Atmosphere and imager shaders against their formulas: the standard `fog` (compiled from
+//! the built-in copy, no file needed) on a surface, and the standard `background` imager on
+//! the finished pixels.
+
+use super::{Files, ortho, pixel, render};
+
+const SIZE: u32 = 24;
+const W: f32 = 1.25;
+
+/// A constant white surface.
+const WHITE: &str = "surface white() { Oi = 1; Ci = 1; }";
+
+#[test]
+fn fog_blends_toward_its_background_by_the_length_of_i() {
+    let files = Files::new(&[("white", WHITE)]);
+    // Under the orthographic camera I runs along z to the point: on the square at z = 4 its
+    // length is 4 at every sample, so every covered pixel is exactly
+    // mix(1, background, 1 - exp(-4 / distance)) (up to the rounding of exp and mix).
+    let rib = format!(
+        "{}WorldBegin\nAtmosphere \"fog\" \"distance\" [5] \"background\" [0 0.5 1]\n\
+         Surface \"white\"\nPatch \"bilinear\" \"P\" [-2 -2 4  2 -2 4  -2 2 4  2 2 4]\nWorldEnd\n",
+        ortho(SIZE, W)
+    );
+    let scene = files.scene(&rib);
+    assert!(scene.objects[0].shaders.as_ref().is_some_and(|s| s.atmosphere.is_some()));
+    let f = render(&scene);
+    let d = 1.0 - (-4.0f32 / 5.0).exp();
+    let want = [1.0 - d, 1.0 + (0.5 - 1.0) * d, 1.0];
+    for y in 0..SIZE {
+        for x in 0..SIZE {
+            let p = pixel(&f, x, y);
+            for k in 0..3 {
+                assert!((p[k] - want[k]).abs() <= 1e-6, "({x}, {y}): {p:?} vs {want:?}");
+            }
+            assert_eq!(p[3], 1.0);
+        }
+    }
+}
+
+#[test]
+fn the_background_imager_fills_what_the_scene_leaves_uncovered() {
+    let files = Files::new(&[("white", WHITE)]);
+    // An opaque white square over the left half of the picture: the imager adds
+    // (1 - alpha) * background to the premultiplied colour and makes alpha 1, so covered
+    // pixels stay white and uncovered ones become the background.
+    let rib = format!(
+        "{}Imager \"background\" \"background\" [0.25 0.5 0.75]\nWorldBegin\n\
+         Surface \"white\"\nPatch \"bilinear\" \"P\" [-2 -2 4  0 -2 4  -2 2 4  0 2 4]\nWorldEnd\n",
+        ortho(SIZE, W)
+    );
+    let scene = files.scene(&rib);
+    assert!(scene.shaders.imager.is_some());
+    let f = render(&scene);
+    let bg = [0.25f32, 0.5, 0.75];
+    let (mut empty, mut covered) = (0, 0);
+    for y in 0..SIZE {
+        for x in 0..SIZE {
+            let p = pixel(&f, x, y);
+            assert_eq!(p[3], 1.0, "({x}, {y}): {p:?}");
+            // Pixels on the square's edge (columns 11 and 12) are mixed: not checked.
+            let want = if x < SIZE / 2 - 1 {
+                covered += 1;
+                [1.0; 3]
+            } else if x > SIZE / 2 {
+                empty += 1;
+                bg
+            } else {
+                continue;
+            };
+            for k in 0..3 {
+                assert!((p[k] - want[k]).abs() <= 1e-6, "({x}, {y}): {p:?} vs {want:?}");
+            }
+        }
+    }
+    assert!(covered > 100 && empty > 100, "{covered} {empty}");
+}
+
+#[test]
+fn the_ray_tracing_hider_refuses_shading_language_shaders_in_one_line() {
+    let files = Files::new(&[("white", WHITE)]);
+    let rib = format!(
+        "{}Hider \"raytrace\"\nWorldBegin\nSurface \"white\"\nTranslate 0 0 3\nSphere 1 -1 1 360\nWorldEnd\n",
+        ortho(SIZE, W)
+    );
+    let scene = files.scene(&rib);
+    let e = reyes_render::render(&scene, &reyes_render::RenderOptions::default())
+        .err()
+        .map(|e| (e.to_string(), e.exit_code()));
+    let (message, code) = e.expect("refused");
+    assert_eq!(code, 1);
+    assert_eq!(message.lines().count(), 1);
+    assert!(message.contains("ray-tracing hider"), "{message}");
+}
