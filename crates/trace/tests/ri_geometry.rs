@@ -1,7 +1,8 @@
 //! The RenderMan geometry of the ray engine: the hyperboloid hit exactly at its analytic
 //! points (and as the cylinder and cone it can be), bilinear patch meshes exactly, and the
 //! tessellated bicubic patch meshes and NURBS within their stated error bound, with a wrapped
-//! mesh closed (no ray escapes through a seam) and deformation keys followed.
+//! mesh closed (no ray escapes through a seam) and deformation keys followed; a trimmed
+//! NURBS lets rays (and shadow rays) through its holes.
 
 mod common;
 
@@ -10,7 +11,7 @@ use glam::{DVec3, Mat3, Mat4, Vec3};
 use reyes_scene::patches::{self, BezierPatch};
 use reyes_scene::{Basis, PatchType, Shape, Transform, Wrap, object_to_world};
 use reyes_testkit::fixtures::{nurbs_cylinder, patch_mesh, patch_mesh_with};
-use reyes_trace::Tracer;
+use reyes_trace::{Ray, Tracer};
 
 /// The hyperboloid's point and outward normal at `(u, v)`, written from the definition:
 /// `Rz(u thetamax) lerp(p1, p2, v)` and `dP/du x dP/dv` by the product rule.
@@ -244,4 +245,77 @@ fn a_horizontal_segment_sweeps_a_flat_ring() {
     }
     assert!(shoot(&t, Vec3::new(0.2, 0.1, 3.0), Vec3::NEG_Z, 0.0).is_none(), "the hole");
     assert!(shoot(&t, Vec3::new(1.6, 0.0, 3.0), Vec3::NEG_Z, 0.0).is_none(), "outside");
+}
+
+/// The square NuPatch over x, y in [-1, 1] at z = `z` (u along x, v along y), with a round
+/// hole of radius 1/4 of (u, v) about (1/2, 1/2), a world radius of 1/2 about the z axis:
+/// the nine-point circle, four exact quarter arcs.
+fn holed_square(z: f32) -> Shape {
+    let w = std::f32::consts::FRAC_1_SQRT_2;
+    let ring = [
+        (1., 0.),
+        (1., 1.),
+        (0., 1.),
+        (-1., 1.),
+        (-1., 0.),
+        (-1., -1.),
+        (0., -1.),
+        (1., -1.),
+        (1., 0.),
+    ];
+    let points = ring
+        .iter()
+        .enumerate()
+        .map(|(i, &(x, y)): (usize, &(f32, f32))| {
+            let wi = if i % 2 == 1 { w } else { 1.0 };
+            [(0.5 + 0.25 * x) * wi, (0.5 + 0.25 * y) * wi, wi]
+        })
+        .collect();
+    let knot = vec![0., 0., 0., 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1., 1., 1.];
+    let curve = reyes_scene::TrimCurve { order: 3, knot, min: 0.0, max: 1.0, points };
+    Shape::NuPatch {
+        nu: 2,
+        uorder: 2,
+        uknot: vec![0.0, 0.0, 1.0, 1.0],
+        umin: 0.0,
+        umax: 1.0,
+        nv: 2,
+        vorder: 2,
+        vknot: vec![0.0, 0.0, 1.0, 1.0],
+        vmin: 0.0,
+        vmax: 1.0,
+        points: vec![
+            [-1.0, -1.0, z, 1.0],
+            [1.0, -1.0, z, 1.0],
+            [-1.0, 1.0, z, 1.0],
+            [1.0, 1.0, z, 1.0],
+        ],
+        trim: vec![reyes_scene::TrimLoop { curves: vec![curve] }],
+        trim_outside: false,
+    }
+}
+
+#[test]
+fn rays_pass_through_a_trim_hole_to_what_lies_behind() {
+    // The holed square at z = 0 in front of a plain square at z = 1.
+    let back = Shape::BilinearPatch {
+        points: [[-2.0, -2.0, 1.0], [2.0, -2.0, 1.0], [-2.0, 2.0, 1.0], [2.0, 2.0, 1.0]],
+    };
+    let t = Tracer::new(&scene(vec![object(holed_square(0.0), vec![]), object(back, vec![])]));
+    let dir = Vec3::Z;
+    // Inside the hole (radius 1/2): the ray goes on to the back square, object 1.
+    for (x, y) in [(0.0, 0.0), (0.45, 0.0), (-0.3, 0.3), (0.0, -0.49)] {
+        let h = shoot(&t, Vec3::new(x, y, -5.0), dir, 0.0).expect("the back square");
+        assert_eq!(h.object, 1, "({x}, {y}) through the hole");
+        assert!(close(h.p_world.z, 1.0, 1e-5));
+        // A shadow ray stopping short of the back square is not blocked either.
+        assert!(!t.occluded(&Ray::new(Vec3::new(x, y, -5.0), dir, 0.0), 5.5), "({x}, {y})");
+    }
+    // Outside it: the holed square itself, at its own (u, v).
+    for (x, y) in [(0.55, 0.0), (0.9, 0.9), (-0.8, 0.1), (0.0, 0.51)] {
+        let h = shoot(&t, Vec3::new(x, y, -5.0), dir, 0.0).expect("the holed square");
+        assert_eq!(h.object, 0, "({x}, {y}) off the hole");
+        assert!(close(h.u, (x + 1.0) / 2.0, 1e-4) && close(h.v, (y + 1.0) / 2.0, 1e-4));
+        assert!(t.occluded(&Ray::new(Vec3::new(x, y, -5.0), dir, 0.0), 5.5), "({x}, {y})");
+    }
 }

@@ -275,6 +275,22 @@ WorldEnd
 }
 
 #[test]
+fn adaptive_sampling_trims_its_extra_samples() {
+    // The patent's reduced-scale repetition refines the pixels the hole's edge crosses; its
+    // extra samples go through the same per-sample trim. Refinement only adds stratified
+    // samples within pixels the edge crosses (none far from an edge), so the still frame's
+    // tolerance and pixel checks hold.
+    let mut s = scene(&trimmed("", ""));
+    s.hider.adaptive = reyes_scene::Adaptive { max_level: 2, threshold: 0.1 };
+    let r = render(&s, &RenderOptions::default()).unwrap_or_else(|e| panic!("{e}"));
+    assert!(r.stats.hider.refined_pixels > 0 && r.stats.hider.extra_samples > 0);
+    let plain = draw(&trimmed("", "")).stats.hider;
+    assert!(r.stats.hider.trim_tests > plain.trim_tests, "{:?}", r.stats.hider);
+    check_total(&r, 0.0, "adaptive");
+    check_pixels(&alpha(&r), "adaptive");
+}
+
+#[test]
 fn the_ray_tracing_hider_trims_the_same_hole() {
     let r = draw(&trimmed("Hider \"raytrace\"", ""));
     check_total(&r, 0.0, "ray traced");

@@ -223,7 +223,8 @@ impl TrimRegion {
             }
             // A segment meeting the rectangle meets its height range: it is in those bins
             // (some more than once, which only repeats a test).
-            for bin in &l.bins[l.bin(v0)..=l.bin(v1)] {
+            let first = l.bin(v0);
+            for bin in &l.bins[first..=l.bin(v1).max(first)] {
                 for &k in bin {
                     let (a, b) = l.segment(k as usize);
                     if segment_meets_rect(a, b, [u0, u1, v0, v1]) {
