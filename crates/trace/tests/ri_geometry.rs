@@ -251,28 +251,6 @@ fn a_horizontal_segment_sweeps_a_flat_ring() {
 /// hole of radius 1/4 of (u, v) about (1/2, 1/2), a world radius of 1/2 about the z axis:
 /// the nine-point circle, four exact quarter arcs.
 fn holed_square(z: f32) -> Shape {
-    let w = std::f32::consts::FRAC_1_SQRT_2;
-    let ring = [
-        (1., 0.),
-        (1., 1.),
-        (0., 1.),
-        (-1., 1.),
-        (-1., 0.),
-        (-1., -1.),
-        (0., -1.),
-        (1., -1.),
-        (1., 0.),
-    ];
-    let points = ring
-        .iter()
-        .enumerate()
-        .map(|(i, &(x, y)): (usize, &(f32, f32))| {
-            let wi = if i % 2 == 1 { w } else { 1.0 };
-            [(0.5 + 0.25 * x) * wi, (0.5 + 0.25 * y) * wi, wi]
-        })
-        .collect();
-    let knot = vec![0., 0., 0., 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1., 1., 1.];
-    let curve = reyes_scene::TrimCurve { order: 3, knot, min: 0.0, max: 1.0, points };
     Shape::NuPatch {
         nu: 2,
         uorder: 2,
@@ -290,7 +268,7 @@ fn holed_square(z: f32) -> Shape {
             [-1.0, 1.0, z, 1.0],
             [1.0, 1.0, z, 1.0],
         ],
-        trim: vec![reyes_scene::TrimLoop { curves: vec![curve] }],
+        trim: vec![reyes_scene::TrimLoop::circle(0.5, 0.5, 0.25)],
         trim_outside: false,
     }
 }

@@ -20,32 +20,23 @@ use super::{rib, scene};
 const R: f64 = 20.0;
 const C: f64 = 50.0;
 
-/// The `TrimCurve` of a circle of radius `r` about `(cu, cv)`: one loop, one order-3 curve
-/// of nine homogeneous points (the corners of the square about it at weight 1/sqrt 2), knots
-/// doubled at the quarters, which is the circle exactly.
+/// The `TrimCurve` of the exact circle of radius `r` about `(cu, cv)`
+/// ([`reyes_scene::TrimLoop::circle`]: one loop of one order-3 curve), as RIB writes it: the
+/// homogeneous points `(u w, v w, w)` as the `u`, `v` and `w` arrays.
 fn circle(cu: f64, cv: f64, r: f64) -> String {
-    let w = std::f64::consts::FRAC_1_SQRT_2;
-    let pts = [
-        (1., 0.),
-        (1., 1.),
-        (0., 1.),
-        (-1., 1.),
-        (-1., 0.),
-        (-1., -1.),
-        (0., -1.),
-        (1., -1.),
-        (1., 0.),
-    ];
-    let (mut u, mut v, mut ws) = (String::new(), String::new(), String::new());
-    // (Homogeneous: the point (u, v) at weight w is given as (u w, v w, w).)
-    for (i, (x, y)) in pts.iter().enumerate() {
-        let wi = if i % 2 == 1 { w } else { 1.0 };
-        u += &format!("{} ", (cu + r * x) * wi);
-        v += &format!("{} ", (cv + r * y) * wi);
-        ws += &format!("{wi} ");
-    }
+    let ring = reyes_scene::TrimLoop::circle(cu as f32, cv as f32, r as f32);
+    let c = &ring.curves[0];
+    let list = |k: usize| c.points.iter().map(|p| p[k].to_string()).collect::<Vec<_>>().join(" ");
+    let knots = c.knot.iter().map(f32::to_string).collect::<Vec<_>>().join(" ");
     format!(
-        "TrimCurve [1] [3] [0 0 0 0.25 0.25 0.5 0.5 0.75 0.75 1 1 1] [0] [1] [9] [{u}] [{v}] [{ws}]"
+        "TrimCurve [1] [{}] [{knots}] [{}] [{}] [{}] [{}] [{}] [{}]",
+        c.order,
+        c.min,
+        c.max,
+        c.points.len(),
+        list(0),
+        list(1),
+        list(2)
     )
 }
 

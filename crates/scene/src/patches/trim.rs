@@ -325,27 +325,18 @@ fn distance_to_segment(q: DVec2, a: DVec2, b: DVec2) -> f64 {
     (a + t * d - q).length()
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// A circle of radius `r` about `(cu, cv)` as four rational quadratic arcs (one curve,
-    /// knots doubled at the quarters; weights 1, 1/sqrt 2 at the corners).
-    pub(crate) fn circle(cu: f32, cv: f32, r: f32) -> TrimLoop {
+impl TrimLoop {
+    /// The exact circle of radius `r` about `(cu, cv)` in parameter space: one order-3
+    /// rational curve of nine homogeneous points, the corners of the square about the circle
+    /// at weight 1/sqrt 2 and the midpoints of its sides at weight 1, knots doubled at the
+    /// quarters (four exact quarter arcs). A hole of area pi r^2, for tests and tools.
+    pub fn circle(cu: f32, cv: f32, r: f32) -> TrimLoop {
         let w = std::f32::consts::FRAC_1_SQRT_2;
-        let pts = [
-            (1., 0.),
-            (1., 1.),
-            (0., 1.),
-            (-1., 1.),
-            (-1., 0.),
-            (-1., -1.),
-            (0., -1.),
-            (1., -1.),
-            (1., 0.),
-        ];
-        let points = pts
+        let square =
+            [(1., 0.), (1., 1.), (0., 1.), (-1., 1.), (-1., 0.), (-1., -1.), (0., -1.), (1., -1.)];
+        let points = square
             .iter()
+            .chain(std::iter::once(&(1., 0.)))
             .enumerate()
             .map(|(i, &(x, y))| {
                 let wi = if i % 2 == 1 { w } else { 1.0 };
@@ -355,11 +346,16 @@ mod tests {
         let knot = vec![0., 0., 0., 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1., 1., 1.];
         TrimLoop { curves: vec![TrimCurve { order: 3, knot, min: 0.0, max: 1.0, points }] }
     }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
 
     #[test]
     fn a_circle_is_flattened_within_the_tolerance_and_tests_by_its_radius() {
         let tol = 1e-6;
-        let region = TrimRegion::new(&[circle(0.5, 0.5, 0.25)], false, tol);
+        let region = TrimRegion::new(&[TrimLoop::circle(0.5, 0.5, 0.25)], false, tol);
         let l = &region.loops[0];
         // Every vertex on the circle (rounding only) and every chord's middle within tol.
         for (i, p) in l.points.iter().enumerate() {
@@ -377,7 +373,7 @@ mod tests {
         assert!(region.removes(0.5 + 0.2499, 0.5));
         assert!(!region.removes(0.5 + 0.2501, 0.5));
         assert!(!region.removes(0.0, 0.0));
-        let outside = TrimRegion::new(&[circle(0.5, 0.5, 0.25)], true, tol);
+        let outside = TrimRegion::new(&[TrimLoop::circle(0.5, 0.5, 0.25)], true, tol);
         assert!(!outside.removes(0.5, 0.5) && outside.removes(0.0, 0.0));
     }
 
@@ -407,8 +403,11 @@ mod tests {
                 points: vec![[0.1, 0.1, 1.0], [0.9, 0.15, 1.0], [0.1, 0.2, 1.0]],
             }],
         };
-        let region =
-            TrimRegion::new(&[circle(0.5, 0.5, 0.3), circle(0.3, 0.6, 0.1), sliver], false, 1e-5);
+        let region = TrimRegion::new(
+            &[TrimLoop::circle(0.5, 0.5, 0.3), TrimLoop::circle(0.3, 0.6, 0.1), sliver],
+            false,
+            1e-5,
+        );
         for i in 0..=200 {
             for j in 0..=200 {
                 let (u, v) = (f64::from(i) / 200.0, f64::from(j) / 200.0);
@@ -453,7 +452,11 @@ mod tests {
 
     #[test]
     fn nested_loops_alternate_and_rectangles_classify() {
-        let region = TrimRegion::new(&[circle(0.5, 0.5, 0.4), circle(0.5, 0.5, 0.2)], false, 1e-6);
+        let region = TrimRegion::new(
+            &[TrimLoop::circle(0.5, 0.5, 0.4), TrimLoop::circle(0.5, 0.5, 0.2)],
+            false,
+            1e-6,
+        );
         assert!(!region.removes(0.5, 0.5)); // inside both: kept (island)
         assert!(region.removes(0.5 + 0.3, 0.5)); // in the ring: removed
         assert!(!region.removes(0.02, 0.02));
