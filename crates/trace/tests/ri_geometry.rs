@@ -10,7 +10,7 @@ use common::{Rng, close, close_v, deforming, object, placed, scene, shoot};
 use glam::{DVec3, Mat3, Mat4, Vec3};
 use reyes_scene::patches::{self, BezierPatch};
 use reyes_scene::{Basis, PatchType, Shape, Transform, Wrap, object_to_world};
-use reyes_testkit::fixtures::{nurbs_cylinder, patch_mesh, patch_mesh_with};
+use reyes_testkit::fixtures::{nurbs_cylinder, nurbs_ruled, patch_mesh, patch_mesh_with};
 use reyes_trace::{Ray, Tracer};
 
 /// The hyperboloid's point and outward normal at `(u, v)`, written from the definition:
@@ -251,26 +251,13 @@ fn a_horizontal_segment_sweeps_a_flat_ring() {
 /// hole of radius 1/4 of (u, v) about (1/2, 1/2), a world radius of 1/2 about the z axis:
 /// the nine-point circle, four exact quarter arcs.
 fn holed_square(z: f32) -> Shape {
-    Shape::NuPatch {
-        nu: 2,
-        uorder: 2,
-        uknot: vec![0.0, 0.0, 1.0, 1.0],
-        umin: 0.0,
-        umax: 1.0,
-        nv: 2,
-        vorder: 2,
-        vknot: vec![0.0, 0.0, 1.0, 1.0],
-        vmin: 0.0,
-        vmax: 1.0,
-        points: vec![
-            [-1.0, -1.0, z, 1.0],
-            [1.0, -1.0, z, 1.0],
-            [-1.0, 1.0, z, 1.0],
-            [1.0, 1.0, z, 1.0],
-        ],
-        trim: vec![reyes_scene::TrimLoop::circle(0.5, 0.5, 0.25)],
-        trim_outside: false,
+    let corners =
+        vec![[-1.0, -1.0, z, 1.0], [1.0, -1.0, z, 1.0], [-1.0, 1.0, z, 1.0], [1.0, 1.0, z, 1.0]];
+    let mut square = nurbs_ruled(2, 2, vec![0.0, 0.0, 1.0, 1.0], corners);
+    if let Shape::NuPatch { trim, .. } = &mut square {
+        *trim = vec![reyes_scene::TrimLoop::circle(0.5, 0.5, 0.25)];
     }
+    square
 }
 
 #[test]
