@@ -68,10 +68,19 @@ impl Machine {
         };
         let builtin = found.is_none();
         let (text, shown, dir) = match &found {
-            Some(path) => match std::fs::read_to_string(path) {
-                Ok(text) => {
-                    let dir = path.parent().map(PathBuf::from).unwrap_or_default();
-                    (text, path.display().to_string(), vec![dir])
+            // Bytes that are not UTF-8 (a Latin-1 comment) read as U+FFFD, as the compiler
+            // reads an #include; `#include` looks in the shader's folder, then along the
+            // shader search path.
+            Some(path) => match std::fs::read(path) {
+                Ok(bytes) => {
+                    let text = String::from_utf8_lossy(&bytes).into_owned();
+                    let mut dirs = vec![path.parent().map(PathBuf::from).unwrap_or_default()];
+                    for d in self.frame_options.search.dirs(Kind::Shader) {
+                        if !dirs.contains(&d) {
+                            dirs.push(d);
+                        }
+                    }
+                    (text, path.display().to_string(), dirs)
                 }
                 Err(e) => {
                     return Err(RibError::Shader {

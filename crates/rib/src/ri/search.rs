@@ -83,6 +83,12 @@ impl SearchPaths {
         self.paths[kind as usize] = Some(path);
     }
 
+    /// The directories of the path of `kind` (not `@`), in order; none when no path is set.
+    pub(crate) fn dirs(&self, kind: Kind) -> Vec<PathBuf> {
+        let entries = self.paths[kind as usize].iter().flatten();
+        entries.filter_map(|e| if let Entry::Dir(d) = e { Some(d.clone()) } else { None }).collect()
+    }
+
     /// The path of `kind`, if one is set.
     #[cfg(test)]
     pub(crate) fn get(&self, kind: Kind) -> Option<&[Entry]> {

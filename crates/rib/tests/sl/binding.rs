@@ -106,6 +106,25 @@ fn shaders_are_found_along_the_shader_search_path() {
     assert_eq!(pixel(&f, SIZE / 2, SIZE / 2), [0.0, 1.0, 0.0, 1.0]);
 }
 
+/// Real shaders: a Latin-1 comment (not UTF-8) reads, and an `#include` is found in the
+/// shader's folder or along the shader search path.
+#[test]
+fn latin1_comments_read_and_includes_follow_the_search_path() {
+    let files = Files::new(&[]);
+    let (lib, inc) = (files.0.path().join("lib"), files.0.path().join("inc"));
+    std::fs::create_dir(&lib).unwrap();
+    std::fs::create_dir(&inc).unwrap();
+    std::fs::write(inc.join("green.h"), "#define GREEN color(0, 1, 0)\n").unwrap();
+    let mut source = b"/* (c) 1999 Andr\xe9 */\n#include \"green.h\"\n".to_vec();
+    source.extend_from_slice(b"surface lat() { Oi = 1; Ci = GREEN; }\n");
+    std::fs::write(lib.join("lat.sl"), source).unwrap();
+    let body = rib("Surface \"lat\"", PATCH);
+    let loaded =
+        files.load(&format!("Option \"searchpath\" \"shader\" [\"lib:inc:&\"]\n{body}")).unwrap();
+    let f = render(&loaded.frames[0].scene);
+    assert_eq!(pixel(&f, SIZE / 2, SIZE / 2), [0.0, 1.0, 0.0, 1.0]);
+}
+
 #[test]
 fn one_source_is_compiled_once_per_load() {
     let files = Files::new(&[("flat", "surface flat(float k = 1) { Oi = 1; Ci = k; }")]);
