@@ -53,7 +53,7 @@ fn spec(i: usize, nu: usize, nv: usize, roughness: f32) -> f32 {
     let vv = e.map(|x| x / len);
     let h = [vv[0], vv[1], vv[2] - 1.0];
     let hl = (h[0] * h[0] + h[1] * h[1] + h[2] * h[2]).sqrt();
-    (-h[2] / hl).max(0.0).powf(1.0 / roughness)
+    (-h[2] / hl).max(0.0).powf(8.0 / roughness)
 }
 
 #[test]
