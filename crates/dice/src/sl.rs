@@ -225,6 +225,10 @@ pub(crate) struct GridInput<'g> {
     pub t: &'g [f32],
     /// `Cs` per vertex and `Os`.
     pub cs: &'g [Vec3],
+    /// The colour multiplying the material's colour per vertex (mesh vertex colours; white
+    /// otherwise): what the native material takes where no surface shader runs. (`Cs` is
+    /// the material colour times it.)
+    pub tint: &'g [Vec3],
     pub os: Vec3,
 }
 
@@ -319,7 +323,7 @@ impl SlSetup {
                 for k in 0..n {
                     let p_world = self.camera_to_world.transform_point3(grid.p[k]);
                     let n_world = Mat3::from_mat4(self.camera_to_world) * grid.n[k];
-                    let (c, t) = self.native.shade(p_world, n_world, grid.cs[k]);
+                    let (c, t) = self.native.shade(p_world, n_world, grid.tint[k]);
                     ci.push(Vec3::from(c));
                     oi.push(Vec3::ONE - Vec3::from(t));
                 }

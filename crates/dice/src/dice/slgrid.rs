@@ -70,6 +70,7 @@ impl Emitter<'_> {
             s: &s,
             t: &t,
             cs: &cs,
+            tint: &cs,
             os: Vec3::ONE,
         };
         let (moved, normals) = match sl.displace(&grid, &mut self.sl_counts) {
@@ -127,7 +128,8 @@ impl Emitter<'_> {
         let (s, t) = texture_coordinates(open, &u, &v, [du, dv]);
         let p: Vec<Vec3> = opens.iter().map(|o| o.p_shaded).collect();
         let n: Vec<Vec3> = opens.iter().map(|o| (w2c * o.n_world).normalize_or_zero()).collect();
-        let cs: Vec<Vec3> = opens.iter().map(|o| material.0 * o.tint).collect();
+        let tint: Vec<Vec3> = opens.iter().map(|o| o.tint).collect();
+        let cs: Vec<Vec3> = tint.iter().map(|&t| material.0 * t).collect();
         let grid = GridInput {
             nu: nu + 1,
             nv: nv + 1,
@@ -141,6 +143,7 @@ impl Emitter<'_> {
             s: &s,
             t: &t,
             cs: &cs,
+            tint: &tint,
             os: material.1,
         };
         match sl.shade(&grid, &mut self.sl_counts) {

@@ -37,6 +37,33 @@ fn fog_blends_toward_its_background_by_the_length_of_i() {
     }
 }
 
+/// A native surface under a shading-language atmosphere: the atmosphere sees the native
+/// shading as it is without one. An atmosphere that passes Ci and Oi on unchanged leaves the
+/// picture identical to no atmosphere at all, for a coloured matte (Cs is the material
+/// colour, and the native material must not take it a second time).
+#[test]
+fn an_atmosphere_over_a_native_surface_sees_its_shading_unchanged() {
+    let files = Files::new(&[("still", "volume still() { Ci = Ci; Oi = Oi; }")]);
+    let body = "LightSource \"ambientlight\" 1 \"intensity\" [0.3]\n\
+                LightSource \"distantlight\" 2 \"from\" [0 0 0] \"to\" [0.3 -0.2 1]\n\
+                Color [0.6 0.7 0.8]\nSurface \"matte\"\nSphere 1.5 -1.5 1.5 360\nWorldEnd\n";
+    let plain = format!("{}WorldBegin\nTranslate 0 0 4\n{body}", ortho(SIZE, W));
+    let fogged = plain.replace("Translate 0 0 4\n", "Translate 0 0 4\nAtmosphere \"still\"\n");
+    let (a, b) = (render(&files.scene(&plain)), render(&files.scene(&fogged)));
+    let mut lit = 0;
+    for y in 0..SIZE {
+        for x in 0..SIZE {
+            let (p, q) = (pixel(&a, x, y), pixel(&b, x, y));
+            for k in 0..4 {
+                // The same shading, once per vertex on either path: equal to rounding.
+                assert!((p[k] - q[k]).abs() <= 1e-6, "({x}, {y}): {p:?} vs {q:?}");
+            }
+            lit += usize::from(p[3] == 1.0 && p[0] > 0.1);
+        }
+    }
+    assert!(lit > 100, "the sphere covers the middle of the picture: {lit} lit pixels");
+}
+
 #[test]
 fn the_background_imager_fills_what_the_scene_leaves_uncovered() {
     let files = Files::new(&[("white", WHITE)]);
