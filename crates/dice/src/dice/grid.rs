@@ -147,12 +147,20 @@ impl Grid {
                 *s = [q[0] - p[0], q[1] - p[1], q[2] - p[2]];
             }
         }
+        let trans = corners.map(|c| self.trans[c]);
+        let mut flags = m.flags;
+        // A shader's opacity: opaque where all four corners are (hider and CSG then treat the
+        // micropolygon as they treat a native opaque one: it ends a sample's composite, sets
+        // the depth and may occlude).
+        if self.labels.shaded_opacity && trans.iter().all(|t| *t == [0.0; 3]) {
+            flags |= reyes_hider::flags::OPAQUE;
+        }
         Micropolygon {
             v: from,
             speed,
             color: corners.map(|c| self.color[c]),
-            trans: corners.map(|c| self.trans[c]),
-            flags: m.flags,
+            trans,
+            flags,
             csg_tree: self.labels.csg_tree,
             csg_node: self.labels.csg_node,
             glass_opacity: self.labels.glass_opacity,

@@ -67,6 +67,10 @@ pub(crate) struct Labels {
     pub csg_node: u16,
     /// Appendix A `glasshackopacity` (0 unless `GLASS`).
     pub glass_opacity: f32,
+    /// The opacity is a shader's (shading language): not known until the grid is shaded, so
+    /// `OPAQUE` is left off the object and set per micropolygon whose four corners came out
+    /// of the shader fully opaque ([`super::grid::Grid::build`]).
+    pub shaded_opacity: bool,
 }
 
 /// Per-object setup: shading (under the object's light set, seen by `viewer`, with the object
@@ -96,7 +100,7 @@ pub(crate) fn object_context(
         glass_opacity = a;
     }
     let (csg_tree, csg_node) = csg.unwrap_or((0, 0));
-    let labels = Labels { flags, csg_tree, csg_node, glass_opacity };
+    let labels = Labels { flags, csg_tree, csg_node, glass_opacity, shaded_opacity: false };
     ObjectContext {
         normal_to_world: open.normal_to_world(),
         shader,
@@ -115,7 +119,8 @@ pub(crate) fn object_context(
 /// shutter open, on `ctx` (with the instruction budget `budget`, default
 /// `reyes_scene::sl::exec::DEFAULT_BUDGET`), and returns how far its displacement may move a
 /// point (0 without one). The machine then shades the grids: no vertex hook, and the opacity
-/// is the shader's, so the object is not taken as opaque.
+/// is the shader's, so the object is not taken as opaque; its micropolygons are, one by one,
+/// where the shader leaves them fully opaque.
 pub(crate) fn attach_sl(
     ctx: &mut ObjectContext<'_>,
     scene: &reyes_scene::Scene,
@@ -131,6 +136,7 @@ pub(crate) fn attach_sl(
     let Some(sl) = &ctx.sl else { return 0.0 };
     ctx.hook = None;
     ctx.labels.flags &= !flags::OPAQUE;
+    ctx.labels.shaded_opacity = true;
     if sl.shaders.displacement.is_some() { sl.shaders.displacement_bound } else { 0.0 }
 }
 

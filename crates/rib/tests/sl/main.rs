@@ -10,6 +10,7 @@
 mod binding;
 mod grid;
 mod lights;
+mod opacity;
 mod volume;
 
 use reyes_film::Film;
