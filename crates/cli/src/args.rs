@@ -85,6 +85,9 @@ pub(crate) struct Args {
     /// bucket).
     #[arg(long, value_name = "SECS", default_value = "5", value_parser = progress::parse_every)]
     pub progress_every: Duration,
+    /// Shading-language instructions per shader and grid (default 50,000,000); beyond: exit 1.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
+    pub shader_max_ops: Option<u64>,
 }
 
 /// `reyes-render merge TILE... -o OUT`.

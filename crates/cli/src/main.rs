@@ -160,14 +160,15 @@ fn merge_main(args: impl Iterator<Item = OsString>) -> Result<(), Exit> {
 /// to its file), stopping between frames when a signal came.
 fn render_main() -> Result<(), Exit> {
     let args: Args = parse(std::env::args_os(), true, "--help")?;
-    let (seed, samples, crop, z_infinite) = (args.seed, args.samples, args.crop, args.z_infinite);
+    let (seed, samples, crop) = (args.seed, args.samples, args.crop);
+    let (z_infinite, shader_max_ops) = (args.z_infinite, args.shader_max_ops);
     let request = Request {
         scene: args.scene.clone(),
         output: args.output.clone(),
         strict: args.strict,
         allow_run_program: args.allow_run_program,
         frames: args.frames.clone(),
-        overrides: Overrides { seed, samples, crop, z_infinite },
+        overrides: Overrides { seed, samples, crop, z_infinite, shader_max_ops },
         tile: args.tile,
         checkpoint: args.checkpoint.clone(),
     };

@@ -47,6 +47,31 @@ fn a_runaway_loop_stops_the_render_with_one_line_and_no_output() {
     assert!(!out.exists(), "output written");
 }
 
+/// `--shader-max-ops` sets the budget: a shader of a few thousand instructions a grid
+/// renders with the default budget and stops the render under a budget of 1,000.
+#[test]
+fn shader_max_ops_sets_the_instruction_budget() {
+    let dir = tempfile::tempdir().unwrap();
+    let rib = scene(
+        dir.path(),
+        "count",
+        "surface count() { float x = 0, k; for (k = 0; k < 200; k += 1) { x += 1; } Ci = x / 200; }",
+    );
+    let out = dir.path().join("out.png");
+    let (rib, path) = (rib.to_str().unwrap(), out.to_str().unwrap());
+    let o = render(&["-q", rib, "-o", path]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    std::fs::remove_file(&out).unwrap();
+    let o = render(&["-q", rib, "-o", path, "--shader-max-ops", "1000"]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains("shader \"count\"") && err.contains("instruction budget"), "{err}");
+    assert!(!out.exists(), "output written");
+    let o = render(&["-q", rib, "-o", path, "--shader-max-ops", "0"]);
+    assert_eq!(o.status.code(), Some(2), "a budget of 0 is refused: {}", stderr(&o));
+}
+
 #[test]
 fn a_shader_that_does_not_compile_stops_the_load_at_its_line() {
     let dir = tempfile::tempdir().unwrap();

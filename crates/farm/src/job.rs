@@ -38,6 +38,9 @@ pub struct Overrides {
     pub crop: Option<[f32; 4]>,
     /// Write +inf depth where nothing is visible.
     pub z_infinite: bool,
+    /// Shading-language instructions one shader may run on one grid before the render stops
+    /// (None: [`reyes_scene::sl::exec::DEFAULT_BUDGET`]; docs/shading.md).
+    pub shader_max_ops: Option<u64>,
 }
 
 impl Overrides {
@@ -396,7 +399,7 @@ impl<'a> FrameJob<'a> {
             on_result: checkpoint.map(|_| &save as &reyes_render::OnResult),
             keep_buckets: self.request.tile.is_some(),
             shade_every_vertex: false,
-            shader_budget: None,
+            shader_budget: self.request.overrides.shader_max_ops,
         };
         let started = Instant::now();
         let rendered = reyes_render::render(&self.frame.scene, &opts);
@@ -493,7 +496,13 @@ mod tests {
     fn overrides_apply_and_are_validated_again() {
         let scene = crate::test_scene();
         let crop = Some([0.0, 0.5, 0.0, 1.0]);
-        let o = Overrides { seed: Some(9), samples: Some((3, 3)), crop, z_infinite: true };
+        let o = Overrides {
+            seed: Some(9),
+            samples: Some((3, 3)),
+            crop,
+            z_infinite: true,
+            ..Overrides::default()
+        };
         let s = o.apply(scene.clone(), Path::new("t.ron")).expect("valid");
         assert_eq!((s.hider.seed, s.hider.pixel_samples, s.image.crop), (9, (3, 3), crop));
         assert!(matches!(s.outputs.zbackground, reyes_scene::ZBackground::Infinite));
