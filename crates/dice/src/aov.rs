@@ -8,12 +8,16 @@ use reyes_scene::{AovSource, Scene};
 
 /// The per-vertex AOV values of a scene, `stride()` floats per vertex:
 /// `[N camera x y z, P camera x y z, s, t, object id, material id]`, then for each light set
-/// of `groups` its premultiplied `[ambient rgb, diffuse rgb, specular rgb]`.
+/// of `groups` its premultiplied `[ambient rgb, diffuse rgb, specular rgb]`, then each of
+/// `outputs`' shader output variables.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct VertexAovs {
     /// The light sets whose shading components are stored (`None`: every light and the unlit
     /// terms), in the order the scene's AOVs first name them.
     pub groups: Vec<Option<Vec<u32>>>,
+    /// The shader output variables stored, each once, with their floats (1 or 3), in the
+    /// order the scene's AOVs first name them.
+    pub outputs: Vec<(String, usize)>,
 }
 
 impl VertexAovs {
@@ -50,12 +54,31 @@ impl VertexAovs {
                 groups.push(set);
             }
         }
-        Some(VertexAovs { groups })
+        let mut outputs: Vec<(String, usize)> = Vec::new();
+        for aov in o.aovs.iter().filter(|a| a.source == AovSource::Output) {
+            let name = aov.variable.clone().unwrap_or_default();
+            if !outputs.iter().any(|(n, _)| *n == name) {
+                outputs.push((name, aov.channels().len()));
+            }
+        }
+        Some(VertexAovs { groups, outputs })
     }
 
     /// Floats per vertex.
     pub fn stride(&self) -> usize {
-        Self::BASE + 9 * self.groups.len()
+        Self::BASE + 9 * self.groups.len() + self.outputs.iter().map(|(_, w)| w).sum::<usize>()
+    }
+
+    /// Offset and floats of the shader output variable `name`, if it is stored.
+    pub fn output(&self, name: &str) -> Option<(usize, usize)> {
+        let mut at = Self::BASE + 9 * self.groups.len();
+        for (n, w) in &self.outputs {
+            if n == name {
+                return Some((at, *w));
+            }
+            at += w;
+        }
+        None
     }
 
     /// Offset of the component `source` (`Ambient`, `Diffuse` or `Specular`) of light set

@@ -32,6 +32,8 @@ use crate::shade::Shader;
 type Carry = fn(&Mat, [f32; 3]) -> [f32; 3];
 /// Per vertex: colours and transmittances (or positions and normals).
 type PerVertex<T> = (Vec<T>, Vec<T>);
+/// A shaded grid: colours and transmittances, and the output variables' values.
+type Shaded = (PerVertex<[f32; 3]>, Vec<Vec<f32>>);
 
 /// A glam matrix (column vectors) as the shading language's (row vectors, row by row).
 fn sl(m: &Mat4) -> Mat {
@@ -293,14 +295,19 @@ impl SlSetup {
     }
 
     /// Run the surface shader (and the atmosphere) over `grid`: premultiplied colours and
-    /// transmittances per vertex, non-finite values zeroed and counted in `counts`.
+    /// transmittances per vertex, non-finite values zeroed and counted in `counts`; and the
+    /// output variables `outputs` (name, floats: 1 or 3), each `n * floats` values vertex by
+    /// vertex, as the atmosphere leaves them if it has the output parameter, else the
+    /// surface, else 0.
     pub(crate) fn shade(
         &self,
         grid: &GridInput<'_>,
         counts: &mut SlCounts,
-    ) -> Result<PerVertex<[f32; 3]>, String> {
+        outputs: &[(String, usize)],
+    ) -> Result<Shaded, String> {
         let n = grid.nu * grid.nv;
         let named = |e: ExecError| format!("object \"{}\": {e}", self.object);
+        let mut outs: Vec<Vec<f32>> = outputs.iter().map(|(_, w)| vec![0.0; n * w]).collect();
         let (mut ci, mut oi) = match &self.shaders.surface {
             Some(surface) => {
                 let mut lights = GridLights {
@@ -314,6 +321,7 @@ impl SlSetup {
                 let stats = g.run().map_err(named)?;
                 counts.instructions += stats.instructions;
                 counts.nonfinite += stats.nonfinite;
+                read_outputs(&g, surface, outputs, &mut outs);
                 (read_v3(&g, "Ci", n), read_v3(&g, "Oi", n))
             }
             // No surface shader (only a displacement or atmosphere): the native material.
@@ -337,6 +345,7 @@ impl SlSetup {
             let stats = g.run().map_err(named)?;
             counts.instructions += stats.instructions;
             counts.nonfinite += stats.nonfinite;
+            read_outputs(&g, atmosphere, outputs, &mut outs);
             ci = read_v3(&g, "Ci", n);
             oi = read_v3(&g, "Oi", n);
         }
@@ -348,7 +357,13 @@ impl SlSetup {
         };
         let color: Vec<[f32; 3]> = ci.into_iter().map(&mut finite).collect();
         let trans: Vec<[f32; 3]> = oi.into_iter().map(|o| finite(o).map(|x| 1.0 - x)).collect();
-        Ok((color, trans))
+        for x in outs.iter_mut().flatten() {
+            if !x.is_finite() {
+                counts.nonfinite += 1;
+                *x = 0.0;
+            }
+        }
+        Ok(((color, trans), outs))
     }
 
     /// Run the displacement shader over `grid`: the displaced camera-space positions and
@@ -375,6 +390,27 @@ impl SlSetup {
             nn[k] = nn[k].try_normalize().unwrap_or(grid.n[k]);
         }
         Ok(Some((p, nn)))
+    }
+}
+
+/// Copies the output parameters of `instance` among `outputs` from its run `g` into `outs`
+/// (a float's one value, a triple's three, per vertex).
+fn read_outputs(
+    g: &GridContext<'_>,
+    instance: &ShaderInstance,
+    outputs: &[(String, usize)],
+    outs: &mut [Vec<f32>],
+) {
+    for ((name, w), out) in outputs.iter().zip(outs.iter_mut()) {
+        let Some(value) = instance.output(name).and(g.param(name)) else { continue };
+        let num = value.num();
+        for (i, lane) in out.chunks_exact_mut(*w).enumerate() {
+            if *w == 1 {
+                lane[0] = num.f(i);
+            } else {
+                lane.copy_from_slice(&num.v3(i));
+            }
+        }
     }
 }
 

@@ -63,16 +63,22 @@ impl AovSetup {
                         .expect("VertexAovs stores every component an AOV names");
                     AovValue::Shaded { offset }
                 }
+                AovSource::Output => {
+                    let name = aov.variable.as_deref().unwrap_or_default();
+                    let (offset, len) =
+                        vertex.output(name).expect("VertexAovs stores every output an AOV names");
+                    front(offset, len, true)
+                }
             };
             let len = value.len();
-            debug_assert_eq!(len, aov.source.channels().len());
+            debug_assert_eq!(len, aov.channels().len());
             let bg = if aov.source == AovSource::Z { o.zbackground.value() } else { 0.0 };
             background.extend(std::iter::repeat_n(bg, len));
             values.push(value);
             channels.push(AovChannels { start, len, filter: aov.filter_or_default() });
             layers.push(AovLayer {
                 name: aov.layer_name(),
-                channels: aov.source.channels().to_vec(),
+                channels: aov.channels().to_vec(),
                 start,
                 integer: aov.source.is_id(),
                 pixel_type: aov.pixel_type.unwrap_or(o.pixel_type),

@@ -73,6 +73,19 @@ fn every_rule_reports_one_line_at_its_field() {
             "light_groups: [(name: \"k\", lights: []), (name: \"k\", lights: [])]",
             "outputs.light_groups[1].name: the group \"k\" is defined twice",
         ),
+        ("aovs: [(source: Output)]", "outputs.aovs[0].variable: Output needs the variable's name"),
+        (
+            "aovs: [(source: Output, variable: Some(\"a b\"))]",
+            "outputs.aovs[0].variable: must be a shading-language identifier, got \"a b\"",
+        ),
+        (
+            "aovs: [(source: N, variable: Some(\"glow\"))]",
+            "outputs.aovs[0].variable: only source Output names a variable",
+        ),
+        (
+            "aovs: [(source: N, variable_type: Some(Color))]",
+            "outputs.aovs[0].variable_type: only source Output has a type",
+        ),
         ("zbackground: Finite(-1.0)", "outputs.zbackground: must be > 0, got -1"),
         ("png: (exposure: 40.0)", "outputs.png.exposure: must be in [-32, 32] stops, got 40"),
         (

@@ -54,9 +54,10 @@ impl Emitter<'_> {
     ) {
         if let Some(sl) = &object.sl {
             let material = (object.shader.color(), object.shader.opacity());
-            self.sl_shade(sl, camera, material, open, patch, (nu, nv), opens);
-            // AOVs: the geometric ones as the native path writes them; the shading
-            // components are 0 (a shader's output variables are not AOVs yet).
+            let layout = object.aov.as_ref().map(|(a, _)| &**a);
+            self.sl_shade(sl, camera, material, open, patch, (nu, nv), opens, layout);
+            // AOVs: the geometric ones as the native path writes them, the output variables
+            // as the shaders leave them; the shading components are 0.
             let stride = self.grid.aov_stride;
             self.grid.aov.resize(opens.len() * stride, 0.0);
             if let Some((_, ids)) = &object.aov {
@@ -157,6 +158,8 @@ impl Emitter<'_> {
                         values.extend_from_slice(&t.to_array());
                     }
                 }
+                // No shader, so no output variables: 0.
+                values.resize(stride, 0.0);
                 g.aov[vertex * stride..(vertex + 1) * stride].copy_from_slice(&values);
             }
         }

@@ -7,6 +7,7 @@ use glam::{Mat3, Vec3};
 
 use super::Emitter;
 use super::shading::Open;
+use crate::aov::VertexAovs;
 use crate::camera::CameraSetup;
 use crate::displace::Displaced;
 use crate::motion::Pose;
@@ -111,7 +112,8 @@ impl Emitter<'_> {
     }
 
     /// Shade the whole grid with the surface (and atmosphere) shaders of `sl`, at shutter
-    /// open (`open`); `opens` holds each vertex's surface point.
+    /// open (`open`); `opens` holds each vertex's surface point. With `aovs`, the shaders'
+    /// output variables the scene writes go to the grid's AOV values.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn sl_shade(
         &mut self,
@@ -122,6 +124,7 @@ impl Emitter<'_> {
         patch: &Patch,
         (nu, nv): (usize, usize),
         opens: &[Open],
+        aovs: Option<&VertexAovs>,
     ) {
         let w2c = Mat3::from_mat4(camera.world_to_camera());
         let (u, v, du, dv) = parameters(patch, (nu, nv));
@@ -146,11 +149,24 @@ impl Emitter<'_> {
             tint: &tint,
             os: material.1,
         };
-        match sl.shade(&grid, &mut self.sl_counts) {
-            Ok((color, trans)) => {
+        let outputs = aovs.map_or(&[][..], |a| &a.outputs[..]);
+        match sl.shade(&grid, &mut self.sl_counts, outputs) {
+            Ok(((color, trans), values)) => {
                 self.grid.color = color;
                 self.grid.trans = trans;
                 self.shaded += opens.len() as u64;
+                if let Some(a) = aovs {
+                    // Each output variable at its offset of every vertex's AOV values.
+                    let stride = self.grid.aov_stride;
+                    self.grid.aov.resize(opens.len() * stride, 0.0);
+                    for ((name, w), v) in a.outputs.iter().zip(&values) {
+                        let Some((at, _)) = a.output(name) else { continue };
+                        for (k, lane) in v.chunks_exact(*w).enumerate() {
+                            self.grid.aov[k * stride + at..k * stride + at + w]
+                                .copy_from_slice(lane);
+                        }
+                    }
+                }
             }
             Err(e) => {
                 self.sl_error.get_or_insert(e);

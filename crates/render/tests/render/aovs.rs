@@ -288,7 +288,9 @@ fn the_shading_components_add_up_to_the_beauty() {
 
 #[test]
 fn asking_for_aovs_leaves_the_beauty_unchanged_for_any_thread_count() {
-    let with = components_scene();
+    let mut with = components_scene();
+    // A shader output variable too (no object has a shader: a layer of zeros).
+    with.outputs.aovs.push(reyes_scene::Aov::output("glow", None));
     let mut without = with.clone();
     without.outputs = Default::default();
     let plain = rendered(&without, 1);

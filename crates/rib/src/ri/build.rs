@@ -342,7 +342,7 @@ impl FrameBuild {
             max_grid_size: o.max_grid_size.unwrap_or(Hider::default().max_grid_size),
             ..Hider::default()
         };
-        let scene = Scene {
+        let mut scene = Scene {
             image: Image { width: o.width, height: o.height, crop: o.crop },
             camera,
             hider,
@@ -358,6 +358,15 @@ impl FrameBuild {
                 ..std::mem::take(&mut self.shaders)
             },
         };
+        for name in scene.resolve_output_types() {
+            warnings.push(Warning {
+                at: self.at.clone(),
+                message: format!(
+                    "Display: no surface or atmosphere shader of the frame has an output \
+                     variable \"{name}\" of a type an image holds: its layer is 0"
+                ),
+            });
+        }
         let displays = self.options.displays.clone();
         match reyes_scene::validate(scene) {
             Ok(scene) => Ok((scene, displays)),

@@ -4,7 +4,7 @@
 //! Invariant: options never change inside the world block, where the Specification freezes
 //! them (there they are ignored with a warning, an error under `--strict`); every value is checked where the model needs it checked first (sizes, counts, names).
 
-use reyes_scene::{Aov, AovFilter, AovSource, FilterKind, HiderMethod};
+use reyes_scene::{Aov, AovFilter, AovSource, FilterKind, HiderMethod, VariableType};
 
 use super::frame::Machine;
 use super::search::Kind;
@@ -147,7 +147,8 @@ impl Machine {
                     None => (false, name),
                 };
                 let mode = r.string(2).unwrap_or_default();
-                if let (true, Some(source)) = (extra, aov_source(mode)) {
+                let source = aov_source(mode).map(|s| (s, None)).or_else(|| output_variable(mode));
+                if let (true, Some((source, variable))) = (extra, source) {
                     // An output variable: a layer of the main output (docs/outputs.md).
                     let filter = r.param("filter").and_then(|p| p.strings()).and_then(|f| match f
                         .first()
@@ -159,7 +160,11 @@ impl Machine {
                         Some("nearest") => Some(AovFilter::Nearest),
                         _ => None,
                     });
-                    o.aovs.push(Aov { filter, ..Aov::new(source) });
+                    let aov = match variable {
+                        Some((name, ty)) => Aov::output(&name, ty),
+                        None => Aov::new(source),
+                    };
+                    o.aovs.push(Aov { filter, ..aov });
                     return Ok(());
                 }
                 let d = Display {
@@ -250,6 +255,33 @@ impl Machine {
         }
         Ok(())
     }
+}
+
+/// The beauty's modes: an extra `Display` of one of these writes the image itself.
+const IMAGE_MODES: &[&str] = &["rgb", "rgba", "rgbz", "rgbaz", "a", "az", "r", "g", "b"];
+
+/// An output variable's name and declared type.
+type Variable = (String, Option<VariableType>);
+
+/// A shader output variable a `Display` mode names (not one of [`aov_source`]'s, nor an
+/// image mode): its name, and its type if the mode declares one (`"varying color glow"`).
+fn output_variable(mode: &str) -> Option<(AovSource, Option<Variable>)> {
+    let words: Vec<&str> = mode.split_whitespace().collect();
+    let name = *words.last()?;
+    let ident = name.chars().next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+        && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+    if !ident || IMAGE_MODES.contains(&name) {
+        return None;
+    }
+    let ty = words.iter().rev().skip(1).find_map(|w| match *w {
+        "float" => Some(VariableType::Float),
+        "color" => Some(VariableType::Color),
+        "point" => Some(VariableType::Point),
+        "vector" => Some(VariableType::Vector),
+        "normal" => Some(VariableType::Normal),
+        _ => None,
+    });
+    Some((AovSource::Output, Some((name.to_string(), ty))))
 }
 
 /// The AOV a `Display` mode names: RenderMan's variable names (`"N"`, `"P"`, `"Ci"`, `"Oi"`,

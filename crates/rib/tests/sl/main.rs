@@ -11,6 +11,7 @@ mod binding;
 mod grid;
 mod lights;
 mod opacity;
+mod outputs;
 mod volume;
 
 use reyes_film::Film;

@@ -70,6 +70,40 @@ pub struct Aov {
     /// `light_groups`); `None`: every light.
     #[serde(default)]
     pub light_group: Option<String>,
+    /// For `Output`: the shader output variable written (an `output varying` parameter of the
+    /// objects' surface or atmosphere shaders; 0 where an object's shaders have none).
+    #[serde(default)]
+    pub variable: Option<String>,
+    /// For `Output`: the variable's type, which decides the layer's channels (`None`: the
+    /// type the scene's shaders declare, else `Float`).
+    #[serde(default)]
+    pub variable_type: Option<VariableType>,
+}
+
+/// The type of a shader output variable written as an AOV.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum VariableType {
+    /// One channel, Y.
+    Float,
+    /// R, G, B.
+    Color,
+    /// X, Y, Z (camera space).
+    Point,
+    /// X, Y, Z (camera space).
+    Vector,
+    /// X, Y, Z (camera space).
+    Normal,
+}
+
+impl VariableType {
+    /// The channel names within the layer.
+    pub fn channels(self) -> &'static [&'static str] {
+        match self {
+            VariableType::Float => &["Y"],
+            VariableType::Color => &["R", "G", "B"],
+            _ => &["X", "Y", "Z"],
+        }
+    }
 }
 
 impl Aov {
@@ -82,13 +116,33 @@ impl Aov {
             pixel_type: None,
             compression: None,
             light_group: None,
+            variable: None,
+            variable_type: None,
         }
     }
 
-    /// The layer name: `name`, else the source's name with `_GROUP` for a light group.
+    /// An AOV of the shader output variable `name`, of type `ty` (`None`: as the shaders
+    /// declare it).
+    pub fn output(name: &str, ty: Option<VariableType>) -> Aov {
+        Aov { variable: Some(name.to_string()), variable_type: ty, ..Aov::new(AovSource::Output) }
+    }
+
+    /// The channel names within the layer.
+    pub fn channels(&self) -> &'static [&'static str] {
+        match self.source {
+            AovSource::Output => self.variable_type.unwrap_or(VariableType::Float).channels(),
+            s => s.channels(),
+        }
+    }
+
+    /// The layer name: `name`, else the source's name with `_GROUP` for a light group (an
+    /// output variable's: the variable's name).
     pub fn layer_name(&self) -> String {
         match (&self.name, &self.light_group) {
             (Some(n), _) => n.clone(),
+            (None, _) if self.source == AovSource::Output => {
+                self.variable.clone().unwrap_or_else(|| "output".to_string())
+            }
             (None, Some(g)) => format!("{}_{g}", self.source.name()),
             (None, None) => self.source.name().to_string(),
         }
@@ -133,11 +187,14 @@ pub enum AovSource {
     Diffuse,
     /// The specular term (`__specular`): R, G, B.
     Specular,
+    /// A shader's output variable (`Aov::variable`), interpolated across micropolygons as N
+    /// and P are: the channels of its type (`Aov::variable_type`).
+    Output,
 }
 
 impl AovSource {
     /// Every source, in the order docs/outputs.md lists them.
-    pub const ALL: [AovSource; 13] = [
+    pub const ALL: [AovSource; 14] = [
         AovSource::Ci,
         AovSource::Oi,
         AovSource::Z,
@@ -151,6 +208,7 @@ impl AovSource {
         AovSource::Ambient,
         AovSource::Diffuse,
         AovSource::Specular,
+        AovSource::Output,
     ];
 
     /// The conventional name (the layer name by default).
@@ -169,6 +227,7 @@ impl AovSource {
             AovSource::Ambient => "__ambient",
             AovSource::Diffuse => "__diffuse",
             AovSource::Specular => "__specular",
+            AovSource::Output => "output",
         }
     }
 
@@ -185,6 +244,7 @@ impl AovSource {
             AovSource::S | AovSource::T => &["Y"],
             AovSource::DPdtime => &["X", "Y"],
             AovSource::ObjectId | AovSource::MaterialId => &["id"],
+            AovSource::Output => &["Y"],
         }
     }
 

@@ -31,6 +31,12 @@ impl ShaderInstance {
     pub fn name(&self) -> &str {
         &self.shader.name
     }
+
+    /// The type of the shader's `output` parameter `name`, if it has one.
+    pub fn output(&self, name: &str) -> Option<reyes_sl::Type> {
+        let p = self.shader.param(name)?;
+        matches!(p.kind, reyes_sl::ir::VarKind::Param { output: true, .. }).then_some(p.ty)
+    }
 }
 
 /// A value given on the geometry for a shader parameter (a primitive variable): one value for
@@ -95,5 +101,51 @@ impl SceneShaders {
     /// True if the scene has no shading-language light or imager.
     pub fn is_empty(&self) -> bool {
         self.lights.is_empty() && self.imager.is_none()
+    }
+}
+
+impl ObjectShaders {
+    /// The shader run on the surface's grids that has an `output` parameter `name` (the
+    /// atmosphere's, which runs last, before the surface's), with the parameter's type.
+    pub fn output(&self, name: &str) -> Option<(&ShaderInstance, reyes_sl::Type)> {
+        [&self.atmosphere, &self.surface]
+            .into_iter()
+            .flatten()
+            .find_map(|i| Some((i, i.output(name)?)))
+    }
+}
+
+impl super::Scene {
+    /// Fills in the type of every `Output` AOV that has none from the first object whose
+    /// shaders declare the variable (a float, colour, point, vector or normal, not an array);
+    /// `Float` if none does. Returns the variables no shader of the scene writes, and those
+    /// whose type no AOV can hold, for a warning.
+    pub fn resolve_output_types(&mut self) -> Vec<String> {
+        use super::{AovSource, VariableType};
+        use reyes_sl::BaseType as B;
+        let mut unwritten = Vec::new();
+        for i in 0..self.outputs.aovs.len() {
+            let aov = &self.outputs.aovs[i];
+            let (AovSource::Output, Some(name)) = (aov.source, aov.variable.clone()) else {
+                continue;
+            };
+            let found = self.objects.iter().find_map(|o| o.shaders.as_ref()?.output(&name));
+            let ty = found.and_then(|(_, t)| match (t.base, t.array) {
+                (B::Float, None) => Some(VariableType::Float),
+                (B::Color, None) => Some(VariableType::Color),
+                (B::Point, None) => Some(VariableType::Point),
+                (B::Vector, None) => Some(VariableType::Vector),
+                (B::Normal, None) => Some(VariableType::Normal),
+                _ => None,
+            });
+            if ty.is_none() {
+                unwritten.push(name);
+            }
+            let aov = &mut self.outputs.aovs[i];
+            if aov.variable_type.is_none() {
+                aov.variable_type = Some(ty.unwrap_or(VariableType::Float));
+            }
+        }
+        unwritten
     }
 }

@@ -4,7 +4,7 @@
 //! Invariant: reports at `outputs.<field>` paths, as the source map spells them.
 
 use super::primitives::{Check, Interval, UNIT, each, fail, finite, within};
-use crate::model::{AovFilter, HiderMethod, Outputs, PixelType, Scene, ZBackground};
+use crate::model::{AovFilter, AovSource, HiderMethod, Outputs, PixelType, Scene, ZBackground};
 
 /// A layer or group name: non-empty ASCII letters, digits and `_`, not starting with a digit,
 /// so `NAME.CHANNEL` is unambiguous in an EXR.
@@ -75,6 +75,24 @@ pub(super) fn outputs(o: &Outputs, scene: &Scene) -> Check {
                 format!("{at}.{field}"),
                 format!("the layer {name:?} is written twice: give one a different name"),
             );
+        }
+        match (aov.source == AovSource::Output, &aov.variable) {
+            (true, None) => {
+                return fail(format!("{at}.variable"), "Output needs the variable's name");
+            }
+            (true, Some(v)) if !name_ok(v) => {
+                return fail(
+                    format!("{at}.variable"),
+                    format!("must be a shading-language identifier, got {v:?}"),
+                );
+            }
+            (false, Some(_)) => {
+                return fail(format!("{at}.variable"), "only source Output names a variable");
+            }
+            _ if aov.source != AovSource::Output && aov.variable_type.is_some() => {
+                return fail(format!("{at}.variable_type"), "only source Output has a type");
+            }
+            _ => {}
         }
         if aov.source.is_id() {
             if aov.filter == Some(AovFilter::Filter) {
