@@ -99,6 +99,9 @@ pub(crate) struct Emitter<'b> {
     cell_flags: u32,
     /// What the shading-language machine counted, and its first error.
     pub sl_counts: crate::sl::SlCounts,
+    /// The displacement shader's parameters after its run on the current grid, for the
+    /// surface's `displacement()` calls.
+    pub sl_displaced: Vec<(String, reyes_scene::sl::exec::Value)>,
     pub sl_error: Option<String>,
 }
 
@@ -147,6 +150,7 @@ impl<'b> Emitter<'b> {
             trim_boundary: 0,
             cell_flags: 0,
             sl_counts: Default::default(),
+            sl_displaced: Vec::new(),
             sl_error: None,
         }
     }

@@ -117,6 +117,7 @@ mod roots;
 mod shade;
 mod shapes;
 mod sl;
+mod slinfo;
 mod split;
 mod spot;
 mod trim;

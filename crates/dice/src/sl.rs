@@ -59,6 +59,8 @@ pub(crate) struct SlSetup {
     orthographic: bool,
     /// The instruction budget per grid and shader run.
     pub budget: u64,
+    /// `attribute()`, `option()`, `rendererinfo()`, `time`, `dtime`.
+    info: crate::slinfo::Info,
 }
 
 /// What shading grids on the machine counted.
@@ -120,6 +122,7 @@ impl SlSetup {
             lights,
             orthographic: camera.projection() == reyes_scene::Projection::Orthographic,
             budget,
+            info: crate::slinfo::Info::of(scene, object),
         })
     }
 
@@ -273,7 +276,20 @@ impl SlSetup {
         let (dpdu, dpdv) = differences(grid.p, grid.nu, grid.nv, grid.du, grid.dv);
         g.set_varying("dPdu", &flat(&dpdu))?;
         g.set_varying("dPdv", &flat(&dpdv))?;
-        g.set_uniform("time", &[0.0])?;
+        self.info.bind(&mut g);
+        // Message passing: the other shaders' parameters as the scene gives them (their
+        // values after a run, where one ran before on this grid, replace them later).
+        for (function, other) in [
+            ("surface", &self.shaders.surface),
+            ("displacement", &self.shaders.displacement),
+            ("atmosphere", &self.shaders.atmosphere),
+        ] {
+            if let Some(other) = other.as_ref().filter(|o| !std::ptr::eq(*o, instance)) {
+                for (name, v) in self.bind(other).1 {
+                    g.set_message(function, &name, v);
+                }
+            }
+        }
         if instance.shader.kind == reyes_scene::sl::ShaderKind::Surface {
             g.set_varying("Cs", &flat(grid.cs))?;
             g.set_uniform("Os", &grid.os.to_array())?;
@@ -304,10 +320,12 @@ impl SlSetup {
         grid: &GridInput<'_>,
         counts: &mut SlCounts,
         outputs: &[(String, usize)],
+        displaced: &[(String, Value)],
     ) -> Result<Shaded, String> {
         let n = grid.nu * grid.nv;
         let named = |e: ExecError| format!("object \"{}\": {e}", self.object);
         let mut outs: Vec<Vec<f32>> = outputs.iter().map(|(_, w)| vec![0.0; n * w]).collect();
+        let mut surfaced = Vec::new();
         let (mut ci, mut oi) = match &self.shaders.surface {
             Some(surface) => {
                 let mut lights = GridLights {
@@ -317,11 +335,16 @@ impl SlSetup {
                     shaders: ShaderLights { lights: self.lights.clone() },
                 };
                 let mut g = self.context(surface, grid).map_err(named)?;
+                for (name, v) in displaced {
+                    g.set_message("displacement", name, v.clone());
+                }
                 g.set_lights(&mut lights);
                 let stats = g.run().map_err(named)?;
                 counts.instructions += stats.instructions;
                 counts.nonfinite += stats.nonfinite;
+                print(&g);
                 read_outputs(&g, surface, outputs, &mut outs);
+                surfaced = after_run(&g, surface);
                 (read_v3(&g, "Ci", n), read_v3(&g, "Oi", n))
             }
             // No surface shader (only a displacement or atmosphere): the native material.
@@ -340,11 +363,15 @@ impl SlSetup {
         };
         if let Some(atmosphere) = &self.shaders.atmosphere {
             let mut g = self.context(atmosphere, grid).map_err(named)?;
+            for (name, v) in &surfaced {
+                g.set_message("surface", name, v.clone());
+            }
             g.set_varying("Ci", &flat(&ci)).map_err(named)?;
             g.set_varying("Oi", &flat(&oi)).map_err(named)?;
             let stats = g.run().map_err(named)?;
             counts.instructions += stats.instructions;
             counts.nonfinite += stats.nonfinite;
+            print(&g);
             read_outputs(&g, atmosphere, outputs, &mut outs);
             ci = read_v3(&g, "Ci", n);
             oi = read_v3(&g, "Oi", n);
@@ -372,6 +399,7 @@ impl SlSetup {
         &self,
         grid: &GridInput<'_>,
         counts: &mut SlCounts,
+        params: &mut Vec<(String, Value)>,
     ) -> Result<Option<PerVertex<Vec3>>, String> {
         let Some(d) = &self.shaders.displacement else { return Ok(None) };
         let named = |e: ExecError| format!("object \"{}\": {e}", self.object);
@@ -380,6 +408,8 @@ impl SlSetup {
         let stats = g.run().map_err(named)?;
         counts.instructions += stats.instructions;
         counts.nonfinite += stats.nonfinite;
+        print(&g);
+        *params = after_run(&g, d);
         let mut p = read_v3(&g, "P", n);
         let mut nn = read_v3(&g, "N", n);
         for k in 0..n {
@@ -390,6 +420,31 @@ impl SlSetup {
             nn[k] = nn[k].try_normalize().unwrap_or(grid.n[k]);
         }
         Ok(Some((p, nn)))
+    }
+}
+
+/// Every parameter of `instance` as its run `g` left it (for message passing).
+fn after_run(g: &GridContext<'_>, instance: &ShaderInstance) -> Vec<(String, Value)> {
+    let sh = &instance.shader;
+    sh.params
+        .iter()
+        .filter_map(|&i| {
+            let name = &sh.vars[i].name;
+            Some((name.clone(), g.param(name)?.clone()))
+        })
+        .collect()
+}
+
+/// Writes the lines the shader's `printf` calls made during run `g` to standard error, as
+/// RenderMan renderers do (grids shade in parallel, so lines of different grids may
+/// interleave in any order).
+fn print(g: &GridContext<'_>) {
+    if g.printed().is_empty() {
+        return;
+    }
+    let mut err = std::io::stderr().lock();
+    for line in g.printed() {
+        let _ = std::io::Write::write_all(&mut err, line.as_bytes());
     }
 }
 

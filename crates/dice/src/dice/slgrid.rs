@@ -46,6 +46,7 @@ impl Emitter<'_> {
         patch: &Patch,
         (nu, nv): (usize, usize),
     ) -> Option<Displaced> {
+        self.sl_displaced.clear();
         sl.shaders.displacement.as_ref()?;
         let open = poses.first()?;
         let o2c = *open.moment.object_to_camera()?;
@@ -74,7 +75,8 @@ impl Emitter<'_> {
             tint: &cs,
             os: Vec3::ONE,
         };
-        let (moved, normals) = match sl.displace(&grid, &mut self.sl_counts) {
+        let (moved, normals) = match sl.displace(&grid, &mut self.sl_counts, &mut self.sl_displaced)
+        {
             Ok(Some(r)) => r,
             Ok(None) => return None,
             Err(e) => {
@@ -150,7 +152,8 @@ impl Emitter<'_> {
             os: material.1,
         };
         let outputs = aovs.map_or(&[][..], |a| &a.outputs[..]);
-        match sl.shade(&grid, &mut self.sl_counts, outputs) {
+        let displaced = std::mem::take(&mut self.sl_displaced);
+        match sl.shade(&grid, &mut self.sl_counts, outputs, &displaced) {
             Ok(((color, trans), values)) => {
                 self.grid.color = color;
                 self.grid.trans = trans;

@@ -459,6 +459,17 @@ impl Machine {
                 self.attributes.matte = r.int(0).unwrap_or(0) != 0;
                 Ok(())
             }
+            K::ShadingInterpolation => {
+                self.attributes.smooth = match r.string(0).unwrap_or_default() {
+                    "constant" => false,
+                    "smooth" => true,
+                    other => {
+                        let why = format!("type must be \"constant\" or \"smooth\", got {other:?}");
+                        return Err(r.error(why));
+                    }
+                };
+                Ok(())
+            }
             K::Attribute => self.attribute(&r),
             K::TrimCurve => self.trim_curve(&r),
             K::LightSource => self.light_source(&r),

@@ -233,6 +233,9 @@ impl Machine {
         object.motion_factor = a.motion_factor;
         object.focus_factor = a.focus_factor;
         object.one_sided = a.sides == 1;
+        if a.smooth {
+            object.interpolation = reyes_scene::Interpolation::Gouraud;
+        }
         object.shaders = sl;
         if let Some(area) = &a.area_light {
             self.emitter(r, area, &mut object, &to_world);

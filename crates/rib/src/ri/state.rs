@@ -154,6 +154,8 @@ pub(crate) struct Attributes {
     pub motion_factor: Option<f32>,
     pub focus_factor: Option<f32>,
     pub sides: i32,
+    /// `ShadingInterpolation "smooth"`: colours interpolated across micropolygons.
+    pub smooth: bool,
     pub reverse_orientation: bool,
     pub matte: bool,
     pub name: Option<String>,
@@ -192,6 +194,7 @@ impl Default for Attributes {
             motion_factor: None,
             focus_factor: None,
             sides: 2,
+            smooth: false,
             reverse_orientation: false,
             matte: false,
             name: None,

@@ -53,6 +53,7 @@ fn cases() -> Vec<(&'static str, String)> {
         ("negative focus factor", w("GeometricApproximation \"focusfactor\" -0.5")),
         ("motion factor not a number", w("GeometricApproximation \"motionfactor\" \"fast\"")),
         ("three sides", w("Sides 3")),
+        ("shading interpolation", w("ShadingInterpolation \"phong\"")),
         ("unknown orientation", w("Orientation \"sideways\"")),
         ("skew of parallel vectors", w("Skew 30 1 0 0 2 0 0")),
         ("perspective of 200 degrees", w("Perspective 200")),

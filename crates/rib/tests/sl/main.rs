@@ -10,6 +10,7 @@
 mod binding;
 mod grid;
 mod lights;
+mod messages;
 mod opacity;
 mod outputs;
 mod volume;
