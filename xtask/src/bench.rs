@@ -72,7 +72,12 @@ pub fn run(root: &Path, args: &[String]) -> Result<(), String> {
     let mut scenes: Vec<PathBuf> = std::fs::read_dir(root.join("scenes/bench"))
         .map_err(|e| format!("scenes/bench: {e}"))?
         .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|e| e == "ron"))
+        // RON scenes, and RIB scenes without a RON twin of the same name (`deep.rib` is
+        // `deep.ron`'s; `shaded.rib` has none: its shaders need RIB).
+        .filter(|p| {
+            p.extension().is_some_and(|e| e == "ron")
+                || (p.extension().is_some_and(|e| e == "rib") && !p.with_extension("ron").exists())
+        })
         .filter(|p| {
             only.is_empty() || only.iter().any(|o| p.file_stem().is_some_and(|s| s == o.as_str()))
         })
