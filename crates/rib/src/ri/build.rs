@@ -75,6 +75,8 @@ pub(super) struct FrameBuild {
     leaves: usize,
     /// Shading-language lights (the imager comes from the options).
     pub shaders: reyes_scene::SceneShaders,
+    /// The light slots of shading-language light shaders.
+    pub shader_light_slots: Vec<usize>,
 }
 
 impl FrameBuild {
@@ -98,6 +100,7 @@ impl FrameBuild {
             solid_stack: Vec::new(),
             leaves: 0,
             shaders: Default::default(),
+            shader_light_slots: Vec::new(),
         }
     }
 

@@ -29,6 +29,9 @@ use crate::{Class, Location, Param, RibError, Warning};
 /// Surface shaders the renderer has natively (`shaders.rs`).
 pub(super) const NATIVE_SURFACES: &[&str] =
     &["defaultsurface", "metal", "shinymetal", "constant", "matte", "plastic", "paintedplastic"];
+/// Native surfaces that read lights, and whose built-in shading-language copy needs no
+/// texture: under a light shader they run as that copy.
+const LIT_SURFACES: &[&str] = &["matte", "metal", "plastic"];
 /// Displacement shaders the renderer has natively.
 pub(super) const NATIVE_DISPLACEMENTS: &[&str] = &["bumpy"];
 /// Light shaders the renderer has natively.
@@ -295,7 +298,15 @@ impl Machine {
         let native =
             |s: &SurfaceShader, list: &[&str]| s.name.as_deref().is_none_or(|n| list.contains(&n));
         let mut o = reyes_scene::ObjectShaders::default();
-        if !native(&a.surface, NATIVE_SURFACES) {
+        // Under a light shader, the standard surfaces that read lights run as the built-in
+        // shading-language copies, so that the light shader lights them (the native models
+        // see only the native lights).
+        let under_shader = self
+            .build
+            .as_ref()
+            .is_some_and(|b| b.shader_light_slots.iter().any(|s| a.lights_on.contains(s)));
+        let lit = a.surface.name.as_deref().is_some_and(|n| LIT_SURFACES.contains(&n));
+        if !native(&a.surface, NATIVE_SURFACES) || (under_shader && lit) {
             o.surface = self.sl_instance(&a.surface, ShaderKind::Surface, "Surface", to_world)?;
         }
         if !native(&a.displacement, NATIVE_DISPLACEMENTS) {
@@ -388,6 +399,7 @@ impl Machine {
         let placeholder = reyes_scene::Light::Ambient { color: [0.0; 3], intensity: 0.0 };
         let slot = b.add_light(handle.to_string(), placeholder, r.at.clone());
         b.shaders.lights.push((index, instance));
+        b.shader_light_slots.push(slot);
         if !self.attributes.lights_on.contains(&slot) {
             self.attributes.lights_on.push(slot);
         }

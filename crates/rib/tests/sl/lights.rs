@@ -193,3 +193,37 @@ fn shaded_pictures_do_not_depend_on_the_thread_count() {
     assert_eq!(one, bits(2));
     assert_eq!(one, bits(3));
 }
+
+/// A light shader lights the standard surfaces too: under `sun` (a distant light written as a
+/// shader), `matte` and `plastic` run as their built-in shading-language copies and the
+/// picture equals, to float rounding, the one under the same light given as the standard
+/// `distantlight` (shaded natively: the same formulas in another order). Before, the native
+/// models saw only native lights, and the light shader left them black.
+#[test]
+fn a_light_shader_lights_the_standard_surfaces() {
+    let files = Files::new(&[("sun", SUN)]);
+    for surface in ["Surface \"matte\"", "Surface \"plastic\" \"roughness\" [0.2]"] {
+        let body =
+            format!("Color [0.8 0.6 0.4]\n{surface}\nTranslate 0 0 4\nSphere 1.2 -1.2 1.2 360");
+        let light = "\"intensity\" [0.9] \"from\" [0 0 0] \"to\" [0.4 -0.5 1]";
+        let scene = |l: &str| {
+            let rib = format!(
+                "{}WorldBegin\nLightSource \"{l}\" 1 {light}\n{body}\nWorldEnd\n",
+                ortho(SIZE, W)
+            );
+            render(&files.scene(&rib))
+        };
+        let (by_shader, native) = (scene("sun"), scene("distantlight"));
+        let mut lit = 0;
+        for y in 0..SIZE {
+            for x in 0..SIZE {
+                let (p, q) = (pixel(&by_shader, x, y), pixel(&native, x, y));
+                for k in 0..4 {
+                    assert!((p[k] - q[k]).abs() <= 2e-6, "{surface} ({x}, {y}): {p:?} vs {q:?}");
+                }
+                lit += usize::from(p[0] > 0.2);
+            }
+        }
+        assert!(lit > 50, "{surface}: the sphere is lit: {lit} pixels");
+    }
+}
