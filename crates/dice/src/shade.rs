@@ -114,6 +114,9 @@ impl Shader {
             Material::DefaultSurface { color, opacity, ka, kd } => {
                 (Model::Headlight { ka, kd }, color, opacity)
             }
+            // Shaded on the grid machine (object.shaders): the native model only gives its
+            // Cs and Os.
+            Material::Shader { color, opacity, .. } => (Model::Constant, color, opacity),
         };
         let mut ambient = Vec3::ZERO;
         let mut direct = Vec::new();

@@ -324,6 +324,7 @@ pub(crate) fn member(
                 raytrace: scene.raytrace,
                 outputs: Default::default(),
                 texture_cache: scene.texture_cache,
+                shader_path: scene.shader_path.clone(),
                 shaders: scene.shaders.clone(),
             };
             Ok((Member::Mesh(Box::new(Tracer::new(&alone))), bounds))

@@ -17,6 +17,7 @@ pub mod model;
 pub use reyes_sl as sl;
 pub mod patches;
 mod roll;
+mod rslfile;
 pub mod subdiv;
 mod syntax;
 mod validate;
@@ -71,7 +72,11 @@ pub fn parse_files(text: &str, file: &Path) -> Result<Scene, LoadError> {
         Err(meshfile::Failure::Io(e)) => return Err(LoadError::MeshIo(e)),
         Err(meshfile::Failure::Bad(e)) => return Err(e.into()),
     };
-    match validate(scene) {
+    match validate(scene).and_then(|mut scene| {
+        rslfile::resolve(&mut scene, file)
+            .map(|()| scene)
+            .map_err(|(path, message)| Issue { path, message })
+    }) {
         Ok(scene) => Ok(resolve_textures(scene, file)),
         Err(mut issue) => {
             // A fault of a mesh read from a file names the file.

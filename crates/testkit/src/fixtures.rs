@@ -56,6 +56,7 @@ pub fn scene(width: u32, height: u32, camera: Camera, objects: Vec<Object>) -> S
         raytrace: Default::default(),
         outputs: Default::default(),
         texture_cache: Default::default(),
+        shader_path: Vec::new(),
         shaders: Default::default(),
     }
 }

@@ -16,6 +16,7 @@ mod meshes;
 mod occlusion;
 mod pipeline;
 mod raytrace;
+mod rsl;
 mod sampling;
 mod shading;
 

@@ -355,6 +355,7 @@ impl FrameBuild {
             raytrace: Default::default(),
             outputs: reyes_scene::Outputs { aovs: o.aovs.clone(), ..Default::default() },
             texture_cache: Default::default(),
+            shader_path: Vec::new(),
             shaders: reyes_scene::SceneShaders {
                 imager: o.imager.clone(),
                 world_to_model: super::rsl::sl_matrix(&o.camera.at(f32::NEG_INFINITY)),
@@ -610,7 +611,8 @@ fn weld<'a>(objects: impl Iterator<Item = &'a Object>) -> (Shape, Material) {
         | Material::Matte { color, .. }
         | Material::Plastic { color, .. }
         | Material::Metal { color, .. }
-        | Material::DefaultSurface { color, .. } => color,
+        | Material::DefaultSurface { color, .. }
+        | Material::Shader { color, .. } => color,
     };
     let base = objects[0].material.clone();
     let one_color = objects.iter().all(|o| color_of(&o.material) == color_of(&base));
@@ -667,6 +669,9 @@ fn with_color(m: Material, color: [f32; 3]) -> Material {
         }
         Material::DefaultSurface { opacity, ka, kd, .. } => {
             Material::DefaultSurface { color, opacity, ka, kd }
+        }
+        Material::Shader { name, params, opacity, .. } => {
+            Material::Shader { name, params, color, opacity }
         }
     }
 }

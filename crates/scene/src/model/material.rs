@@ -91,6 +91,37 @@ pub enum Material {
         #[serde(default = "four_fifths")]
         kd: f32,
     },
+    /// A shading-language surface shader: `NAME.sl` found along the scene's `shader_path`
+    /// (or one of the built-in standard shaders, `@` on the path), compiled when the scene
+    /// loads, with its parameters' values by name (docs/scene-format.md, "Shaders").
+    Shader {
+        /// The shader's name (its file is `name.sl`).
+        name: String,
+        /// Parameter values by name; the others keep the shader's defaults.
+        #[serde(default)]
+        params: std::collections::BTreeMap<String, ShaderParam>,
+        /// The shader's `Cs`.
+        #[serde(default = "white")]
+        color: Rgb,
+        /// The shader's `Os`.
+        #[serde(default = "white")]
+        opacity: Rgb,
+    },
+}
+
+/// A shader parameter's value in RON: a number, a triple (colour, point, vector or normal),
+/// a string, or a list of numbers (an array, or a matrix's 16).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum ShaderParam {
+    /// A float (or a triple of equal components).
+    Float(f32),
+    /// A colour, point, vector or normal.
+    Triple((f32, f32, f32)),
+    /// A string.
+    Str(String),
+    /// A float array or a matrix.
+    List(Vec<f32>),
 }
 
 fn fifth() -> f32 {

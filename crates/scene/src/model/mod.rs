@@ -75,6 +75,10 @@ pub struct Scene {
     /// The texture cache's memory bound (docs/lookdev.md).
     #[serde(default)]
     pub texture_cache: TextureCache,
+    /// Folders searched for shading-language shaders (`NAME.sl`), relative to the scene
+    /// file's folder; `@` is the built-in standard shaders (the default when empty).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub shader_path: Vec<String>,
     /// Shading-language light shaders and imager (a RIB scene's; not in RON).
     #[serde(skip)]
     pub shaders: SceneShaders,

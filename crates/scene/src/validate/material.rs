@@ -43,5 +43,10 @@ pub(super) fn material(at: &str, m: &Material) -> Check {
             non_negative(&field("ka"), *ka)?;
             non_negative(&field("kd"), *kd)
         }
+        // The shader's parameters are checked against its declarations when it is compiled.
+        Material::Shader { color, opacity, .. } => {
+            unit_rgb(&field("color"), color)?;
+            unit_rgb(&field("opacity"), opacity)
+        }
     }
 }

@@ -77,6 +77,7 @@ fn the_full_example_parses_with_the_expected_values() {
         raytrace: reyes_scene::RayTrace::default(),
         outputs: Default::default(),
         texture_cache: Default::default(),
+        shader_path: Vec::new(),
         shaders: Default::default(),
     };
     assert_eq!(scene, expected);
