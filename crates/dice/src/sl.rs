@@ -293,6 +293,11 @@ impl SlSetup {
         if instance.shader.kind == reyes_scene::sl::ShaderKind::Surface {
             g.set_varying("Cs", &flat(grid.cs))?;
             g.set_uniform("Os", &grid.os.to_array())?;
+            // What a surface shader that leaves them alone outputs: black and opaque, as
+            // Aqsis and PRMan start them.
+            let n = grid.nu * grid.nv;
+            g.set_varying("Ci", &vec![0.0; 3 * n])?;
+            g.set_varying("Oi", &vec![1.0; 3 * n])?;
         }
         for (name, v) in params {
             g.set_param(&name, v)?;

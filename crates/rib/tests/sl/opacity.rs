@@ -59,3 +59,20 @@ fn a_half_transparent_shader_occludes_nothing() {
     let a = r.film.rgba()[centre as usize][3];
     assert!((a - 0.9375).abs() < 1e-5, "alpha {a}");
 }
+
+/// A surface shader that leaves `Oi` (or `Ci`) alone outputs opaque (black): the values
+/// Aqsis and PRMan start them at, so that shaders written for them (which often set only
+/// `Ci`) render opaque.
+#[test]
+fn a_shader_that_sets_no_opacity_is_opaque() {
+    let files = Files::new(&[
+        ("grey", "surface grey() { Ci = 0.5; }"),
+        ("nothing", "surface nothing() { }"),
+    ]);
+    for (name, want) in [("grey", 0.5), ("nothing", 0.0)] {
+        let r = run(&files, &spheres(&format!("Surface \"{name}\"")));
+        let centre = ((SIZE / 2) * SIZE + SIZE / 2) as usize;
+        assert_eq!(r.film.rgba()[centre], [want, want, want, 1.0], "{name}");
+        assert!(r.film.z()[centre] < 5.0, "{name}: opaque, so it has a depth");
+    }
+}

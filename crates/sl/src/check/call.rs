@@ -136,11 +136,22 @@ impl Checker<'_> {
             detail = detail.join(e.detail);
             out_args.push(e);
         }
-        // Output arguments are written with the call's detail.
+        // Output arguments are written with the call's detail; a message from another
+        // shader may differ from point to point, so it makes its variable varying unless
+        // the variable is declared uniform (`uniform float nonspec; lightsource(...)`).
+        let message = matches!(
+            name,
+            "atmosphere" | "displacement" | "lightsource" | "surface" | "incident" | "opposite"
+        );
         for (k, e) in out_args.iter().enumerate() {
             if sig.params.get(k).is_some_and(|p| p.output)
                 && let Some(id) = id_of(e)
             {
+                let detail = match self.vars[id].declared {
+                    Some(d) if message => d,
+                    None if message => Detail::Varying,
+                    _ => detail,
+                };
                 let probe =
                     Expr { kind: ExprKind::Float(0.0), ty: Type::FLOAT, detail, pos: e.pos };
                 self.assign_detail(id, &probe, e.pos)?;
