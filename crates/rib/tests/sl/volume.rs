@@ -118,3 +118,22 @@ fn the_ray_tracing_hider_refuses_shading_language_shaders_in_one_line() {
     assert_eq!(message.lines().count(), 1);
     assert!(message.contains("ray-tracing hider"), "{message}");
 }
+
+/// An imager's parameters given on the `Imager` line reach it (inline-declared or declared
+/// by the shader alone), as for the other shader types.
+#[test]
+fn an_imager_takes_its_parameters() {
+    let shader = "imager background(color bgcolor = 1, background = 1) {\n\
+                  Ci += (1 - alpha) * (bgcolor * background); Oi = 1; alpha = 1; }";
+    let files = Files::new(&[("background", shader), ("white", WHITE)]);
+    for decl in ["\"uniform color bgcolor\"", "\"bgcolor\""] {
+        let rib = format!(
+            "{}Imager \"background\" {decl} [0.2 0.3 0.5]\nWorldBegin\n\
+             Surface \"white\"\nPatch \"bilinear\" \"P\" [-2 -2 4  0 -2 4  -2 2 4  0 2 4]\n\
+             WorldEnd\n",
+            ortho(SIZE, W)
+        );
+        let f = render(&files.scene(&rib));
+        assert_eq!(pixel(&f, SIZE - 1, 0), [0.2, 0.3, 0.5, 1.0], "{decl}");
+    }
+}
