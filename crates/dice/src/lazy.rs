@@ -300,7 +300,8 @@ impl<'a> Dicer<'a> {
             let blur = motion_factor.is_some() || focus_factor.is_some();
             // Displacement: bounds grow by the most a point can move, in camera space.
             let displace = reach * motion.largest_scale();
-            let own = rate.is_some() || flatness.is_some() || blur || displace > 0.0;
+            let own =
+                rate.is_some() || flatness.is_some() || blur || displace > 0.0 || leaf.is_some();
             let splitter = own.then(|| {
                 dicer
                     .splitter
@@ -311,6 +312,7 @@ impl<'a> Dicer<'a> {
                         focus_factor.unwrap_or(hider.focus_factor),
                     )
                     .with_displacement(displace)
+                    .with_csg_depth(leaf.is_some())
             });
             let decide = splitter.as_ref().unwrap_or(&dicer.splitter);
             // Crack-free dicing needs boundary points the displacement would move apart.

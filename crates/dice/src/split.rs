@@ -180,6 +180,8 @@ pub(crate) struct Splitter {
     /// patch's motion and defocus blur in pixels (0: off).
     motion_factor: f32,
     focus_factor: f32,
+    /// A CSG operand's depth rule ([`Splitter::with_csg_depth`]).
+    csg_depth: bool,
 }
 
 /// The test grid of a patch: camera-space points, row `j` (v) by column `i` (u).
@@ -241,6 +243,7 @@ impl Splitter {
             displace: 0.0,
             motion_factor: 0.0,
             focus_factor: 0.0,
+            csg_depth: false,
         }
     }
 
@@ -322,7 +325,7 @@ impl Splitter {
     /// How far in raster pixels an edge's polyline may stray from the surface
     /// ([`edge`]): the flatness bound the grids are diced to, for a primitive of raster
     /// extent `extent` (see [`Splitter::with_flatness`]); half a micropolygon side with both
-    /// bounds off. Never below a thousandth of a pixel.
+    /// bounds off; a tenth for a CSG operand. Never below a thousandth of a pixel.
     pub fn edge_tolerance(&self, extent: f32) -> f32 {
         let mut tol = f32::INFINITY;
         if self.flatness > 0.0 {
@@ -334,6 +337,7 @@ impl Splitter {
         if !tol.is_finite() {
             tol = 0.5 * self.step;
         }
+        tol *= if self.csg_depth { flat::CSG_DEPTH_FRACTION } else { 1.0 };
         tol.max(1e-3)
     }
 

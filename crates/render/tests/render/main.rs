@@ -8,6 +8,7 @@ mod aovs;
 mod camera;
 mod cracks;
 mod csg;
+mod csg_coverage;
 mod filters;
 mod geometry;
 mod lens;
@@ -18,6 +19,7 @@ mod pipeline;
 mod raytrace;
 mod sampling;
 mod shading;
+mod silhouette;
 
 use reyes_scene::Scene;
 use reyes_testkit::golden;
