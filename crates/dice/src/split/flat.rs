@@ -5,7 +5,10 @@
 use glam::{Vec2, Vec3};
 use reyes_hider::LensSetup;
 
-use super::{GridFacts, MAX_SIDE, Patch, Splitter, TEST_N, TestGrid};
+use std::sync::Arc;
+
+use super::{GridFacts, MARGIN_FRACTION as MARGIN, MAX_SIDE, Patch, Splitter, TEST_N, TestGrid};
+use crate::csg::OperandBounds;
 
 impl Splitter {
     /// Micropolygons per side `(nu, nv)` that the flatness rule asks for over the test grids
@@ -64,7 +67,7 @@ impl Splitter {
             if n.is_finite() { n.ceil().clamp(1.0, MAX_SIDE) as u64 } else { MAX_SIDE as u64 }
         };
         let (mut nu, mut nv) = (need(bend_u), need(bend_v));
-        if self.csg_depth {
+        if self.csg_depth.as_ref().is_some_and(|c| c.near_another(facts)) {
             // The bend in space, as pixels at its depth, within a tenth of the tolerance.
             let tol = tol * f64::from(CSG_DEPTH_FRACTION);
             let k = self.camera.raster_scale().abs().max_element();
@@ -91,8 +94,38 @@ impl Splitter {
     /// the kind where a surface faces the eye, and at an operand's own silhouette its
     /// micropolygons, a pixel on screen, are many pixels long in depth, and their sag is
     /// too (the notch of `Difference(a, b)` was 0.2 of a pixel's coverage off).
-    pub fn with_csg_depth(&self, on: bool) -> Splitter {
-        Splitter { csg_depth: on, ..self.clone() }
+    ///
+    /// `operand`: the bounds of the scene's operands, and this object's tree and index; the
+    /// rule holds for the patches whose bound meets another operand's of the same tree (the
+    /// edges of every patch of the operand take the tighter tolerance).
+    pub fn with_csg_depth(&self, operand: Option<(Arc<OperandBounds>, u16, u32)>) -> Splitter {
+        let csg_depth = operand.map(|(bounds, tree, object)| CsgDepth { bounds, tree, object });
+        Splitter { csg_depth, ..self.clone() }
+    }
+}
+
+/// What [`Splitter::with_csg_depth`] needs to know.
+#[derive(Debug, Clone)]
+pub(crate) struct CsgDepth {
+    bounds: Arc<OperandBounds>,
+    tree: u16,
+    object: u32,
+}
+
+impl CsgDepth {
+    /// Whether the patch seen in `facts` may come near another operand of its tree: its test
+    /// points' camera-space bound, grown by a quarter of its extent (as the split decisions'
+    /// margin: test points do not bound a curved surface), meets that operand's bound.
+    fn near_another(&self, facts: &[GridFacts<'_>]) -> bool {
+        let (mut lo, mut hi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
+        for f in facts {
+            if !f.all_finite {
+                return true;
+            }
+            (lo, hi) = (lo.min(f.lo), hi.max(f.hi));
+        }
+        let grow = Vec3::splat(MARGIN * (hi - lo).max_element());
+        self.bounds.meet_another(self.tree, self.object, lo - grow, hi + grow)
     }
 }
 
