@@ -7,10 +7,12 @@
 //! [`LERP_DONE`] is set, `minz == maxz` is that exact depth.
 #![deny(missing_docs)]
 
+mod bilinear;
 mod resolve;
 mod tree;
 mod visible;
 
+pub use bilinear::bilinear_weights;
 pub use resolve::{Composite, MatteRule, Resolver, Trace, resolve_sample, resolve_sample_traced};
 pub use tree::{
     CsgExpr, CsgNode, CsgOp, CsgOrder, CsgTree, MAX_SLOTS, csg_resolve_surface, csg_resolve_tree,

@@ -8,7 +8,8 @@
 //! combined solid with the id of the slot above, so after the root only points labelled 0
 //! remain visible; the others keep a child id that is never extracted again.
 
-use crate::visible::{LERP_DONE, NIL, VisPoint, lerpz, sortfront};
+use crate::bilinear_weights;
+use crate::visible::{LERP_DONE, NIL, VisPoint, sortfront};
 
 /// Appendix A's CSG operators (`CSGDifferenceOp` 1, `CSGIntersectionOp` 2, `CSGUnionOp` 3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -306,7 +307,8 @@ fn resolve_node(points: &mut [VisPoint], n: &CsgNode, id: u16, list: &mut u32, l
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum CsgOrder {
     /// Every point of the tree is given its exact depth before resolution, so points of the
-    /// two operands are compared by true depth.
+    /// two operands are compared by true depth: the depth of the micropolygon's bilinear
+    /// surface at the sample ([`crate::bilinear_weights`]).
     #[default]
     Exact,
     /// Appendix A: compare by `minz`, which may still be a range minimum when the two points
@@ -336,16 +338,20 @@ pub fn resolve_tree_at_sample(
         return;
     };
     if order == CsgOrder::Exact {
+        // The depth of the micropolygon's bilinear surface at the sample, not Shepard's
+        // (`lerpz`, which is not planar-exact): where an operand is seen at a grazing angle a
+        // micropolygon a pixel wide spans many pixels in depth, and Shepard's error, a part of
+        // that span, decided which operand was in front along the notch of a difference
+        // (issue #36). Set even where Shepard's depth was taken to find the front.
         let mut i = list;
         while i != NIL {
             let p = &mut points[i as usize];
-            if p.flags & LERP_DONE == 0 {
-                let z = lerpz(&p.v);
-                *lerps += 1;
-                p.minz = z;
-                p.maxz = z;
-                p.flags |= LERP_DONE;
-            }
+            let w = bilinear_weights(&p.v);
+            let z = w[0] * p.v[0][2] + w[1] * p.v[1][2] + w[2] * p.v[2][2] + w[3] * p.v[3][2];
+            *lerps += 1;
+            p.minz = z;
+            p.maxz = z;
+            p.flags |= LERP_DONE;
             i = p.next;
         }
     }

@@ -5,8 +5,12 @@
 //! [`CsgSetup`], so slot ids always match their tree. n-ary unions and intersections fold
 //! left into binary nodes, as Appendix A's trees are binary.
 
+use glam::Vec3;
 use reyes_hider::{CsgExpr, CsgOp, CsgTree};
 use reyes_scene::{Csg, Scene};
+
+use crate::motion::{CameraMotion, ObjectMotion, ShutterTime};
+use crate::split::{MARGIN_FRACTION, Patch, Splitter};
 
 /// Trees and leaf labels for a scene.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -64,5 +68,50 @@ fn expr(c: &Csg, scene: &Scene) -> Option<CsgExpr> {
             Box::new(expr(a, scene)?),
             Box::new(expr(b, scene)?),
         )),
+    }
+}
+
+/// Camera-space bounds of every CSG operand over the shutter, for the dicer's depth rule
+/// ([`Splitter::with_csg_depth`]): `(tree, object, lo, hi)`.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub(crate) struct OperandBounds(Vec<(u16, u32, Vec3, Vec3)>);
+
+impl OperandBounds {
+    /// The bounds of the operands of `csg` in `scene`: the test points of every surface's
+    /// whole parameter range (and its control hull) at every breakpoint, grown by a quarter of
+    /// their extent, as the split decisions' margin; infinite where a point is not finite.
+    pub fn new(
+        scene: &Scene,
+        csg: &CsgSetup,
+        (camera, shutter): (&CameraMotion, &ShutterTime),
+        splitter: &Splitter,
+    ) -> std::sync::Arc<OperandBounds> {
+        let mut out = Vec::new();
+        for (i, object) in scene.objects.iter().enumerate() {
+            let Some((tree, _)) = csg.leaf.get(i).copied().flatten() else { continue };
+            let motion = ObjectMotion::new(object, camera, shutter, true);
+            let (mut lo, mut hi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
+            for surface in 0..motion.surface_count() {
+                for pose in &motion.poses(surface) {
+                    let grid = splitter.test_grid(pose, &Patch::root());
+                    let hull = splitter.hull_points(pose, &Patch::root()).unwrap_or_default();
+                    for p in grid.iter().flatten().chain(&hull) {
+                        (lo, hi) = (lo.min(*p), hi.max(*p));
+                    }
+                }
+            }
+            let grow = Vec3::splat(MARGIN_FRACTION * (hi - lo).max_element());
+            let finite = lo.is_finite() && hi.is_finite();
+            let (lo, hi) = if finite { (lo - grow, hi + grow) } else { (Vec3::MIN, Vec3::MAX) };
+            out.push((tree, i as u32, lo, hi));
+        }
+        std::sync::Arc::new(OperandBounds(out))
+    }
+
+    /// Whether the box `lo..hi` meets the bound of an operand of `tree` other than `object`.
+    pub fn meet_another(&self, tree: u16, object: u32, lo: Vec3, hi: Vec3) -> bool {
+        self.0
+            .iter()
+            .any(|&(t, o, a, b)| t == tree && o != object && lo.cmple(b).all() && a.cmple(hi).all())
     }
 }

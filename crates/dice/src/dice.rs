@@ -230,7 +230,38 @@ impl<'b> Emitter<'b> {
         let boundary = |b: usize, u: f32, v: f32, i: usize, j: usize| {
             patch.sides.as_ref().and_then(|s| s.boundary(b, (u, v), (i, j), (nu, nv)))
         };
+        // Crack-free grids of undisplaced surfaces put their inside vertices off the surface
+        // by the facets' expected gap at an outline (`straddle`); their sides are the edges'
+        // polylines, which straddle the curve on their own.
+        let fold = patch.sides.is_some() && displaced.is_none() && nu >= 2 && nv >= 2;
+        let perspective = camera.projection() == reyes_scene::Projection::Perspective;
+        let mut opened = Vec::new();
+        let (mut surf, mut moved, mut weights) = (Vec::new(), Vec::new(), Vec::new());
         for (b, pose) in poses.iter().enumerate() {
+            if fold {
+                surf.clear();
+                for j in 0..=nv {
+                    let v = Patch::at(patch.v, j, nv);
+                    for i in 0..=nu {
+                        let u = Patch::at(patch.u, i, nu);
+                        if b == 0 {
+                            opened.push(pose.surface.eval(u, v));
+                        } else {
+                            surf.push(pose.surface.position(u, v));
+                        }
+                    }
+                }
+                if b == 0 {
+                    surf.extend(opened.iter().map(|sp| sp.p));
+                }
+                for p in surf.iter_mut() {
+                    *p = pose.moment.world_and_camera(*p).1;
+                }
+                if b == 0 {
+                    sight_weights(&surf, nu, nv, perspective, &mut weights);
+                }
+                straddle(&surf, nu, nv, &weights, &mut moved);
+            }
             for j in 0..=nv {
                 let v = Patch::at(patch.v, j, nv);
                 for i in 0..=nu {
@@ -238,8 +269,11 @@ impl<'b> Emitter<'b> {
                     if b == 0 {
                         // Shutter open, where the vertex is shaded (REYES shades once, before
                         // motion): the surface point, displaced, and its normal.
-                        let mut sp = pose.surface.eval(u, v);
                         let vertex = j * (nu + 1) + i;
+                        let mut sp = match fold {
+                            true => opened[vertex],
+                            false => pose.surface.eval(u, v),
+                        };
                         // Crack-free dicing: a boundary vertex lies on its side's polyline,
                         // up to the edge tolerance off the surface; it is shaded (and its
                         // AOVs taken) at the surface point, so that rays it spawns leave from
@@ -260,6 +294,7 @@ impl<'b> Emitter<'b> {
                         let (p_world, p_shaded) = pose.moment.world_and_camera(sp.p);
                         let p_camera = match on_polyline {
                             Some(p) => pose.moment.world_and_camera(p).1,
+                            None if fold => moved[vertex],
                             None => p_shaded,
                         };
                         let n_world = object.normal_to_world * sp.n;
@@ -291,9 +326,14 @@ impl<'b> Emitter<'b> {
                             Some(d) => d.position(b, j * (nu + 1) + i),
                             None => None,
                         }
-                        .or_else(|| boundary(b, u, v, i, j))
-                        .unwrap_or_else(|| pose.surface.position(u, v));
-                        let p_camera = pose.moment.world_and_camera(p_object).1;
+                        .or_else(|| boundary(b, u, v, i, j));
+                        let p_camera = match (p_object, fold) {
+                            (Some(p), _) => pose.moment.world_and_camera(p).1,
+                            (None, true) => moved[j * (nu + 1) + i],
+                            (None, false) => {
+                                pose.moment.world_and_camera(pose.surface.position(u, v)).1
+                            }
+                        };
                         g.pos.push(project(p_camera));
                         g.cam.push(p_camera);
                     }
@@ -353,4 +393,65 @@ impl<'b> Emitter<'b> {
             self.shade(camera, object, hook, open, patch, (nu, nv), &opens);
         }
     }
+}
+
+/// `moved`: the grid's camera-space surface points `surf` (`(nu + 1) x (nv + 1)`, row by
+/// row), the inside ones moved along the surface's normal so that the flat micropolygons
+/// straddle the true surface instead of cutting inside it (issue #36). The second
+/// differences of the grid along u and v are `-k L^2` along the normal (`k` the normal
+/// curvature in that direction, `L` the micropolygon side), and a bilinear facet whose
+/// corners lie on the surface is on average `(k_u L_u^2 + k_v L_v^2) / 12` inside it: the
+/// error in depth where a micropolygon faces the eye, which decides which surface is in
+/// front where two cross (CSG). Where the surface folds away from the eye, the outline of
+/// its facets is that of the vertices nearest the fold: a fold at a random place in a cell
+/// has its nearest vertex at a mean squared distance `(L_u^2 + L_v^2) / 12` along the
+/// surface, which the curvature puts `k (L_u^2 + L_v^2) / 24` inside the true outline on
+/// average, half as much. So each inside vertex moves by `-n (n . (D_uu + D_vv)) w`, `n` the
+/// grid's normal there, with `w = (1 + |cos|) / 24`, `cos` between the normal and the line
+/// of sight: 1/12 facing the eye, 1/24 edge on. Outward on a convex surface, nothing on a
+/// plane or along a ruled surface's straight lines (a bend within rounding moves nothing, so
+/// flat grids are diced bit for bit as before). Boundary vertices stay (they are on the
+/// edges' polylines, which straddle the curve on their own). `weights`: [`sight_weights`].
+fn straddle(surf: &[Vec3], nu: usize, nv: usize, weights: &[f32], moved: &mut Vec<Vec3>) {
+    moved.clear();
+    moved.extend_from_slice(surf);
+    for j in 1..nv {
+        for i in 1..nu {
+            let (p, n) = (surf[j * (nu + 1) + i], grid_normal(surf, nu, i, j));
+            let bend = n.dot(laplacian(surf, nu, i, j));
+            // A plane's bend is rounding: leave its vertices bit for bit where they were.
+            let rounding = 32.0 * f32::EPSILON * p.abs().max_element();
+            let shift = n * (bend * weights[j * (nu + 1) + i]);
+            if bend.abs() > rounding && shift.is_finite() {
+                moved[j * (nu + 1) + i] = p - shift;
+            }
+        }
+    }
+}
+
+/// The weights `(1 + |cos|) / 24` of [`straddle`] for the inside vertices of `surf` (0 on the
+/// boundary), taken once, at shutter open, so that a grid moved rigidly over the shutter
+/// moves its vertices rigidly too.
+fn sight_weights(surf: &[Vec3], nu: usize, nv: usize, perspective: bool, w: &mut Vec<f32>) {
+    w.clear();
+    w.resize(surf.len(), 0.0);
+    for j in 1..nv {
+        for i in 1..nu {
+            let p = surf[j * (nu + 1) + i];
+            let sight = if perspective { p.normalize_or_zero() } else { Vec3::Z };
+            w[j * (nu + 1) + i] = (1.0 + grid_normal(surf, nu, i, j).dot(sight).abs()) / 24.0;
+        }
+    }
+}
+
+/// The unit normal of the grid `surf` at inside vertex `(i, j)`, from central differences.
+fn grid_normal(surf: &[Vec3], nu: usize, i: usize, j: usize) -> Vec3 {
+    let at = |i: usize, j: usize| surf[j * (nu + 1) + i];
+    (at(i + 1, j) - at(i - 1, j)).cross(at(i, j + 1) - at(i, j - 1)).normalize_or_zero()
+}
+
+/// `D_uu + D_vv` of the grid `surf` at inside vertex `(i, j)`.
+fn laplacian(surf: &[Vec3], nu: usize, i: usize, j: usize) -> Vec3 {
+    let at = |i: usize, j: usize| surf[j * (nu + 1) + i];
+    at(i - 1, j) + at(i + 1, j) + at(i, j - 1) + at(i, j + 1) - 4.0 * at(i, j)
 }

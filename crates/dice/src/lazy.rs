@@ -42,7 +42,7 @@ use reyes_scene::Scene;
 use crate::aov::VertexAovs;
 use crate::bucket::{BucketRange, Bucketer};
 use crate::camera::{self, CameraSetup};
-use crate::csg::CsgSetup;
+use crate::csg::{CsgSetup, OperandBounds};
 use crate::dice::{self, Emitter, Grid, ObjectContext};
 use crate::hook::DiceOptions;
 use crate::motion::{CameraMotion, ObjectMotion, Pose, ShutterTime};
@@ -243,6 +243,7 @@ impl<'a> Dicer<'a> {
             .with_blur_factors(hider.motion_factor, hider.focus_factor);
         let bucketer = Bucketer::new(frame, camera.lens(), camera.hither(), camera.yon());
         let csg = CsgSetup::new(scene);
+        let bounds = OperandBounds::new(scene, &csg, (&camera_motion, &shutter), &splitter);
         let rows = frame.buckets_y as usize;
         let aovs = VertexAovs::for_scene(scene).map(std::sync::Arc::new);
         let ids = if aovs.is_some() { crate::aov::object_ids(scene) } else { Vec::new() };
@@ -300,7 +301,8 @@ impl<'a> Dicer<'a> {
             let blur = motion_factor.is_some() || focus_factor.is_some();
             // Displacement: bounds grow by the most a point can move, in camera space.
             let displace = reach * motion.largest_scale();
-            let own = rate.is_some() || flatness.is_some() || blur || displace > 0.0;
+            let own =
+                rate.is_some() || flatness.is_some() || blur || displace > 0.0 || leaf.is_some();
             let splitter = own.then(|| {
                 dicer
                     .splitter
@@ -311,6 +313,7 @@ impl<'a> Dicer<'a> {
                         focus_factor.unwrap_or(hider.focus_factor),
                     )
                     .with_displacement(displace)
+                    .with_csg_depth(leaf.map(|(tree, _)| (bounds.clone(), tree, i as u32)))
             });
             let decide = splitter.as_ref().unwrap_or(&dicer.splitter);
             // Crack-free dicing needs boundary points the displacement would move apart.

@@ -41,7 +41,7 @@ const OFF_SCREEN_GROWTH: f32 = 2.0;
 /// Safety margin, as a fraction of the test points' extent. Between test points a curved
 /// surface bulges by at most its sagitta; a full circle sampled at 8 points bulges by about
 /// 10% of its diameter, so 25% covers every shape we dice with room for perspective.
-const MARGIN_FRACTION: f32 = 0.25;
+pub(crate) const MARGIN_FRACTION: f32 = 0.25;
 /// Extra safety margin in raster pixels (covers flat patches with a tiny extent).
 const MARGIN_PIXELS: f32 = 2.0;
 /// Most micropolygons along one side of a grid before clamping (keeps counts in range).
@@ -180,6 +180,8 @@ pub(crate) struct Splitter {
     /// patch's motion and defocus blur in pixels (0: off).
     motion_factor: f32,
     focus_factor: f32,
+    /// A CSG operand's depth rule ([`Splitter::with_csg_depth`]).
+    csg_depth: Option<flat::CsgDepth>,
 }
 
 /// The test grid of a patch: camera-space points, row `j` (v) by column `i` (u).
@@ -241,6 +243,7 @@ impl Splitter {
             displace: 0.0,
             motion_factor: 0.0,
             focus_factor: 0.0,
+            csg_depth: None,
         }
     }
 
@@ -322,7 +325,7 @@ impl Splitter {
     /// How far in raster pixels an edge's polyline may stray from the surface
     /// ([`edge`]): the flatness bound the grids are diced to, for a primitive of raster
     /// extent `extent` (see [`Splitter::with_flatness`]); half a micropolygon side with both
-    /// bounds off. Never below a thousandth of a pixel.
+    /// bounds off; a tenth for a CSG operand. Never below a thousandth of a pixel.
     pub fn edge_tolerance(&self, extent: f32) -> f32 {
         let mut tol = f32::INFINITY;
         if self.flatness > 0.0 {
@@ -334,6 +337,7 @@ impl Splitter {
         if !tol.is_finite() {
             tol = 0.5 * self.step;
         }
+        tol *= if self.csg_depth.is_some() { flat::CSG_DEPTH_FRACTION } else { 1.0 };
         tol.max(1e-3)
     }
 

@@ -48,8 +48,10 @@ const EDGE_TEST: usize = 5;
 /// Raster pixels by which a grid's boundary vertices are pushed out of the grid, so that
 /// two grids along a shared edge overlap by a sliver rather than leave one of rounding
 /// width (about 1e-4 pixel at raster coordinates of a thousand pixels, where `f32` steps
-/// by 6e-5).
-pub(crate) const OVERLAP: f32 = 1.0e-3;
+/// by 6e-5). An outline on a patch boundary moves out by as much, so it is kept below
+/// 0.0005 pixel (issue #36: at 1e-3 it was 5 standard errors of a 256-sample edge), four
+/// times that rounding.
+pub(crate) const OVERLAP: f32 = 4.0e-4;
 /// Raster length above which a piece of a subdivision surface's edge is also halved where its chord's point for a parameter
 /// slides along the curve from the curve's point for it (see `Piece::strays`); shorter pieces
 /// are judged by their distance from the chord alone (a paraboloid's apex, where the curve's
@@ -104,11 +106,16 @@ impl Edge {
         let mut per_pose: Vec<Vec<Vec3>> = ends.iter().map(|e| vec![e[0]]).collect();
         let first: Vec<Vec3> = ends.iter().map(|e| e[0]).collect();
         let last: Vec<Vec3> = ends.iter().map(|e| e[1]).collect();
-        let mut piece = Piece { splitter, poses, line, tol, t: &mut t, points: &mut per_pose };
+        let mut fits = Vec::new();
+        let mut piece =
+            Piece { splitter, poses, line, tol, t: &mut t, points: &mut per_pose, fits: &mut fits };
         piece.halve(range, &first, &last, 0);
         t.push(range[1]);
         for (p, e) in per_pose.iter_mut().zip(ends) {
             p.push(e[1]);
+        }
+        for (pose, points) in poses.iter().zip(&mut per_pose) {
+            straddle(pose, line, &t, points, &fits);
         }
         Edge { t, points: per_pose.concat() }
     }
@@ -170,6 +177,47 @@ struct Piece<'a, 'p> {
     tol: f32,
     t: &'a mut Vec<f32>,
     points: &'a mut Vec<Vec<Vec3>>,
+    /// Per piece, in order: within the tolerance of the curve (not left long for being off
+    /// screen or at the halving limit), so its sag may move its ends ([`straddle`]).
+    fits: &'a mut Vec<bool>,
+}
+
+/// Move an edge's inside vertices (`points`, on the curve at the parameters `t` of `line`)
+/// outward so that each chord straddles the curve instead of cutting inside it (issue #36).
+/// A chord whose ends lie on a curve of curvature `k` misses it by `k L^2 / 8` at its middle
+/// and by `k L^2 / 12`, two thirds of that, on average: every convex outline drawn by chords
+/// is that much inside the true one. Moved by two thirds of its sag, a chord is as much
+/// outside the curve near its ends as inside it near its middle, and covers the true area
+/// to second order. Each piece of the polyline gives a third of its sag (the part across its
+/// chord, measured at its middle parameter) to each of its inside ends, so that a chord
+/// between two moved vertices moves by two thirds of the sag when its neighbours bend alike.
+/// The edge's two ends are corners other edges share, and stay where they are. Pieces left
+/// long (off screen, or at the halving limit) move nothing. No vertex moves by more than
+/// two thirds of the tolerance, and no vertex is added: the grids are the same size.
+fn straddle(pose: &Pose<'_>, line: Line, t: &[f32], points: &mut [Vec3], fits: &[bool]) {
+    let n = t.len();
+    if n <= 2 || fits.len() + 1 != n {
+        return;
+    }
+    let sag: Vec<Vec3> = (0..n - 1)
+        .map(|k| {
+            if !fits[k] {
+                return Vec3::ZERO;
+            }
+            let (u, v) = line.uv(0.5 * (t[k] + t[k + 1]));
+            let (a, b, m) = (points[k], points[k + 1], pose.surface.position(u, v));
+            let s = m - 0.5 * (a + b);
+            let c = b - a;
+            let c2 = c.length_squared();
+            let across = if c2 > 0.0 { s - c * (s.dot(c) / c2) } else { Vec3::ZERO };
+            // A straight edge's sag is rounding: it moves nothing, bit for bit.
+            let rounding = 16.0 * f32::EPSILON * a.abs().max(b.abs()).max(m.abs()).max_element();
+            if across.is_finite() && across.length() > rounding { across } else { Vec3::ZERO }
+        })
+        .collect();
+    for k in 1..n - 1 {
+        points[k] += (sag[k - 1] + sag[k]) / 3.0;
+    }
 }
 
 impl Piece<'_, '_> {
@@ -178,10 +226,13 @@ impl Piece<'_, '_> {
     fn halve(&mut self, range: [f32; 2], a: &[Vec3], b: &[Vec3], level: u32) {
         let mid = 0.5 * (range[0] + range[1]);
         if level >= EDGE_LIMIT || mid <= range[0] || mid >= range[1] {
+            self.fits.push(false);
             return;
         }
-        if !self.strays(range, a, b) {
-            return;
+        match self.strays(range, a, b) {
+            Stray::Within => return self.fits.push(true),
+            Stray::Unseen => return self.fits.push(false),
+            Stray::Beyond => {}
         }
 
         let (u, v) = self.line.uv(mid);
@@ -194,11 +245,11 @@ impl Piece<'_, '_> {
         self.halve([mid, range[1]], &m, b, level + 1);
     }
 
-    /// True if the piece strays from its chord by more than `tol` in raster at one of its
+    /// Whether the piece strays from its chord by more than `tol` in raster at one of its
     /// `EDGE_TEST` points at some breakpoint (points not in front of the eye skipped), unless
     /// it is in a pinhole camera's view and its raster bound, grown by its own size, is off
     /// the screen at every breakpoint (it is never seen, so its shape does not matter).
-    fn strays(&self, range: [f32; 2], a: &[Vec3], b: &[Vec3]) -> bool {
+    fn strays(&self, range: [f32; 2], a: &[Vec3], b: &[Vec3]) -> Stray {
         let sp = self.splitter;
         let (mut lo, mut hi) = (Vec2::INFINITY, Vec2::NEG_INFINITY);
         let mut stray = 0.0_f32;
@@ -273,7 +324,7 @@ impl Piece<'_, '_> {
         // flatness bound (flat.rs), so a piece that strays more than it would leave the grids'
         // boundary coarser than their insides (a small sphere at 1/512 of its extent).
         if stray <= self.tol {
-            return false;
+            return Stray::Within;
         }
         if all_seen && sp.lens.is_none() {
             let grow = (hi - lo).max_element() + super::MARGIN_PIXELS;
@@ -282,11 +333,22 @@ impl Piece<'_, '_> {
                 || lo.x - grow > sp.screen_hi.x
                 || lo.y - grow > sp.screen_hi.y;
             if off {
-                return false;
+                return Stray::Unseen;
             }
         }
-        true
+        Stray::Beyond
     }
+}
+
+/// What [`Piece::strays`] found.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Stray {
+    /// Within the tolerance of the curve everywhere it was tested.
+    Within,
+    /// Beyond it, but never seen.
+    Unseen,
+    /// Beyond it: halve.
+    Beyond,
 }
 
 /// Distance from `p` to the segment `a b` (to `a` when the segment is a point).

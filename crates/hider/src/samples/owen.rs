@@ -168,6 +168,9 @@ pub struct JointPoint {
     /// correlated with the position digits: up to 2.9 times the error of a shuffled pairing
     /// at 256 samples).
     pub lens: [u32; 2],
+    /// `lens[1]` before its scramble ([`JointScramble::scramble_lens_v`] gives it back), for
+    /// re-ranking in the unscrambled digits.
+    pub lens_v_raw: u32,
 }
 
 /// The scrambles of the joint sampler for one pixel: one index shuffle shared by every
@@ -215,7 +218,8 @@ impl JointScramble {
             debug_assert_eq!(j & !low, high);
             let d = dims(j & low);
             let v = |k: usize| nested_uniform_scramble(base[k] ^ d[k], c[k]);
-            out.push(JointPoint { xy: [v(0), v(1)], t: v(2), lens: [v(3), v(4)] });
+            let lens_v_raw = base[4] ^ d[4];
+            out.push(JointPoint { xy: [v(0), v(1)], t: v(2), lens: [v(3), v(4)], lens_v_raw });
         }
     }
 
@@ -233,7 +237,14 @@ impl JointScramble {
             xy: [nested_uniform_scramble(x, c[0]), nested_uniform_scramble(y, c[1])],
             t: nested_uniform_scramble(t, c[2]),
             lens: [nested_uniform_scramble(u, c[3]), nested_uniform_scramble(v, c[4])],
+            lens_v_raw: v,
         }
+    }
+
+    /// The scramble of the lens's `v` (`lens[1]` of a point is this of its `lens_v_raw`).
+    #[inline]
+    pub fn scramble_lens_v(&self, v: u32) -> u32 {
+        nested_uniform_scramble(v, self.coord[4])
     }
 }
 

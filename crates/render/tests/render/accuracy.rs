@@ -125,9 +125,11 @@ fn moving_small_spheres_keep_their_projected_area() {
 }
 
 /// An object's own `flatness` (RenderMan's attribute) holds where the scene's is off.
+/// (Radius 0.75 pixel: without any flatness bound it loses about a fifth of its area; at 1.5
+/// pixels the facets' straddling of the surface, issue #36, leaves only 1.6 % to lose.)
 #[test]
 fn an_objects_own_flatness_holds() {
-    let r = 1.5_f64;
+    let r = 0.75_f64;
     let exact = std::f64::consts::PI * r * r;
     let shape = format!("Sphere(radius: {r})");
     let off = Some((0.0, 0.0));

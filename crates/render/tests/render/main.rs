@@ -8,6 +8,7 @@ mod aovs;
 mod camera;
 mod cracks;
 mod csg;
+mod csg_coverage;
 mod filters;
 mod geometry;
 mod lens;
@@ -19,6 +20,7 @@ mod raytrace;
 mod rsl;
 mod sampling;
 mod shading;
+mod silhouette;
 
 use reyes_scene::Scene;
 use reyes_testkit::golden;
