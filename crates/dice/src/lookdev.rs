@@ -274,8 +274,8 @@ impl Field {
             }
             Source::Wave { .. } => (-1.0, 1.0),
             Source::Texture(m) => {
-                let t = system.texture(m.id);
-                let (lo, hi) = (t.min[0], t.max[0]);
+                let (min, max) = system.range(m.id);
+                let (lo, hi) = (min[0], max[0]);
                 // Black wrap reads zeros outside the image.
                 if m.wrap == Wrap::Black { (lo.min(0.0), hi.max(0.0)) } else { (lo, hi) }
             }

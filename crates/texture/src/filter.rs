@@ -20,7 +20,7 @@
 
 use std::sync::Arc;
 
-use crate::{TILE, TILE_FLOATS, Texture, TextureSystem, Wrap};
+use crate::{Texture, TextureSystem, Wrap};
 
 /// Most probes along a footprint's major side (its largest anisotropy at full sharpness).
 pub const MAX_PROBES: u32 = 16;
@@ -40,14 +40,14 @@ impl<'a> Reader<'a> {
     /// Texel `(x, y)` (in range) of level `level` of `texture`.
     fn texel(&mut self, texture: &Texture, level: usize, x: u32, y: u32) -> [f32; 4] {
         let l = &texture.levels[level];
-        let (tx, ty) = (x / TILE as u32, y / TILE as u32);
+        let (tx, ty) = (x / l.tile_w, y / l.tile_h);
         let tile = l.first_tile + u64::from(ty) * u64::from(l.tiles_x) + u64::from(tx);
         let texels = match &self.last {
             Some((t, texels)) if *t == tile => texels,
-            _ => &self.last.insert((tile, self.system.tile(tile))).1,
+            _ => &self.last.insert((tile, self.system.tile(texture, l, tile))).1,
         };
-        let k = 4 * ((y as usize % TILE) * TILE + x as usize % TILE);
-        if k + 4 > TILE_FLOATS {
+        let k = 4 * ((y % l.tile_h) as usize * l.tile_w as usize + (x % l.tile_w) as usize);
+        if k + 4 > texels.len() {
             return [0.0; 4];
         }
         [texels[k], texels[k + 1], texels[k + 2], texels[k + 3]]
