@@ -19,6 +19,7 @@
 pub mod cache;
 pub mod filter;
 pub mod load;
+pub mod lookup;
 pub mod make;
 pub mod mip;
 pub mod noise;
@@ -346,6 +347,11 @@ impl TextureSystem {
     /// The texture `id`.
     pub fn texture(&self, id: TextureId) -> &Texture {
         &self.textures[id.0 as usize]
+    }
+
+    /// Counts one lookup (for the statistics).
+    pub(crate) fn count_lookup(&self) {
+        self.lookups.fetch_add(1, Ordering::Relaxed);
     }
 
     /// The RGBA value of texture `id` box-filtered over the footprint centred at `(s, t)`
