@@ -112,6 +112,7 @@ mod displace;
 mod hook;
 mod lazy;
 mod lookdev;
+mod sltex;
 mod motion;
 mod roots;
 mod shade;
