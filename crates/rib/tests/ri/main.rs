@@ -12,6 +12,7 @@ mod lookdev;
 mod mapping;
 mod peers;
 mod program;
+mod textures;
 mod renderman;
 mod tolerance;
 mod trim;
