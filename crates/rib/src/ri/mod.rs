@@ -17,6 +17,7 @@ mod attributes;
 mod build;
 mod detail;
 mod frame;
+mod make;
 pub(crate) mod geometry;
 mod options;
 mod primitives;

@@ -128,3 +128,43 @@ fn a_shadow_map_casts_its_edge_where_the_occluder_projects_and_blur_widens_it() 
         assert!((crossing(w, &soft, 0.5) - edge).abs() <= tol, "blur {b}: the edge moved");
     }
 }
+
+#[test]
+fn make_texture_requests_write_maps_the_frame_reads() {
+    let dir = ok(tempfile::tempdir());
+    let src = dir.path().join("ramp.exr");
+    ok(exr::prelude::write_rgba_file(&src, 64, 64, |x, y| {
+        ((x as f32 + 0.5) / 64.0, (y as f32 + 0.5) / 64.0, 0.25, 1.0)
+    }));
+    let shader = "surface maptest(string name = \"\") { Ci = color texture(name, s, t); Oi = 1; }\n";
+    let surface = "\"maptest\" \"string name\" [\"made.tex\"]";
+    let make = "MakeTexture \"ramp.exr\" \"made.tex\" \"clamp\" \"clamp\" \"gaussian\" 2 2\n";
+    let rib = format!("{make}{}", square_scene(surface, "", "PixelFilter \"box\" 1 1"));
+    let (w, px) = render_rib(dir.path(), &rib, &[("maptest.sl", shader)]);
+    let p = ok(reyes_texture::prepared::PreparedFile::open(&dir.path().join("made.tex")));
+    assert_eq!(p.header.wrap, Some([reyes_texture::Wrap::Clamp; 2]));
+    assert_eq!(p.header.levels.len(), 7);
+    // As in texture_from_a_shader_reads_the_map_and_its_channels: the linear ramp at each
+    // pixel's centre, up to float rounding (the EXR's floats made a float map).
+    for y in 2..w - 2 {
+        for x in 2..w - 2 {
+            let (s, t) = ((x as f32 + 0.5) / w as f32, (y as f32 + 0.5) / w as f32);
+            let q = px[y * w + x];
+            assert!((q[0] - s).abs() < 1e-4 && (q[1] - t).abs() < 1e-4, "({x}, {y}): {q:?}");
+        }
+    }
+    // A picture that is not there, and a filter that is no filter: one-line errors naming
+    // the request.
+    for (bad, says) in [
+        ("MakeTexture \"nosuch.png\" \"x.tex\" \"periodic\" \"periodic\" \"box\" 1 1", "cannot read"),
+        ("MakeTexture \"ramp.exr\" \"x.tex\" \"periodic\" \"periodic\" \"fuzzy\" 1 1", "unknown filter"),
+        ("MakeTexture \"ramp.exr\" \"x.tex\" \"sideways\" \"periodic\" \"box\" 1 1", "unknown wrap"),
+    ] {
+        let file = dir.path().join("bad.rib");
+        ok(std::fs::write(&file, format!("{bad}\n")));
+        let e = reyes_rib::load_scene_file(&file, &RiOptions::default()).err().unwrap_or_else(|| panic!("{bad}: loaded"));
+        let text = e.to_string();
+        assert!(text.starts_with(&format!("{}:1:1: MakeTexture: ", file.display())), "{text}");
+        assert!(text.contains(says) && !text.contains('\n'), "{text}");
+    }
+}
