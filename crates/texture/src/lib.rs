@@ -219,6 +219,10 @@ impl TextureSystem {
             let p = prepared::PreparedFile::open(file)?;
             let h = &p.header;
             if h.levels.len() > 1 || !h.format.is_empty() {
+                h.check_chunks().map_err(|message| TextureError::Decode {
+                    file: file.to_path_buf(),
+                    message,
+                })?;
                 let id = self.add_prepared(p, space);
                 self.load_time += start.elapsed();
                 return Ok(id);

@@ -107,6 +107,26 @@ pub struct DirInfo {
     pub planar: bool,
 }
 
+/// The most texels of a chunk read as a prepared texture's: a chunk is decoded whole into the
+/// cache (a strip of 16k x 1k; tiles are far smaller).
+pub const MAX_CHUNK_TEXELS: u64 = 1 << 24;
+
+impl Header {
+    /// Refuses chunks over [`MAX_CHUNK_TEXELS`] (a picture in one huge strip is decoded whole
+    /// instead, as a plain image).
+    pub fn check_chunks(&self) -> Result<(), String> {
+        for l in &self.levels {
+            if u64::from(l.chunk_w) * u64::from(l.chunk_h) > MAX_CHUNK_TEXELS {
+                return Err(format!(
+                    "chunks of {} x {} texels are over the limit of {MAX_CHUNK_TEXELS}",
+                    l.chunk_w, l.chunk_h
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
 /// What a prepared file's header says.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Header {
@@ -165,7 +185,12 @@ pub struct PreparedFile {
     pub path: PathBuf,
     /// What its header says.
     pub header: Header,
-    decoder: Mutex<(TiffReader, usize)>,
+    /// A decoder per level, opened when the level is first read (each holds its directory's
+    /// chunk offsets, read once).
+    decoders: Vec<Mutex<Option<TiffReader>>>,
+    /// The directories' patch ([`crate::tiffpatch`]) and the file's length.
+    patch: crate::tiffpatch::Patch,
+    len: u64,
     bytes_read: Arc<AtomicU64>,
 }
 
@@ -265,6 +290,7 @@ fn directory(d: &mut TiffReader, file_len: u64) -> Result<(DirInfo, u32, SampleT
     if chunk_w == 0 || chunk_h == 0 {
         return Err("a chunk of zero size".into());
     }
+
     let chunks_x = width.div_ceil(chunk_w);
     let planes = if planar { u64::from(channels) } else { 1 };
     let chunks = u64::from(chunks_x) * u64::from(height.div_ceil(chunk_h)) * planes;
@@ -311,6 +337,7 @@ impl PreparedFile {
         let bytes_read = Arc::new(AtomicU64::new(0));
         let mut counted = Counting { inner: BufReader::new(file), count: bytes_read.clone() };
         let (tail, pokes) = directories_needing_a_patch(&mut counted, file_len).map_err(io)?;
+        let patch = (tail.clone(), pokes.clone());
         let reader = Patched { inner: counted, len: file_len, tail, pokes, pos: 0 };
         let mut limits = Limits::default();
         limits.decoding_buffer_size = 1 << 28;
@@ -369,12 +396,33 @@ impl PreparedFile {
             levels,
             directories,
         };
+        let mut decoders: Vec<Mutex<Option<TiffReader>>> =
+            (0..header.levels.len()).map(|_| Mutex::new(None)).collect();
+        decoders[0] = Mutex::new(Some(d));
         Ok(PreparedFile {
             path: path.to_path_buf(),
             header,
-            decoder: Mutex::new((d, 0)),
+            decoders,
+            patch,
+            len: file_len,
             bytes_read,
         })
+    }
+
+    /// A decoder on directory `level`, over the file opened again.
+    fn open_level(&self, level: usize) -> std::io::Result<TiffReader> {
+        let bad = |e: tiff::TiffError| {
+            std::io::Error::new(std::io::ErrorKind::InvalidData, e.to_string())
+        };
+        let file = File::open(&self.path)?;
+        let counted = Counting { inner: BufReader::new(file), count: self.bytes_read.clone() };
+        let (tail, pokes) = self.patch.clone();
+        let reader = Patched { inner: counted, len: self.len, tail, pokes, pos: 0 };
+        let mut limits = Limits::default();
+        limits.decoding_buffer_size = 1 << 28;
+        let mut d = Decoder::new(reader).map_err(bad)?.with_limits(limits);
+        d.seek_to_image(level).map_err(bad)?;
+        Ok(d)
     }
 
     /// Bytes read from the file so far (header and chunks).
@@ -393,15 +441,15 @@ impl PreparedFile {
         let bad = |e: String| std::io::Error::new(std::io::ErrorKind::InvalidData, e);
         let info = *self.header.levels.get(level).ok_or_else(|| bad("no such level".into()))?;
         let chunks_y = info.height.div_ceil(info.chunk_h);
+        self.header.check_chunks().map_err(bad)?;
         if index >= info.chunks_x * chunks_y {
             return Err(bad(format!("no chunk {index}")));
         }
-        let mut guard = self.decoder.lock().unwrap_or_else(PoisonError::into_inner);
-        let (d, at) = &mut *guard;
-        if *at != level {
-            d.seek_to_image(level).map_err(|e| bad(e.to_string()))?;
-            *at = level;
+        let mut guard = self.decoders[level].lock().unwrap_or_else(PoisonError::into_inner);
+        if guard.is_none() {
+            *guard = Some(self.open_level(level)?);
         }
+        let Some(d) = guard.as_mut() else { return Err(bad("no decoder".into())) };
         let (dw, dh) = (
             info.chunk_w.min(info.width - (index % info.chunks_x) * info.chunk_w),
             info.chunk_h.min(info.height - (index / info.chunks_x) * info.chunk_h),
