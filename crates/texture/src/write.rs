@@ -104,6 +104,12 @@ pub fn write(path: &Path, levels: &[MipLevel], spec: &Spec) -> std::io::Result<(
     let mut temp = tempfile::NamedTempFile::new_in(dir)?;
     write_to(temp.as_file_mut(), levels, spec)?;
     temp.as_file_mut().flush()?;
+    // A temporary file is private (0600); a texture is for others to read too.
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        temp.as_file().set_permissions(std::fs::Permissions::from_mode(0o644))?;
+    }
     temp.persist(path).map_err(|e| e.error)?;
     Ok(())
 }
