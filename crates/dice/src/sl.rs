@@ -133,9 +133,9 @@ impl SlSetup {
         self
     }
 
-    /// The texture callback of a run (None without maps: the calls are then errors).
+    /// The texture callback of a run (without maps, every lookup takes the fallback).
     fn textures(&self) -> Option<crate::sltex::SlTextures> {
-        let maps = self.maps.clone()?;
+        let maps = self.maps.clone().unwrap_or_else(|| Arc::new(crate::sltex::ShaderMaps::none()));
         Some(crate::sltex::SlTextures { maps, current_to_world: self.current_to_world })
     }
 
@@ -498,7 +498,8 @@ impl Lights for GridLights<'_> {
             }
             out.append(&mut samples);
         }
-        let textures = self.textures.as_mut().map(|t| t as &mut dyn reyes_scene::sl::exec::Textures);
+        let textures =
+            self.textures.as_mut().map(|t| t as &mut dyn reyes_scene::sl::exec::Textures);
         out.append(&mut self.shaders.lights_with(q, textures)?);
         Ok(out)
     }

@@ -17,7 +17,9 @@ use std::collections::{BTreeSet, HashMap};
 use std::sync::{Arc, Mutex, PoisonError};
 
 use reyes_scene::sl::exec::space::{Mat, xform_point};
-use reyes_scene::sl::exec::{ExecError, GridContext, LookupKind, Num, TextureQuery, Textures, Value};
+use reyes_scene::sl::exec::{
+    ExecError, GridContext, LookupKind, Num, TextureQuery, Textures, Value,
+};
 use reyes_texture::lookup::Options;
 use reyes_texture::prepared::MapKind;
 use reyes_texture::{TextureId, TextureSystem};
@@ -25,7 +27,8 @@ use reyes_texture::{TextureId, TextureSystem};
 /// The maps of a scene's shaders, shared by every grid.
 #[derive(Debug)]
 pub struct ShaderMaps {
-    system: Arc<TextureSystem>,
+    /// None: the scene's shaders name no map (every lookup takes the fallback).
+    system: Option<Arc<TextureSystem>>,
     ids: HashMap<String, TextureId>,
     /// Names looked up that are no map, and shadow lookups of other maps, for the warnings.
     misses: Mutex<BTreeSet<String>>,
@@ -34,7 +37,13 @@ pub struct ShaderMaps {
 impl ShaderMaps {
     /// The maps `ids` (name to texture) of `system`.
     pub(crate) fn new(system: Arc<TextureSystem>, ids: HashMap<String, TextureId>) -> ShaderMaps {
-        ShaderMaps { system, ids, misses: Mutex::new(BTreeSet::new()) }
+        ShaderMaps { system: Some(system), ids, misses: Mutex::new(BTreeSet::new()) }
+    }
+
+    /// No maps: every lookup reads 0 (the RIB front end warned of names that look like
+    /// texture files and are not found).
+    pub(crate) fn none() -> ShaderMaps {
+        ShaderMaps { system: None, ids: HashMap::new(), misses: Mutex::new(BTreeSet::new()) }
     }
 
     fn miss(&self, what: String) {
@@ -51,8 +60,9 @@ impl ShaderMaps {
     /// `"viewingmatrix"` (world to the light's camera) and `"projectionmatrix"` (world to
     /// its screen).
     pub(crate) fn set_messages(&self, g: &mut GridContext<'_>) {
+        let Some(system) = &self.system else { return };
         for (name, &id) in &self.ids {
-            let t = self.system.texture(id);
+            let t = system.texture(id);
             let (w, h) = (t.levels[0].width as f32, t.levels[0].height as f32);
             let res = Value::Array(vec![Value::Num(Num::scalar(w)), Value::Num(Num::scalar(h))]);
             g.set_message("textureinfo", &format!("{name}:resolution"), res);
@@ -65,9 +75,16 @@ impl ShaderMaps {
             let channels = Value::Num(Num::scalar(t.channels as f32));
             g.set_message("textureinfo", &format!("{name}:channels"), channels);
             if let Some(hd) = &t.header {
-                for (field, m) in [("viewingmatrix", hd.world_to_camera), ("projectionmatrix", hd.world_to_screen)] {
+                for (field, m) in [
+                    ("viewingmatrix", hd.world_to_camera),
+                    ("projectionmatrix", hd.world_to_screen),
+                ] {
                     if let Some(m) = m {
-                        g.set_message("textureinfo", &format!("{name}:{field}"), Value::Num(Num::uniform(&m)));
+                        g.set_message(
+                            "textureinfo",
+                            &format!("{name}:{field}"),
+                            Value::Num(Num::uniform(&m)),
+                        );
                     }
                 }
             }
@@ -136,14 +153,14 @@ fn channel(rgba: [f32; 4], channels: u32, c: usize, colour_of_grey: bool, fill: 
 impl Textures for SlTextures {
     fn lookup(&mut self, q: &TextureQuery<'_>) -> Result<Num, ExecError> {
         let n = q.mask.on.len();
-        let Some(&id) = self.maps.ids.get(q.name) else {
+        let (Some(&id), Some(system)) = (self.maps.ids.get(q.name), self.maps.system.as_ref())
+        else {
             self.maps.miss(format!(
                 "texture \"{}\" is not a texture file along the texture search path: its lookups read 0",
                 q.name
             ));
             return Ok(Num::zeros(q.channels, false, n));
         };
-        let system = &self.maps.system;
         let tex = system.texture(id);
         if q.kind == LookupKind::Shadow && tex.kind != MapKind::Shadow {
             self.maps.miss(format!(
@@ -154,7 +171,8 @@ impl Textures for SlTextures {
             return Ok(Num::zeros(q.channels, false, n));
         }
         let mut out = Num::zeros(q.channels, true, n);
-        let corners = if q.kind == LookupKind::Texture { q.coords.len() / 2 } else { q.coords.len() };
+        let corners =
+            if q.kind == LookupKind::Texture { q.coords.len() / 2 } else { q.coords.len() };
         for &i in &q.mask.idx {
             let i = i as usize;
             let o = options(q, i);
@@ -169,8 +187,11 @@ impl Textures for SlTextures {
                     system.environment(id, &dirs, &o)
                 }
                 LookupKind::Shadow => {
-                    let points: Vec<[f32; 3]> =
-                        q.coords.iter().map(|p| xform_point(&self.current_to_world, p.v3(i))).collect();
+                    let points: Vec<[f32; 3]> = q
+                        .coords
+                        .iter()
+                        .map(|p| xform_point(&self.current_to_world, p.v3(i)))
+                        .collect();
                     let v = system.shadow(id, &points, &o);
                     [v, v, v, v]
                 }

@@ -342,7 +342,12 @@ impl PreparedFile {
         let mut limits = Limits::default();
         limits.decoding_buffer_size = 1 << 28;
         let mut d = Decoder::new(reader)
-            .map_err(|e| bad(format!("not a readable TIFF file: {e}")))?
+            .map_err(|e| match e {
+                tiff::TiffError::IoError(e) if e.kind() == std::io::ErrorKind::UnexpectedEof => {
+                    bad("truncated: its first directory ends past the file".into())
+                }
+                e => bad(format!("not a readable TIFF file: {e}")),
+            })?
             .with_limits(limits);
         let format = tag_text(&mut d, TAG_TEXTUREFORMAT).map_err(&bad)?.unwrap_or_default();
         let kind = MapKind::from_format(&format);

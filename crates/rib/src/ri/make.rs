@@ -21,12 +21,16 @@ impl Machine {
     /// One of the `Make*` requests.
     pub(super) fn make(&mut self, r: &Request) -> Result<(), RibError> {
         let path = |m: &Self, i: usize| -> Result<std::path::PathBuf, RibError> {
-            let name = r.string(i).ok_or_else(|| r.error(format!("argument {} must be a file name", i + 1)))?;
+            let name = r
+                .string(i)
+                .ok_or_else(|| r.error(format!("argument {} must be a file name", i + 1)))?;
             Ok(m.reader.resolve_archive(name, &r.at))
         };
         let wrap = |i: usize| -> Result<Wrap, RibError> {
             let w = r.string(i).unwrap_or("periodic");
-            wrap_of(w).ok_or_else(|| r.error(format!("unknown wrap mode \"{w}\" (periodic, clamp or black)")))
+            wrap_of(w).ok_or_else(|| {
+                r.error(format!("unknown wrap mode \"{w}\" (periodic, clamp or black)"))
+            })
         };
         let filter = |i: usize| r.string(i).unwrap_or("box").to_string();
         let widths = |i: usize| [r.float(i).unwrap_or(1.0), r.float(i + 1).unwrap_or(1.0)];
@@ -41,7 +45,8 @@ impl Machine {
                 make_texture(&path(self, 0)?, &path(self, 1)?, &opts)
             }
             K::MakeLatLongEnvironment => {
-                let opts = MakeOptions { filter: filter(2), width: widths(3), ..MakeOptions::default() };
+                let opts =
+                    MakeOptions { filter: filter(2), width: widths(3), ..MakeOptions::default() };
                 make_latlong(&path(self, 0)?, &path(self, 1)?, &opts)
             }
             K::MakeCubeFaceEnvironment => {

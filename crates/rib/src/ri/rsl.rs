@@ -177,15 +177,35 @@ impl Machine {
                 .frame_options
                 .search
                 .find(Kind::Texture, &name, |n| self.reader.resolve_archive(n, at));
-            if let Lookup::Unsearched(p) | Lookup::Found(p) = found
-                && p.is_file()
-                && let Some(b) = &mut self.build
-                && !b.shaders.maps.iter().any(|(m, _)| *m == name)
-            {
-                b.shaders.maps.push((name, p));
+            let path = match found {
+                Lookup::Unsearched(p) | Lookup::Found(p) | Lookup::Missing(p, _) => p,
+            };
+            if path.is_file() {
+                if let Some(b) = &mut self.build
+                    && !b.shaders.maps.iter().any(|(m, _)| *m == name)
+                {
+                    b.shaders.maps.push((name, path));
+                }
+            } else if looks_like_a_map(&name) {
+                let w = Warning {
+                    at: at.clone(),
+                    message: format!(
+                        "texture \"{name}\" is not found (along the texture search path, or beside the RIB file): its lookups read 0"
+                    ),
+                };
+                self.warn_once(format!("missing map {name}"), w);
             }
         }
     }
+}
+
+/// True if a shader parameter's string value names a texture file by its extension (then a
+/// missing file is worth a warning; other strings may be anything).
+fn looks_like_a_map(name: &str) -> bool {
+    let ext = std::path::Path::new(name).extension().and_then(|e| e.to_str()).unwrap_or("");
+    let ext = ext.to_ascii_lowercase();
+    ["tex", "tx", "tdl", "env", "shd", "sm", "zfile", "tif", "tiff", "png", "jpg", "jpeg", "exr"]
+        .contains(&ext.as_str())
 }
 
 fn kind_name(k: ShaderKind) -> &'static str {

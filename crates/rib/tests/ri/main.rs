@@ -12,8 +12,8 @@ mod lookdev;
 mod mapping;
 mod peers;
 mod program;
-mod textures;
 mod renderman;
+mod textures;
 mod tolerance;
 mod trim;
 

@@ -48,13 +48,18 @@ fn texture_from_a_shader_reads_the_map_and_its_channels() {
         ((x as f32 + 0.5) / 64.0, (y as f32 + 0.5) / 64.0, 0.25, 1.0)
     }));
     let map = dir.path().join("ramp.tex");
-    let opts = MakeOptions { depth: Some(Depth::Float), wrap: [reyes_texture::Wrap::Clamp; 2], ..MakeOptions::default() };
+    let opts = MakeOptions {
+        depth: Some(Depth::Float),
+        wrap: [reyes_texture::Wrap::Clamp; 2],
+        ..MakeOptions::default()
+    };
     ok(make_texture(&src, &map, &opts));
     let shader = "surface maptest(string name = \"\"; float which = 0) {\n\
                   if (which == 0) Ci = color texture(name, s, t);\n\
                   else Ci = float texture(name[1], s, t);\n Oi = 1; }\n";
     for which in [0, 1] {
-        let surface = format!("\"maptest\" \"string name\" [\"ramp.tex\"] \"float which\" [{which}]");
+        let surface =
+            format!("\"maptest\" \"string name\" [\"ramp.tex\"] \"float which\" [{which}]");
         let rib = square_scene(&surface, "", "PixelFilter \"box\" 1 1");
         let (w, px) = render_rib(dir.path(), &rib, &[("maptest.sl", shader)]);
         // Away from the border (where the box filter and the clamp meet the edge), pixel
@@ -67,7 +72,10 @@ fn texture_from_a_shader_reads_the_map_and_its_channels() {
                 let p = px[y * w + x];
                 let want = if which == 0 { [s, t, 0.25] } else { [t, t, t] };
                 for c in 0..3 {
-                    assert!((p[c] - want[c]).abs() < 1e-4, "which {which} ({x}, {y}): {p:?} vs {want:?}");
+                    assert!(
+                        (p[c] - want[c]).abs() < 1e-4,
+                        "which {which} ({x}, {y}): {p:?} vs {want:?}"
+                    );
                 }
             }
         }
@@ -91,7 +99,9 @@ fn a_shadow_map_casts_its_edge_where_the_occluder_projects_and_blur_widens_it() 
     let surface = "surface lit() { Ci = 0; illuminance(P) { Ci += Cl; } Oi = 1; }\n";
     let shaders = [("shadowlight.sl", light), ("lit.sl", surface)];
     let profile = |blur: f32| {
-        let l = format!("LightSource \"shadowlight\" 1 \"string shadowname\" [\"edge.shd\"] \"float blur\" [{blur}]");
+        let l = format!(
+            "LightSource \"shadowlight\" 1 \"string shadowname\" [\"edge.shd\"] \"float blur\" [{blur}]"
+        );
         let rib = square_scene("\"lit\"", &l, "PixelFilter \"box\" 1 1");
         let (w, px) = render_rib(dir.path(), &rib, &shaders);
         let row = w / 2;
@@ -136,7 +146,8 @@ fn make_texture_requests_write_maps_the_frame_reads() {
     ok(exr::prelude::write_rgba_file(&src, 64, 64, |x, y| {
         ((x as f32 + 0.5) / 64.0, (y as f32 + 0.5) / 64.0, 0.25, 1.0)
     }));
-    let shader = "surface maptest(string name = \"\") { Ci = color texture(name, s, t); Oi = 1; }\n";
+    let shader =
+        "surface maptest(string name = \"\") { Ci = color texture(name, s, t); Oi = 1; }\n";
     let surface = "\"maptest\" \"string name\" [\"made.tex\"]";
     let make = "MakeTexture \"ramp.exr\" \"made.tex\" \"clamp\" \"clamp\" \"gaussian\" 2 2\n";
     let rib = format!("{make}{}", square_scene(surface, "", "PixelFilter \"box\" 1 1"));
@@ -156,15 +167,50 @@ fn make_texture_requests_write_maps_the_frame_reads() {
     // A picture that is not there, and a filter that is no filter: one-line errors naming
     // the request.
     for (bad, says) in [
-        ("MakeTexture \"nosuch.png\" \"x.tex\" \"periodic\" \"periodic\" \"box\" 1 1", "cannot read"),
-        ("MakeTexture \"ramp.exr\" \"x.tex\" \"periodic\" \"periodic\" \"fuzzy\" 1 1", "unknown filter"),
-        ("MakeTexture \"ramp.exr\" \"x.tex\" \"sideways\" \"periodic\" \"box\" 1 1", "unknown wrap"),
+        (
+            "MakeTexture \"nosuch.png\" \"x.tex\" \"periodic\" \"periodic\" \"box\" 1 1",
+            "cannot read",
+        ),
+        (
+            "MakeTexture \"ramp.exr\" \"x.tex\" \"periodic\" \"periodic\" \"fuzzy\" 1 1",
+            "unknown filter",
+        ),
+        (
+            "MakeTexture \"ramp.exr\" \"x.tex\" \"sideways\" \"periodic\" \"box\" 1 1",
+            "unknown wrap",
+        ),
     ] {
         let file = dir.path().join("bad.rib");
         ok(std::fs::write(&file, format!("{bad}\n")));
-        let e = reyes_rib::load_scene_file(&file, &RiOptions::default()).err().unwrap_or_else(|| panic!("{bad}: loaded"));
+        let e = reyes_rib::load_scene_file(&file, &RiOptions::default())
+            .err()
+            .unwrap_or_else(|| panic!("{bad}: loaded"));
         let text = e.to_string();
         assert!(text.starts_with(&format!("{}:1:1: MakeTexture: ", file.display())), "{text}");
         assert!(text.contains(says) && !text.contains('\n'), "{text}");
     }
+}
+
+/// A map that is not there: one warning when the scene loads, and the Specification's
+/// fallback (0) when the shader looks it up; a map that is no shadow map read by `shadow()`:
+/// unshadowed, with a warning after the render.
+#[test]
+fn missing_maps_warn_and_read_zero() {
+    let dir = ok(tempfile::tempdir());
+    let shader =
+        "surface maptest(string name = \"\") { Ci = 0.5 + color texture(name, s, t); Oi = 1; }\n";
+    ok(std::fs::write(dir.path().join("maptest.sl"), shader));
+    let rib =
+        square_scene("\"maptest\" \"string name\" [\"nosuch.tex\"]", "", "PixelFilter \"box\" 1 1");
+    let file = dir.path().join("scene.rib");
+    ok(std::fs::write(&file, rib));
+    let loaded = ok(reyes_rib::load_scene_file(&file, &RiOptions::default()));
+    let warned: Vec<String> = loaded.warnings.iter().map(|w| w.to_string()).collect();
+    assert_eq!(
+        warned.iter().filter(|w| w.contains("\"nosuch.tex\" is not found")).count(),
+        1,
+        "{warned:?}"
+    );
+    let film = ok(render(&loaded.frames[0].scene, &RenderOptions::default())).film;
+    assert!(film.rgba().iter().all(|p| (p[0] - 0.5).abs() < 1e-6), "the lookups read 0");
 }

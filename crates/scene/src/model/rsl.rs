@@ -92,7 +92,12 @@ pub struct SceneShaders {
 
 impl Default for SceneShaders {
     fn default() -> Self {
-        SceneShaders { lights: Vec::new(), imager: None, world_to_model: IDENTITY, maps: Vec::new() }
+        SceneShaders {
+            lights: Vec::new(),
+            imager: None,
+            world_to_model: IDENTITY,
+            maps: Vec::new(),
+        }
     }
 }
 
