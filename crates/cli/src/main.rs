@@ -10,7 +10,7 @@
 //! warnings go to stderr, one line each, before rendering; nothing printed can panic.
 //!
 //! A first argument `measure` (FIG. 23's mass properties), `merge` (tiles reassembled), `farm`
-//! (Slurm jobs, [`farm`]) or `shader` (`check`, `info`) chooses another command with the same
+//! (Slurm jobs, [`farm`]) or `shader` (`check`, `info`) or `texture` (`make`, `info`) chooses another command with the same
 //! exit codes; a scene file of one of those names is `./measure` etc. (docs/farm.md).
 #![deny(clippy::print_stdout, clippy::print_stderr)]
 
@@ -75,7 +75,11 @@ fn main() -> ExitCode {
         Some("measure") => measure_main(rest()),
         Some("merge") => merge_main(rest()),
         Some("farm") => farm::main(rest()),
-        Some("shader") => shader_main(rest()),
+        Some("shader") => tool_main(rest(), |a| {
+            let o = reyes_sl::tool::run(a);
+            (o.stdout, o.errors, o.code)
+        }),
+        Some("texture") => tool_main(rest(), reyes_texture::tool::run),
         _ => render_main(),
     };
     match result {
@@ -136,14 +140,16 @@ fn measure_main(args: impl Iterator<Item = OsString>) -> Result<(), Exit> {
     term::print(&m.to_string())
 }
 
-/// `reyes-render shader check|info ...` ([`reyes_sl::tool`]): `args` starts at `shader`.
-fn shader_main(args: impl Iterator<Item = OsString>) -> Result<(), Exit> {
-    let out =
-        reyes_sl::tool::run(&args.skip(1).map(|a| a.to_string_lossy().into()).collect::<Vec<_>>());
-    out.errors.iter().for_each(say);
-    term::print(&out.stdout)?;
-    if out.code == 0 { Ok(()) } else { Err(Exit { code: out.code, message: None }) }
+/// `reyes-render shader check|info ...` ([`reyes_sl::tool`]) and `texture make|info ...`
+/// ([`reyes_texture::tool`]): `args` starts at the command; `run` gives stdout, errors, code.
+fn tool_main(args: impl Iterator<Item = OsString>, run: ToolRun) -> Result<(), Exit> {
+    let (stdout, errors, code) =
+        run(&args.skip(1).map(|a| a.to_string_lossy().into()).collect::<Vec<_>>());
+    errors.iter().for_each(say);
+    term::print(&stdout)?;
+    if code == 0 { Ok(()) } else { Err(Exit { code, message: None }) }
 }
+type ToolRun = fn(&[String]) -> (String, Vec<String>, u8);
 
 /// `reyes-render merge TILE... -o OUT`: `args` starts at `merge`.
 fn merge_main(args: impl Iterator<Item = OsString>) -> Result<(), Exit> {

@@ -118,6 +118,7 @@ mod shade;
 mod shapes;
 mod sl;
 mod slinfo;
+mod sltex;
 mod split;
 mod spot;
 mod trim;

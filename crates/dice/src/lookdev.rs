@@ -92,6 +92,8 @@ impl Looked {
 #[derive(Debug, Clone)]
 pub struct Lookdev {
     system: Arc<TextureSystem>,
+    /// The maps the shading-language shaders read (issue #32).
+    shader_maps: Option<Arc<crate::sltex::ShaderMaps>>,
     objects: Vec<Option<Arc<ObjectLook>>>,
     /// What setup has to say: objects displaced without a declared bound.
     warnings: Vec<String>,
@@ -178,7 +180,34 @@ impl Lookdev {
                 objects.push(None);
             }
         }
-        Ok(Lookdev { system: Arc::new(system), objects, warnings })
+        // The shaders' maps, read as stored (linear), each file once.
+        let mut ids = HashMap::new();
+        for (name, file) in &scene.shaders.maps {
+            let key = (file.to_string_lossy().into_owned(), ColorSpace::Linear);
+            let id = match loaded.get(&key) {
+                Some(&id) => id,
+                None => {
+                    let id = system.load(file, reyes_texture::ColorSpace::Linear)?;
+                    loaded.insert(key, id);
+                    id
+                }
+            };
+            ids.insert(name.clone(), id);
+        }
+        let system = Arc::new(system);
+        let shader_maps = (!scene.shaders.maps.is_empty())
+            .then(|| Arc::new(crate::sltex::ShaderMaps::new(system.clone(), ids)));
+        Ok(Lookdev { system, shader_maps, objects, warnings })
+    }
+
+    /// The maps of the shading-language shaders, if the scene's shaders name any.
+    pub(crate) fn shader_maps(&self) -> Option<Arc<crate::sltex::ShaderMaps>> {
+        self.shader_maps.clone()
+    }
+
+    /// Warnings of the render so far: shader lookups of names that are no map.
+    pub fn lookup_warnings(&self) -> Vec<String> {
+        self.shader_maps.as_ref().map(|m| m.warnings()).unwrap_or_default()
     }
 
     /// Object `i`'s look, if it has one.
@@ -274,8 +303,8 @@ impl Field {
             }
             Source::Wave { .. } => (-1.0, 1.0),
             Source::Texture(m) => {
-                let t = system.texture(m.id);
-                let (lo, hi) = (t.min[0], t.max[0]);
+                let (min, max) = system.range(m.id);
+                let (lo, hi) = (min[0], max[0]);
                 // Black wrap reads zeros outside the image.
                 if m.wrap == Wrap::Black { (lo.min(0.0), hi.max(0.0)) } else { (lo, hi) }
             }

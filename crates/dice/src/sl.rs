@@ -61,6 +61,10 @@ pub(crate) struct SlSetup {
     pub budget: u64,
     /// `attribute()`, `option()`, `rendererinfo()`, `time`, `dtime`.
     info: crate::slinfo::Info,
+    /// The texture maps of `texture`, `environment`, `shadow` (issue #32; `crate::sltex`).
+    maps: Option<Arc<crate::sltex::ShaderMaps>>,
+    /// "current" to RenderMan's world (where shadow maps' matrices start).
+    current_to_world: Mat,
 }
 
 /// What shading grids on the machine counted.
@@ -123,7 +127,21 @@ impl SlSetup {
             orthographic: camera.projection() == reyes_scene::Projection::Orthographic,
             budget,
             info: crate::slinfo::Info::of(scene, object),
+            maps: None,
+            current_to_world: reyes_scene::sl::exec::space::mat_inverse(&rman_world),
         })
+    }
+
+    /// This setup reading the shaders' texture maps `maps`.
+    pub(crate) fn with_maps(mut self, maps: Option<Arc<crate::sltex::ShaderMaps>>) -> SlSetup {
+        self.maps = maps;
+        self
+    }
+
+    /// The texture callback of a run (without maps, every lookup takes the fallback).
+    fn textures(&self) -> Option<crate::sltex::SlTextures> {
+        let maps = self.maps.clone().unwrap_or_else(|| Arc::new(crate::sltex::ShaderMaps::none()));
+        Some(crate::sltex::SlTextures { maps, current_to_world: self.current_to_world })
     }
 
     /// The spaces of `instance` (its "shader" space added) and its parameters in "current".
@@ -255,6 +273,9 @@ impl SlSetup {
     ) -> Result<GridContext<'s>, ExecError> {
         let mut g = GridContext::new(&instance.shader, grid.nu, grid.nv);
         g.set_budget(self.budget);
+        if let Some(maps) = &self.maps {
+            maps.set_messages(&mut g);
+        }
         let (spaces, params) = self.bind(instance);
         g.set_spaces(spaces);
         g.set_varying("P", &flat(grid.p))?;
@@ -338,12 +359,17 @@ impl SlSetup {
                     camera_to_world: self.camera_to_world,
                     world_to_camera: self.world_to_camera,
                     shaders: ShaderLights { lights: self.lights.clone() },
+                    textures: self.textures(),
                 };
+                let mut maps = self.textures();
                 let mut g = self.context(surface, grid).map_err(named)?;
                 for (name, v) in displaced {
                     g.set_message("displacement", name, v.clone());
                 }
                 g.set_lights(&mut lights);
+                if let Some(m) = maps.as_mut() {
+                    g.set_textures(m);
+                }
                 let stats = g.run().map_err(named)?;
                 counts.instructions += stats.instructions;
                 counts.nonfinite += stats.nonfinite;
@@ -367,9 +393,13 @@ impl SlSetup {
             }
         };
         if let Some(atmosphere) = &self.shaders.atmosphere {
+            let mut maps = self.textures();
             let mut g = self.context(atmosphere, grid).map_err(named)?;
             for (name, v) in &surfaced {
                 g.set_message("surface", name, v.clone());
+            }
+            if let Some(m) = maps.as_mut() {
+                g.set_textures(m);
             }
             g.set_varying("Ci", &flat(&ci)).map_err(named)?;
             g.set_varying("Oi", &flat(&oi)).map_err(named)?;
@@ -409,7 +439,11 @@ impl SlSetup {
         let Some(d) = &self.shaders.displacement else { return Ok(None) };
         let named = |e: ExecError| format!("object \"{}\": {e}", self.object);
         let n = grid.nu * grid.nv;
+        let mut maps = self.textures();
         let mut g = self.context(d, grid).map_err(named)?;
+        if let Some(m) = maps.as_mut() {
+            g.set_textures(m);
+        }
         let stats = g.run().map_err(named)?;
         counts.instructions += stats.instructions;
         counts.nonfinite += stats.nonfinite;
@@ -513,6 +547,8 @@ struct GridLights<'s> {
     camera_to_world: Mat4,
     world_to_camera: Mat,
     shaders: ShaderLights,
+    /// The light shaders' texture callback (issue #32).
+    textures: Option<crate::sltex::SlTextures>,
 }
 
 impl Lights for GridLights<'_> {
@@ -558,7 +594,9 @@ impl Lights for GridLights<'_> {
             }
             out.append(&mut samples);
         }
-        out.append(&mut self.shaders.lights(q)?);
+        let textures =
+            self.textures.as_mut().map(|t| t as &mut dyn reyes_scene::sl::exec::Textures);
+        out.append(&mut self.shaders.lights_with(q, textures)?);
         Ok(out)
     }
 }

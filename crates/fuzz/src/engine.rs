@@ -218,6 +218,7 @@ fn extension(target: Target, input: &[u8]) -> &'static str {
         Target::Rib => Format::Rib,
         Target::Render => target::detect(input),
         Target::Sl => return "sl",
+        Target::Tex => return "tex",
     };
     match format {
         Format::Ron => "ron",
@@ -315,10 +316,14 @@ pub fn run(opts: &Options) -> std::io::Result<Report> {
                 let new = map.merge();
                 r.map(|v| (v, new))
             }
-            Target::Sl => {
+            Target::Sl | Target::Tex => {
                 current.set(input);
                 watchdog.start();
-                let r = target::run_sl(input);
+                let r = if opts.target == Target::Sl {
+                    target::run_sl(input)
+                } else {
+                    target::run_tex(input)
+                };
                 watchdog.stop();
                 let new = map.merge();
                 r.map(|v| (v, new))

@@ -1,7 +1,7 @@
 //! The `reyes-fuzz` command (run by `cargo xtask fuzz`; see docs/reliability.md, "Fuzzing").
 //!
 //! ```text
-//! reyes-fuzz [fuzz] [--targets ron,rib,render,sl] [--execs N] [--renders N] [--seed S]
+//! reyes-fuzz [fuzz] [--targets ron,rib,render,sl,tex] [--execs N] [--renders N] [--seed S]
 //!            [--corpus DIR] [--out DIR] [--save] [--timeout SECS] [--memory MIB]
 //!            [--time-limit SECS] [--quiet]
 //! reyes-fuzz replay TARGET FILE...
@@ -27,7 +27,7 @@ use reyes_fuzz::engine::{self, Child, HANG_EXIT, Options, Report};
 use reyes_fuzz::target::{self, Failure, Target, Verdict};
 use reyes_fuzz::{limits, rng::Rng};
 
-const USAGE: &str = "usage: reyes-fuzz [fuzz] [--targets ron,rib,render,sl] [--execs N] [--renders N] \
+const USAGE: &str = "usage: reyes-fuzz [fuzz] [--targets ron,rib,render,sl,tex] [--execs N] [--renders N] \
 [--seed S] [--corpus DIR] [--out DIR] [--save] [--timeout SECS] [--memory MIB] [--time-limit SECS] \
 [--quiet] | replay TARGET FILE... | cmin TARGET DIR... --into DIR";
 
@@ -53,7 +53,7 @@ struct Args {
 impl Default for Args {
     fn default() -> Args {
         Args {
-            targets: vec![Target::Ron, Target::Rib, Target::Render, Target::Sl],
+            targets: vec![Target::Ron, Target::Rib, Target::Render, Target::Sl, Target::Tex],
             execs: 100_000,
             renders: 1_000,
             seed: 1,
@@ -106,6 +106,7 @@ fn seed_dirs(corpus: &Path, target: Target) -> Vec<PathBuf> {
         Target::Rib => &["seeds/rib", "rib"],
         Target::Render => &["seeds/ron", "seeds/rib", "ron", "rib", "render"],
         Target::Sl => &["seeds/sl", "sl"],
+        Target::Tex => &["seeds/tex", "tex"],
     };
     dirs.iter().map(|d| corpus.join(d)).collect()
 }
@@ -253,6 +254,7 @@ fn replay(args: &[String]) -> Result<u8, String> {
                 other => other,
             },
             Target::Sl => target::run_sl(&input),
+            Target::Tex => target::run_tex(&input),
         };
         match result {
             Ok(v) => println!("{file}: {v:?}"),
@@ -301,6 +303,10 @@ fn cmin(args: &[String]) -> Result<u8, String> {
             }
             Target::Sl => {
                 let _ = target::run_sl(input);
+                coverage::parse(&coverage::dump())
+            }
+            Target::Tex => {
+                let _ = target::run_tex(input);
                 coverage::parse(&coverage::dump())
             }
             Target::Render => {
@@ -462,6 +468,8 @@ fn supervise(
             engine::hash(&input),
             if target == Target::Sl {
                 "sl"
+            } else if target == Target::Tex {
+                "tex"
             } else if target::detect(&input) == reyes_rib::Format::Ron && target != Target::Rib {
                 "ron"
             } else {

@@ -6,6 +6,9 @@
 //! - [`Target::Sl`]: the shading-language compiler (`reyes_sl::compile_str`: preprocessor,
 //!   parser, checker), and each shader it accepts run by the grid machine over a 4x4 grid
 //!   under a small instruction budget, in process.
+//! - [`Target::Tex`]: a texture file (issue #32): the prepared-texture reader and the
+//!   picture decoders (`TextureSystem::load`), then lookups of every kind that read its
+//!   chunks, `texture info`, and `MakeShadow` of it, in process.
 //! - [`Target::Render`]: a whole render of the scene, shrunk by [`shrink`], in a child process
 //!   under a memory cap and a time limit ([`render_child`] is what the child runs).
 //!
@@ -33,6 +36,8 @@ pub enum Target {
     Render,
     /// The shading-language compiler and grid machine.
     Sl,
+    /// Texture files: prepared TIFF and pictures, loaded and looked up.
+    Tex,
 }
 
 impl Target {
@@ -43,6 +48,7 @@ impl Target {
             "rib" => Some(Target::Rib),
             "render" => Some(Target::Render),
             "sl" => Some(Target::Sl),
+            "tex" => Some(Target::Tex),
             _ => None,
         }
     }
@@ -54,6 +60,7 @@ impl Target {
             Target::Rib => "rib",
             Target::Render => "render",
             Target::Sl => "sl",
+            Target::Tex => "tex",
         }
     }
 }
@@ -206,6 +213,80 @@ fn check_sl(input: &[u8]) -> Result<Verdict, Failure> {
         }
         Err(_) => Ok(Verdict::Rejected),
     }
+}
+
+/// The file name the texture target writes its input to (errors must name it).
+pub const TEX_FILE: &str = "fuzz.tex";
+
+/// Writes `input` to a scratch file and loads it as a texture; what loads is looked up as a
+/// texture, an environment and a shadow map (reading its chunks), described as `texture
+/// info` does, and made into a shadow map. An error must be one line naming the file; a
+/// panic is caught.
+pub fn run_tex(input: &[u8]) -> Result<Verdict, Failure> {
+    let run = || {
+        if let Some(canary) = CANARY.get() {
+            canary(input);
+        }
+        check_tex(input)
+    };
+    match catch_unwind(AssertUnwindSafe(run)) {
+        Ok(r) => r,
+        Err(_) => {
+            let msg = LAST_PANIC.lock().ok().and_then(|mut l| l.take());
+            Err(Failure::new("panic", msg.unwrap_or_else(|| "panic".into())))
+        }
+    }
+}
+
+fn check_tex(input: &[u8]) -> Result<Verdict, Failure> {
+    use reyes_texture::{ColorSpace, TextureSystem, lookup::Options};
+    let dir = std::env::temp_dir().join(format!("reyes-fuzz-tex-{}", std::process::id()));
+    let io = |e: std::io::Error| Failure::new("exit", format!("scratch file: {e}"));
+    std::fs::create_dir_all(&dir).map_err(io)?;
+    let file = dir.join(TEX_FILE);
+    std::fs::write(&file, input).map_err(io)?;
+    let name = file.display().to_string();
+    let promise = |e: &reyes_texture::TextureError| {
+        let message = e.to_string();
+        if message.contains(['\n', '\r']) {
+            return Err(Failure::new(
+                "bad-error",
+                format!("error of more than one line: {message:?}"),
+            ));
+        }
+        if !message.starts_with(&name) {
+            return Err(Failure::new(
+                "bad-error",
+                format!("error not naming the file: {message:?}"),
+            ));
+        }
+        Ok(())
+    };
+    if let Err(e) = reyes_texture::tool::describe(&file) {
+        promise(&e)?;
+    }
+    let shadow = dir.join("fuzz.shd");
+    if let Err(e) = reyes_texture::make::make_shadow(&file, &shadow) {
+        promise(&e)?;
+    }
+    let mut sys = TextureSystem::new(1 << 20).map_err(io)?;
+    let id = match sys.load(&file, ColorSpace::Linear) {
+        Ok(id) => id,
+        Err(e) => {
+            promise(&e)?;
+            return Ok(Verdict::Rejected);
+        }
+    };
+    let o = Options { samples: 4, ..Options::default() };
+    for k in 0..8 {
+        let v = k as f32 / 7.0;
+        let corners = [[v, 0.3], [v + 0.1, 0.3], [v, 0.9], [v + 0.2, 1.0]];
+        let _ = sys.texture_corners(id, corners, &o);
+        let _ = sys.environment(id, &[[v - 0.5, 0.3, 0.8]], &o);
+        let _ = sys.shadow(id, &[[v, 0.2, 3.0]], &o);
+    }
+    let _ = sys.range(id);
+    Ok(Verdict::Accepted)
 }
 
 /// Loads `input` and checks the errors' promises.

@@ -79,6 +79,12 @@ fn ci_shading_language_compiler_and_grid_machine() {
     ci_run("sl", 100_000);
 }
 
+/// Texture files (issue #32): the prepared-TIFF reader, the picture decoders and the lookups.
+#[test]
+fn ci_texture_files() {
+    ci_run("tex", 5_000);
+}
+
 /// 1,000 renders (with seed 20; before the dicer's work bounds, 400 already reached the endless
 /// split of `regressions/dice-split-endless-huge-moving-mesh-point.ron`).
 #[test]

@@ -65,6 +65,7 @@ pub(crate) fn render_stochastic(
             return Err(RenderError::TextureRead);
         }
         rendered.warnings.extend(l.warnings().iter().cloned());
+        rendered.warnings.extend(l.lookup_warnings());
         if let Some(s) = rendered.stats.lookdev.as_mut() {
             s.textures = l.texture_stats();
             if s.escapes > 0 {

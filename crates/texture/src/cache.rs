@@ -62,6 +62,17 @@ impl Cache {
 
     /// Tile `tile`: from the cache, or read from `backing` (and kept if the bound allows).
     pub fn get(&self, tile: u64, backing: &Mutex<File>) -> std::io::Result<Arc<[f32]>> {
+        self.get_with(tile, || read_tile(tile, backing))
+    }
+
+    /// Tile `key` (of any size): from the cache, or made by `load` (and kept if the bound
+    /// allows). Resident bytes count each tile's own size, 4 bytes a float.
+    pub fn get_with(
+        &self,
+        key: u64,
+        load: impl FnOnce() -> std::io::Result<Arc<[f32]>>,
+    ) -> std::io::Result<Arc<[f32]>> {
+        let tile = key;
         {
             let mut s = self.lock();
             s.stats.requests += 1;
@@ -75,26 +86,28 @@ impl Cache {
             }
             s.stats.misses += 1;
         }
-        let texels = read_tile(tile, backing)?;
+        let texels = load()?;
+        let size = 4 * texels.len() as u64;
         let mut s = self.lock();
         if let Some((existing, _)) = s.tiles.get(&tile) {
             // Another thread read it meanwhile: the same bytes.
             return Ok(existing.clone());
         }
-        if TILE_BYTES > self.bound {
+        if size > self.bound {
             return Ok(texels);
         }
-        while s.stats.resident + TILE_BYTES > self.bound {
+        while s.stats.resident + size > self.bound {
             let Some((_, victim)) = s.by_use.pop_first() else { break };
-            s.tiles.remove(&victim);
-            s.stats.resident -= TILE_BYTES;
+            if let Some((gone, _)) = s.tiles.remove(&victim) {
+                s.stats.resident -= 4 * gone.len() as u64;
+            }
             s.stats.evictions += 1;
         }
         s.tick += 1;
         let tick = s.tick;
         s.tiles.insert(tile, (texels.clone(), tick));
         s.by_use.insert(tick, tile);
-        s.stats.resident += TILE_BYTES;
+        s.stats.resident += size;
         s.stats.peak = s.stats.peak.max(s.stats.resident);
         Ok(texels)
     }

@@ -20,7 +20,7 @@
 
 use std::sync::Arc;
 
-use crate::{TILE, TILE_FLOATS, Texture, TextureSystem, Wrap};
+use crate::{Texture, TextureSystem, Wrap};
 
 /// Most probes along a footprint's major side (its largest anisotropy at full sharpness).
 pub const MAX_PROBES: u32 = 16;
@@ -38,16 +38,16 @@ impl<'a> Reader<'a> {
     }
 
     /// Texel `(x, y)` (in range) of level `level` of `texture`.
-    fn texel(&mut self, texture: &Texture, level: usize, x: u32, y: u32) -> [f32; 4] {
+    pub(crate) fn texel(&mut self, texture: &Texture, level: usize, x: u32, y: u32) -> [f32; 4] {
         let l = &texture.levels[level];
-        let (tx, ty) = (x / TILE as u32, y / TILE as u32);
+        let (tx, ty) = (x / l.tile_w, y / l.tile_h);
         let tile = l.first_tile + u64::from(ty) * u64::from(l.tiles_x) + u64::from(tx);
         let texels = match &self.last {
             Some((t, texels)) if *t == tile => texels,
-            _ => &self.last.insert((tile, self.system.tile(tile))).1,
+            _ => &self.last.insert((tile, self.system.tile(texture, l, tile))).1,
         };
-        let k = 4 * ((y as usize % TILE) * TILE + x as usize % TILE);
-        if k + 4 > TILE_FLOATS {
+        let k = 4 * ((y % l.tile_h) as usize * l.tile_w as usize + (x % l.tile_w) as usize);
+        if k + 4 > texels.len() {
             return [0.0; 4];
         }
         [texels[k], texels[k + 1], texels[k + 2], texels[k + 3]]
@@ -60,31 +60,28 @@ impl<'a> Reader<'a> {
         texture: &Texture,
         level: usize,
         (x, y): (i64, i64),
-        wrap: Wrap,
+        wrap: [Wrap; 2],
     ) -> [f32; 4] {
         let l = &texture.levels[level];
-        let (w, h) = (i64::from(l.width), i64::from(l.height));
-        let (x, y) = match wrap {
-            Wrap::Periodic => (x.rem_euclid(w), y.rem_euclid(h)),
-            Wrap::Clamp => (x.clamp(0, w - 1), y.clamp(0, h - 1)),
-            Wrap::Black => {
-                if x < 0 || y < 0 || x >= w || y >= h {
-                    return [0.0; 4];
-                }
-                (x, y)
-            }
+        let one = |v: i64, n: i64, wrap: Wrap| match wrap {
+            Wrap::Periodic => Some(v.rem_euclid(n)),
+            Wrap::Clamp => Some(v.clamp(0, n - 1)),
+            Wrap::Black => (0..n).contains(&v).then_some(v),
         };
+        let x = one(x, i64::from(l.width), wrap[0]);
+        let y = one(y, i64::from(l.height), wrap[1]);
+        let (Some(x), Some(y)) = (x, y) else { return [0.0; 4] };
         self.texel(texture, level, x as u32, y as u32)
     }
 
     /// Bilinear interpolation of level `level` at texture coordinates `(s, t)`.
-    fn bilinear(
+    pub(crate) fn bilinear(
         &mut self,
         texture: &Texture,
         level: usize,
         s: f32,
         t: f32,
-        wrap: Wrap,
+        wrap: [Wrap; 2],
     ) -> [f32; 4] {
         let l = &texture.levels[level];
         let x = f64::from(s) * f64::from(l.width) - 0.5;
@@ -111,7 +108,14 @@ impl<'a> Reader<'a> {
     }
 
     /// Trilinear interpolation at `(s, t)` and level of detail `lod` (in levels, >= 0).
-    fn trilinear(&mut self, texture: &Texture, lod: f32, s: f32, t: f32, wrap: Wrap) -> [f32; 4] {
+    fn trilinear(
+        &mut self,
+        texture: &Texture,
+        lod: f32,
+        s: f32,
+        t: f32,
+        wrap: [Wrap; 2],
+    ) -> [f32; 4] {
         let top = texture.levels.len() - 1;
         let lod = lod.clamp(0.0, top as f32);
         let l0 = (lod.floor() as usize).min(top);
@@ -133,9 +137,23 @@ impl<'a> Reader<'a> {
 pub fn lookup(
     texture: &Texture,
     reader: &mut Reader<'_>,
+    st: [f32; 2],
+    dst: [f32; 2],
+    wrap: Wrap,
+) -> [f32; 4] {
+    lookup_weighted(texture, reader, st, dst, [wrap; 2], |_| 1.0)
+}
+
+/// [`lookup`] with a wrap mode per axis, the probes along the footprint's major side weighted
+/// by `weight(offset)`, `offset` in `[-0.5, 0.5]` across the footprint (1 for RenderMan's
+/// `"box"`; a triangle or a Gaussian for the others, [`crate::lookup`]).
+pub fn lookup_weighted(
+    texture: &Texture,
+    reader: &mut Reader<'_>,
     [s, t]: [f32; 2],
     [ds, dt]: [f32; 2],
-    wrap: Wrap,
+    wrap: [Wrap; 2],
+    weight: impl Fn(f32) -> f32,
 ) -> [f32; 4] {
     let base = texture.levels[0];
     let fx = (ds.abs() * base.width as f32).min(1e9);
@@ -149,13 +167,16 @@ pub fn lookup(
     let n = ((major / minor).ceil() as u32).clamp(1, MAX_PROBES);
     let lod = minor.log2();
     let mut sum = [0.0f32; 4];
+    let mut total = 0.0;
     for k in 0..n {
         let off = (k as f32 + 0.5) / n as f32 - 0.5;
         let (ps, pt) = if fx >= fy { (s + off * ds.abs(), t) } else { (s, t + off * dt.abs()) };
         let v = reader.trilinear(texture, lod, ps, pt, wrap);
+        let w = weight(off);
+        total += w;
         for c in 0..4 {
-            sum[c] += v[c];
+            sum[c] += w * v[c];
         }
     }
-    sum.map(|v| v / n as f32)
+    sum.map(|v| if total > 0.0 { v / total } else { 0.0 })
 }

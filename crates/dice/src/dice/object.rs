@@ -127,12 +127,13 @@ pub(crate) fn attach_sl(
     index: usize,
     place: &Placement,
     camera: &crate::camera::CameraSetup,
-    budget: Option<u64>,
+    (budget, lookdev): (Option<u64>, Option<&crate::Lookdev>),
 ) -> f32 {
     let budget = budget.unwrap_or(reyes_scene::sl::exec::DEFAULT_BUDGET);
     let (Placement::Matrix(m) | Placement::Between { from: m, .. }) = place;
+    let maps = lookdev.and_then(crate::Lookdev::shader_maps);
     ctx.sl = crate::sl::SlSetup::new(scene, index, m, camera, &ctx.shader, budget)
-        .map(std::sync::Arc::new);
+        .map(|s| std::sync::Arc::new(s.with_maps(maps)));
     let Some(sl) = &ctx.sl else { return 0.0 };
     ctx.hook = None;
     ctx.labels.flags &= !flags::OPAQUE;
@@ -163,7 +164,7 @@ pub(crate) fn setup_object<'a>(
     ctx.trim = crate::trim::TrimSetup::of(&object.shape, trims.len());
     trims.extend(ctx.trim.as_ref().map(|t| t.region.clone()));
     let mut reach = ctx.look.as_ref().map_or(0.0, |l| l.object.bound);
-    reach = reach.max(attach_sl(&mut ctx, scene, i, place, camera, options.shader_budget));
+    reach = reach.max(attach_sl(&mut ctx, scene, i, place, camera, (options.shader_budget, aov.2)));
     if ctx.look.as_ref().is_some_and(|l| l.object.may_be_transparent()) {
         ctx.labels.flags &= !flags::OPAQUE;
     }

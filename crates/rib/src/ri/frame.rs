@@ -530,6 +530,11 @@ impl Machine {
             K::ReadArchive => self.read_archive(&r),
             K::ArchiveBegin => self.archive_begin(&r),
             K::ArchiveEnd => Err(r.error("no ArchiveBegin is open")),
+            K::MakeTexture
+            | K::MakeBump
+            | K::MakeLatLongEnvironment
+            | K::MakeCubeFaceEnvironment
+            | K::MakeShadow => self.make(&r),
 
             // RIS: once per request name.
             k if k.is_ris() => {

@@ -151,8 +151,64 @@ impl Machine {
             let key = format!("sl param {w}");
             self.warn_once(key, w);
         }
+        self.note_maps(&params, at);
         Ok(Some(ShaderInstance { shader, params, shader_to_world: sl_matrix(to_world), file }))
     }
+}
+
+impl Machine {
+    /// Records the texture maps an instance's string parameters name (issue #32): each value
+    /// that is a file along the texture search path (or beside the RIB file without one).
+    fn note_maps(&mut self, params: &[(String, reyes_scene::ShaderValue)], at: &Location) {
+        use reyes_scene::ShaderValue as V;
+        let mut names = Vec::new();
+        for (_, v) in params {
+            match v {
+                V::Str(s) => names.push(s.clone()),
+                V::Array(xs) => names.extend(xs.iter().filter_map(|x| match x {
+                    V::Str(s) => Some(s.clone()),
+                    _ => None,
+                })),
+                V::Num(_) => {}
+            }
+        }
+        let Some(b) = &self.build else { return };
+        let known = |n: &str| b.shaders.maps.iter().any(|(m, _)| m == n);
+        let names: Vec<String> = names.into_iter().filter(|n| !n.is_empty() && !known(n)).collect();
+        for name in names {
+            let found = self
+                .frame_options
+                .search
+                .find(Kind::Texture, &name, |n| self.reader.resolve_archive(n, at));
+            let path = match found {
+                Lookup::Unsearched(p) | Lookup::Found(p) | Lookup::Missing(p, _) => p,
+            };
+            if path.is_file() {
+                if let Some(b) = &mut self.build
+                    && !b.shaders.maps.iter().any(|(m, _)| *m == name)
+                {
+                    b.shaders.maps.push((name, path));
+                }
+            } else if looks_like_a_map(&name) {
+                let w = Warning {
+                    at: at.clone(),
+                    message: format!(
+                        "texture \"{name}\" is not found (along the texture search path, or beside the RIB file): its lookups read 0"
+                    ),
+                };
+                self.warn_once(format!("missing map {name}"), w);
+            }
+        }
+    }
+}
+
+/// True if a shader parameter's string value names a texture file by its extension (then a
+/// missing file is worth a warning; other strings may be anything).
+fn looks_like_a_map(name: &str) -> bool {
+    let ext = std::path::Path::new(name).extension().and_then(|e| e.to_str()).unwrap_or("");
+    let ext = ext.to_ascii_lowercase();
+    ["tex", "tx", "tdl", "env", "shd", "sm", "zfile", "tif", "tiff", "png", "jpg", "jpeg", "exr"]
+        .contains(&ext.as_str())
 }
 
 fn kind_name(k: ShaderKind) -> &'static str {

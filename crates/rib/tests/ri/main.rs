@@ -13,6 +13,7 @@ mod mapping;
 mod peers;
 mod program;
 mod renderman;
+mod textures;
 mod tolerance;
 mod trim;
 

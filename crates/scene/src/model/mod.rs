@@ -146,7 +146,7 @@ impl Scene {
                 || o.displacement.is_some()
                 || o.bump.is_some()
                 || o.emission.is_some()
-        })
+        }) || !self.shaders.maps.is_empty()
     }
 }
 

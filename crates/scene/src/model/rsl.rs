@@ -89,11 +89,21 @@ pub struct SceneShaders {
     /// From RenderMan's world space to the model's world space (a RIB scene's model world is
     /// its camera space at shutter open): the shaders' "world" space.
     pub world_to_model: Mat,
+    /// Texture maps the shaders may read (issue #32): each string parameter value of an
+    /// instance that names a file along the texture search path, with that file. The
+    /// renderer loads them before rendering (a malformed one is an error then) and the
+    /// `texture`, `environment`, `shadow` and `textureinfo` calls find them by the name.
+    pub maps: Vec<(String, std::path::PathBuf)>,
 }
 
 impl Default for SceneShaders {
     fn default() -> Self {
-        SceneShaders { lights: Vec::new(), imager: None, world_to_model: IDENTITY }
+        SceneShaders {
+            lights: Vec::new(),
+            imager: None,
+            world_to_model: IDENTITY,
+            maps: Vec::new(),
+        }
     }
 }
 

@@ -85,6 +85,18 @@ pub(crate) struct LightRecord {
 
 impl Lights for ShaderLights {
     fn lights(&mut self, q: &LightQuery<'_>) -> Result<Vec<LightSample>, ExecError> {
+        self.lights_with(q, None)
+    }
+}
+
+impl ShaderLights {
+    /// [`Lights::lights`] with the light shaders' `shadow`, `texture` and `environment`
+    /// calls answered by `textures`.
+    pub fn lights_with(
+        &self,
+        q: &LightQuery<'_>,
+        mut textures: Option<&mut dyn super::Textures>,
+    ) -> Result<Vec<LightSample>, ExecError> {
         let mut out = Vec::new();
         for light in &self.lights {
             if !q.category.is_empty() && !light.categories.iter().any(|c| c == q.category) {
@@ -92,6 +104,9 @@ impl Lights for ShaderLights {
             }
             let mut g = GridContext::new(&light.shader, q.nu, q.nv);
             g.set_spaces(light.spaces.clone());
+            if let Some(t) = textures.as_deref_mut() {
+                g.set_textures(t);
+            }
             g.set_global("Ps", q.p.to_varying(g.n))?;
             g.set_global("Ns", q.n.to_varying(g.n))?;
             for (name, v) in &light.params {
