@@ -50,6 +50,16 @@ pub(super) fn sl_matrix(m: &DMat4) -> [f32; 16] {
 }
 
 impl Machine {
+    /// True if `name.sl` is a file on the shader search path (not a built-in shader).
+    fn on_path(&self, name: &str, at: &Location) -> bool {
+        let file = format!("{name}.sl");
+        let reader = &self.reader;
+        matches!(
+            self.frame_options.search.find(Kind::Shader, &file, |n| reader.resolve_archive(n, at)),
+            Lookup::Unsearched(p) | Lookup::Found(p) if p.is_file()
+        )
+    }
+
     /// The shader `name` of `kind` named at `at` by `request`, compiled, with its file's name;
     /// `None` when no source is found.
     fn compiled(
@@ -351,8 +361,11 @@ impl Machine {
         r: &crate::Request,
         to_world: &DMat4,
     ) -> Result<Option<Arc<reyes_scene::ObjectShaders>>, RibError> {
-        let native =
-            |s: &SurfaceShader, list: &[&str]| s.name.as_deref().is_none_or(|n| list.contains(&n));
+        // A standard name is native unless the user's NAME.sl is on the search path, which
+        // then comes first, as a RenderMan renderer's search finds it.
+        let native = |m: &Machine, s: &SurfaceShader, list: &[&str]| {
+            s.name.as_deref().is_none_or(|n| list.contains(&n) && !m.on_path(n, &r.at))
+        };
         let mut o = reyes_scene::ObjectShaders::default();
         // Under a light shader, the standard surfaces that read lights run as the built-in
         // shading-language copies, so that the light shader lights them (the native models
@@ -362,10 +375,10 @@ impl Machine {
             .as_ref()
             .is_some_and(|b| b.shader_light_slots.iter().any(|s| a.lights_on.contains(s)));
         let lit = a.surface.name.as_deref().is_some_and(|n| LIT_SURFACES.contains(&n));
-        if !native(&a.surface, NATIVE_SURFACES) || (under_shader && lit) {
+        if !native(self, &a.surface, NATIVE_SURFACES) || (under_shader && lit) {
             o.surface = self.sl_instance(&a.surface, ShaderKind::Surface, "Surface", to_world)?;
         }
-        if !native(&a.displacement, NATIVE_DISPLACEMENTS) {
+        if !native(self, &a.displacement, NATIVE_DISPLACEMENTS) {
             o.displacement = self.sl_instance(
                 &a.displacement,
                 ShaderKind::Displacement,
@@ -435,7 +448,7 @@ impl Machine {
         name: &str,
         handle: &str,
     ) -> Result<bool, RibError> {
-        if NATIVE_LIGHTS.contains(&name) {
+        if NATIVE_LIGHTS.contains(&name) && !self.on_path(name, &r.at) {
             return Ok(false);
         }
         let s = SurfaceShader::of(r);

@@ -227,3 +227,21 @@ fn a_light_shader_lights_the_standard_surfaces() {
         assert!(lit > 50, "{surface}: the sphere is lit: {lit} pixels");
     }
 }
+
+/// A `NAME.sl` on the shader search path comes before the built-in shader of that name, for
+/// surfaces and lights alike, as a RenderMan renderer's search finds it first.
+#[test]
+fn a_standard_name_on_the_search_path_runs_the_users_shader() {
+    let files = Files::new(&[
+        ("matte", "surface matte() { Oi = 1; Ci = color(0.25, 0.5, 0.75); }"),
+        ("pointlight", "light pointlight() { solar() { Cl = 0; } }"),
+    ]);
+    let rib = format!(
+        "{}WorldBegin\nLightSource \"pointlight\" 1\nSurface \"matte\"\n{QUAD}\nWorldEnd\n",
+        ortho(SIZE, W)
+    );
+    let scene = files.scene(&rib);
+    assert_eq!(scene.shaders.lights.len(), 1, "the light is the file's shader");
+    let f = render(&scene);
+    assert_eq!(pixel(&f, SIZE / 2, SIZE / 2), [0.25, 0.5, 0.75, 1.0]);
+}
