@@ -272,6 +272,7 @@ impl<'b> Emitter<'b> {
                             p_lookup,
                             p_object: sp.p,
                             tint: sp.tint,
+                            opacity: sp.opacity,
                             p_world,
                             p_shaded,
                             n_world,

@@ -274,6 +274,21 @@ impl Splitter {
         extent
     }
 
+    /// Raster extent of camera-space points (the larger side of their raster bound; infinite
+    /// when one is not in front of the eye), as [`Splitter::extent`] measures a patch.
+    pub fn extent_of(&self, points_camera: impl Iterator<Item = Vec3>) -> f32 {
+        let (mut lo, mut hi) = (Vec2::INFINITY, Vec2::NEG_INFINITY);
+        for p in points_camera {
+            if !(p.is_finite() && p.z >= self.near) {
+                return f32::INFINITY;
+            }
+            let r = self.camera.eye_to_raster(p);
+            lo = lo.min(r);
+            hi = hi.max(r);
+        }
+        (hi - lo).max_element()
+    }
+
     /// The same decisions for a displaced surface whose points move up to `reach` in
     /// camera space (RenderMan's displacement bound): bounds, depth ranges and side-plane
     /// tests take in the cube of half-side `reach` about every test and hull point.
@@ -340,7 +355,7 @@ impl Splitter {
     /// The root patch of a surface seen in `poses`, with its four sides for crack-free
     /// dicing ([`edge`]), its corners on the surface.
     pub fn root_with_sides(&self, poses: &[Pose<'_>]) -> Patch {
-        self.root_sharing(poses, SharedSides::default())
+        self.root_sharing(poses, SharedSides::default(), None)
     }
 
     /// [`Splitter::root_with_sides`], taking the sides a neighbouring surface of the same
@@ -348,7 +363,14 @@ impl Splitter {
     /// mesh meet along a curve each evaluates from its own control points, to rounding; each
     /// halving its own copy could halve it differently, so the first one to reach a shared
     /// boundary makes its edge and the other reads it ([`SharedSides`]).
-    pub fn root_sharing(&self, poses: &[Pose<'_>], given: SharedSides) -> Patch {
+    /// `extent` is the raster extent of the primitive the surface is part of when that is
+    /// more than the surface (a blobby's faces); `None`: the surface's own.
+    pub fn root_sharing(
+        &self,
+        poses: &[Pose<'_>],
+        given: SharedSides,
+        extent: Option<f32>,
+    ) -> Patch {
         let corner = |u: f32, v: f32| -> Vec<Vec3> {
             poses.iter().map(|pose| pose.surface.position(u, v)).collect()
         };
@@ -357,7 +379,8 @@ impl Splitter {
         let ends = |a: &[Vec3], b: &[Vec3]| -> Vec<[Vec3; 2]> {
             a.iter().zip(b).map(|(a, b)| [*a, *b]).collect()
         };
-        let tol = self.edge_tolerance(self.extent(poses, &Patch::root()));
+        let extent = extent.unwrap_or_else(|| self.extent(poses, &Patch::root()));
+        let tol = self.edge_tolerance(extent);
         let edge = |line: Line, a: &[Vec3], b: &[Vec3]| {
             Arc::new(Edge::new(self, poses, line, [0.0, 1.0], &ends(a, b), tol))
         };

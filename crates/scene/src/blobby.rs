@@ -1,0 +1,670 @@
+//! RenderMan blobby implicit surfaces (`RiBlobby`), shared by validation and the dicer: the
+//! code stream read into a [`Program`], the field and its gradient, the per-field blend of
+//! colours, a bound, and a coarse polygon mesh of the surface on which the dicer dices.
+//!
+//! The field (RenderMan Interface 3.2, "Implicit surfaces", and PRMan's application note on
+//! blobbies): every primitive field is the bump `F(R) = (1 - R^2)^3` for `R < 1` (0 beyond)
+//! of a distance `R` in its own space: an ellipsoid (1001) is the unit sphere under its 4x4
+//! matrix, a segment (1002) the points within `radius` of a segment under its matrix. A
+//! constant (1000) is its value everywhere. A repelling ground plane (1003, with a depth-map
+//! name, and 1004, without) is PRMan's `repulsion(z)` of the height `z` above the plane
+//! `z = 0` of the primitive's space (a depth map is not read: its plane stands in for it).
+//! Operators combine earlier results: 0 add, 1 multiply, 2 maximum, 3 minimum (each with a
+//! count of operands), 4 subtract (`a - b` of `4 a b`), 5 divide, 6 negate, 7 identity. The
+//! surface is the level set `field = THRESHOLD` (27/64, PRMan's and Aqsis's: a lone ellipsoid's
+//! surface is its matrix's image of the sphere of radius 1/2).
+//!
+//! Invariants: [`Program::parse`] checks every opcode, operand count and index, so a parsed
+//! program never indexes out of range; evaluation is in `f64` and finite for finite input
+//! (a singular matrix contributes no field); the coarse mesh's vertices lie on the surface
+//! (to the root finder's tolerance) and its triangles wind so that `(b - a) x (c - a)` points
+//! out of the solid (where the field is below the threshold), which is `-grad`.
+
+use glam::{DMat3, DMat4, DVec3};
+
+/// The level of the surface: `F` at `R = 1/2`, `(3/4)^3`.
+pub const THRESHOLD: f64 = 27.0 / 64.0;
+
+/// Most cells of the coarse mesh's lattice along one axis.
+const MAX_CELLS: usize = 48;
+
+/// One instruction, its operands resolved.
+#[derive(Debug, Clone, PartialEq)]
+enum Op {
+    Constant(f64),
+    /// The inverse of the matrix carrying the unit sphere onto the ellipsoid.
+    Ellipsoid(DMat4),
+    /// Segment `a`-`b` of `radius`, in the space of the inverse matrix `inv`.
+    Segment {
+        a: DVec3,
+        b: DVec3,
+        radius: f64,
+        inv: DMat4,
+    },
+    /// PRMan's repulsion parameters `A, B, C, D`.
+    Repeller([f64; 4]),
+    Add(Vec<usize>),
+    Multiply(Vec<usize>),
+    Max(Vec<usize>),
+    Min(Vec<usize>),
+    Subtract(usize, usize),
+    Divide(usize, usize),
+    Negate(usize),
+    Identity(usize),
+}
+
+/// A blobby's code stream, checked and ready to evaluate.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Program {
+    ops: Vec<Op>,
+    /// Instruction index of each primitive field (opcode >= 1000), in order.
+    leaves: Vec<usize>,
+    /// Object-space bound of the bounded primitive fields' supports.
+    bound: Option<(DVec3, DVec3)>,
+    /// Smallest feature: half the smallest semi-axis of an ellipsoid or radius of a segment
+    /// (object space), the scale of the coarse lattice.
+    feature: f64,
+}
+
+/// A code stream fault: the index in `code` (or, with `floats`, in `floats`) and why.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct CodeError {
+    /// Which array: `"code"` or `"strings"`.
+    pub array: &'static str,
+    /// The index in it.
+    pub index: usize,
+    /// Why.
+    pub message: String,
+}
+
+fn bump(s: f64) -> (f64, f64) {
+    // F(s) = (1 - s)^3 of s = R^2, and dF/ds.
+    if s >= 1.0 {
+        (0.0, 0.0)
+    } else {
+        let a = 1.0 - s;
+        (a * a * a, -3.0 * a * a)
+    }
+}
+
+/// PRMan's repulsion and its derivative in `z`.
+fn repulsion(z: f64, [a, b, c, d]: [f64; 4]) -> (f64, f64) {
+    if z >= a || a <= 0.0 {
+        return (0.0, 0.0);
+    }
+    let z = z.max(1e-6);
+    let bump = |r: f64| {
+        if r <= 0.0 || r >= 2.0 {
+            (0.0, 0.0)
+        } else {
+            let v = (((6.0 - r) * r - 12.0) * r + 8.0) * r * r * r;
+            let dv = ((((30.0 - 6.0 * r) * r - 48.0) * r + 24.0) * r) * r;
+            (v, dv)
+        }
+    };
+    let ease = |r: f64| {
+        if r <= 0.0 {
+            (0.0, 0.0)
+        } else if r >= 1.0 {
+            (1.0, 0.0)
+        } else {
+            (r * r * (3.0 - 2.0 * r), 6.0 * r * (1.0 - r))
+        }
+    };
+    let (bv, bd) = if c > 0.0 { bump(z / c) } else { (0.0, 0.0) };
+    let (bd, inner) = (if c > 0.0 { bd / c } else { 0.0 }, d * bv - b / z);
+    let dinner = d * bd + b / (z * z);
+    let (e, ed) = ease(z / a);
+    (inner * (1.0 - e), dinner * (1.0 - e) - inner * ed / a)
+}
+
+impl Program {
+    /// Reads a code stream, checking every opcode, operand and index.
+    pub fn parse(code: &[i32], floats: &[f32], strings: &[String]) -> Result<Program, CodeError> {
+        let err = |index: usize, message: String| CodeError { array: "code", index, message };
+        let mut ops = Vec::new();
+        let mut leaves = Vec::new();
+        let mut starts = Vec::new();
+        let mut i = 0;
+        let operand = |i: usize| -> Result<i32, CodeError> {
+            code.get(i).copied().ok_or_else(|| {
+                err(i, format!("the code ends inside an instruction (operand {i} is missing)"))
+            })
+        };
+        let floats_at = |k: i32, n: usize, at: usize| -> Result<Vec<f64>, CodeError> {
+            let k =
+                usize::try_from(k).ok().filter(|&k| k + n <= floats.len()).ok_or_else(|| {
+                    err(
+                        at,
+                        format!(
+                            "float index {k} needs {n} floats from there, but floats has {}",
+                            floats.len()
+                        ),
+                    )
+                })?;
+            Ok(floats[k..k + n].iter().map(|&x| f64::from(x)).collect())
+        };
+        let matrix = |m: &[f64]| {
+            let a = DMat4::from_cols_array(&std::array::from_fn(|k| m[k]));
+            if a.determinant().abs() > 1e-300 && a.is_finite() { a.inverse() } else { DMat4::ZERO }
+        };
+        while i < code.len() {
+            let at = i;
+            let op = code[i];
+            i += 1;
+            let reference = |j: usize, done: usize| -> Result<usize, CodeError> {
+                let r = operand(j)?;
+                usize::try_from(r).ok().filter(|&r| r < done).ok_or_else(|| {
+                    err(
+                        j,
+                        format!(
+                            "operand {r} must name an earlier instruction (0 to {}), got {r}",
+                            done as i64 - 1
+                        ),
+                    )
+                })
+            };
+            let done = ops.len();
+            let next = match op {
+                1000 => {
+                    let v = floats_at(operand(i)?, 1, i)?;
+                    i += 1;
+                    Op::Constant(v[0])
+                }
+                1001 => {
+                    let m = floats_at(operand(i)?, 16, i)?;
+                    i += 1;
+                    Op::Ellipsoid(matrix(&m))
+                }
+                1002 => {
+                    let f = floats_at(operand(i)?, 23, i)?;
+                    i += 1;
+                    Op::Segment {
+                        a: DVec3::new(f[0], f[1], f[2]),
+                        b: DVec3::new(f[3], f[4], f[5]),
+                        radius: f[6],
+                        inv: matrix(&f[7..23]),
+                    }
+                }
+                1003 => {
+                    let s = operand(i)?;
+                    if usize::try_from(s).ok().filter(|&s| s < strings.len()).is_none() {
+                        return Err(err(
+                            i,
+                            format!(
+                                "string index {s} is out of range (strings has {})",
+                                strings.len()
+                            ),
+                        ));
+                    }
+                    let f = floats_at(operand(i + 1)?, 4, i + 1)?;
+                    i += 2;
+                    Op::Repeller([f[0], f[1], f[2], f[3]])
+                }
+                1004 => {
+                    let f = floats_at(operand(i)?, 4, i)?;
+                    i += 1;
+                    Op::Repeller([f[0], f[1], f[2], f[3]])
+                }
+                0..=3 => {
+                    let n = operand(i)?;
+                    if n < 1 {
+                        return Err(err(
+                            i,
+                            format!("an operator needs at least 1 operand, got {n}"),
+                        ));
+                    }
+                    let list = (0..n as usize)
+                        .map(|k| reference(i + 1 + k, done))
+                        .collect::<Result<Vec<_>, _>>()?;
+                    i += 1 + n as usize;
+                    match op {
+                        0 => Op::Add(list),
+                        1 => Op::Multiply(list),
+                        2 => Op::Max(list),
+                        _ => Op::Min(list),
+                    }
+                }
+                4 | 5 => {
+                    let (a, b) = (reference(i, done)?, reference(i + 1, done)?);
+                    i += 2;
+                    if op == 4 { Op::Subtract(a, b) } else { Op::Divide(a, b) }
+                }
+                6 | 7 => {
+                    let a = reference(i, done)?;
+                    i += 1;
+                    if op == 6 { Op::Negate(a) } else { Op::Identity(a) }
+                }
+                other => {
+                    return Err(err(
+                        at,
+                        format!(
+                            "unknown blobby opcode {other} (primitive fields are 1000 to 1004, operators 0 to 7)"
+                        ),
+                    ));
+                }
+            };
+            if op >= 1000 {
+                leaves.push(ops.len());
+            }
+            if let Op::Segment { radius, .. } = &next
+                && !(*radius > 0.0 && radius.is_finite())
+            {
+                return Err(err(at, format!("a segment's radius must be > 0, got {radius}")));
+            }
+            starts.push(at);
+            ops.push(next);
+        }
+        if ops.is_empty() {
+            return Err(err(0, "the code holds no instruction".into()));
+        }
+        let mut program = Program { ops, leaves, bound: None, feature: f64::INFINITY };
+        program.measure();
+        Ok(program)
+    }
+
+    /// The number of primitive fields (RenderMan's `nleaf`).
+    pub fn leaf_count(&self) -> usize {
+        self.leaves.len()
+    }
+
+    /// The bound and the smallest feature of the bounded fields.
+    fn measure(&mut self) {
+        let mut lo = DVec3::INFINITY;
+        let mut hi = DVec3::NEG_INFINITY;
+        let mut feature = f64::INFINITY;
+        let mut grow = |m: DMat4, corners: [DVec3; 2]| {
+            for k in 0..8 {
+                let c = DVec3::new(
+                    if k & 1 == 0 { corners[0].x } else { corners[1].x },
+                    if k & 2 == 0 { corners[0].y } else { corners[1].y },
+                    if k & 4 == 0 { corners[0].z } else { corners[1].z },
+                );
+                let p = m.transform_point3(c);
+                lo = lo.min(p);
+                hi = hi.max(p);
+            }
+        };
+        for op in &self.ops {
+            let (inv, local) = match op {
+                Op::Ellipsoid(inv) => (*inv, [DVec3::splat(-1.0), DVec3::splat(1.0)]),
+                Op::Segment { a, b, radius, inv } => {
+                    (*inv, [a.min(*b) - *radius, a.max(*b) + *radius])
+                }
+                _ => continue,
+            };
+            if inv == DMat4::ZERO {
+                continue;
+            }
+            let m = inv.inverse();
+            grow(m, local);
+            // Half the smallest semi-axis: the smallest singular value of the linear part.
+            let l = DMat3::from_mat4(m);
+            let smallest = smallest_singular(l);
+            let scale = match op {
+                Op::Segment { radius, .. } => *radius,
+                _ => 1.0,
+            };
+            feature = feature.min(0.5 * smallest * scale);
+        }
+        self.bound = (lo.x <= hi.x).then_some((lo, hi));
+        self.feature = feature;
+    }
+
+    /// The object-space box holding every point where a bounded primitive field is not 0
+    /// (`None` if there is none): where the surface lies, unless constants or negations
+    /// raise the field above the threshold elsewhere.
+    pub fn bound(&self) -> Option<(DVec3, DVec3)> {
+        self.bound
+    }
+
+    /// The field and its gradient at `p`.
+    pub fn eval(&self, p: DVec3) -> (f64, DVec3) {
+        let mut v: Vec<(f64, DVec3)> = Vec::with_capacity(self.ops.len());
+        for op in &self.ops {
+            let r = match op {
+                Op::Constant(c) => (*c, DVec3::ZERO),
+                Op::Ellipsoid(inv) => {
+                    let q = inv.transform_point3(p);
+                    let (f, df) = bump(q.length_squared());
+                    (f, DMat3::from_mat4(*inv).transpose() * (q * (2.0 * df)))
+                }
+                Op::Segment { a, b, radius, inv } => {
+                    let q = inv.transform_point3(p);
+                    let ab = *b - *a;
+                    let t = if ab.length_squared() > 0.0 {
+                        ((q - *a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
+                    } else {
+                        0.0
+                    };
+                    let d = (q - (*a + ab * t)) / *radius;
+                    let (f, df) = bump(d.length_squared());
+                    (f, DMat3::from_mat4(*inv).transpose() * (d * (2.0 * df / *radius)))
+                }
+                Op::Repeller(params) => {
+                    let (f, df) = repulsion(p.z, *params);
+                    (f, DVec3::new(0.0, 0.0, df))
+                }
+                Op::Add(list) => {
+                    list.iter().fold((0.0, DVec3::ZERO), |(f, g), &k| (f + v[k].0, g + v[k].1))
+                }
+                Op::Multiply(list) => list
+                    .iter()
+                    .fold((1.0, DVec3::ZERO), |(f, g), &k| (f * v[k].0, g * v[k].0 + v[k].1 * f)),
+                Op::Max(list) => list
+                    .iter()
+                    .map(|&k| v[k])
+                    .reduce(|a, b| if b.0 > a.0 { b } else { a })
+                    .unwrap_or_default(),
+                Op::Min(list) => list
+                    .iter()
+                    .map(|&k| v[k])
+                    .reduce(|a, b| if b.0 < a.0 { b } else { a })
+                    .unwrap_or_default(),
+                Op::Subtract(a, b) => (v[*a].0 - v[*b].0, v[*a].1 - v[*b].1),
+                Op::Divide(a, b) => {
+                    let (fa, ga) = v[*a];
+                    let (fb, gb) = v[*b];
+                    if fb == 0.0 {
+                        (0.0, DVec3::ZERO)
+                    } else {
+                        (fa / fb, (ga * fb - gb * fa) / (fb * fb))
+                    }
+                }
+                Op::Negate(a) => (-v[*a].0, -v[*a].1),
+                Op::Identity(a) => v[*a],
+            };
+            let finite = r.0.is_finite() && r.1.is_finite();
+            v.push(if finite { r } else { (0.0, DVec3::ZERO) });
+        }
+        v.last().copied().unwrap_or_default()
+    }
+
+    /// The field at `p`.
+    pub fn field(&self, p: DVec3) -> f64 {
+        self.eval(p).0
+    }
+
+    /// The weights of the primitive fields at `p` for blending their colours: each bounded
+    /// field's value over their sum (all equal where none reaches `p`).
+    pub fn leaf_weights(&self, p: DVec3) -> Vec<f64> {
+        let mut w: Vec<f64> = self
+            .leaves
+            .iter()
+            .map(|&k| match &self.ops[k] {
+                Op::Ellipsoid(inv) => bump(inv.transform_point3(p).length_squared()).0,
+                Op::Segment { a, b, radius, inv } => {
+                    let q = inv.transform_point3(p);
+                    let ab = *b - *a;
+                    let t = if ab.length_squared() > 0.0 {
+                        ((q - *a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
+                    } else {
+                        0.0
+                    };
+                    bump(((q - (*a + ab * t)) / *radius).length_squared()).0
+                }
+                _ => 0.0,
+            })
+            .collect();
+        let sum: f64 = w.iter().sum();
+        if sum > 0.0 {
+            w.iter_mut().for_each(|x| *x /= sum);
+        } else if !w.is_empty() {
+            let n = w.len() as f64;
+            w.iter_mut().for_each(|x| *x = 1.0 / n);
+        }
+        w
+    }
+
+    /// `p` moved onto the surface along the field's gradient (Newton's method on
+    /// `field = THRESHOLD`, each step at most `reach`); `p` itself where the gradient
+    /// vanishes. Deterministic: the same `p` gives the same point.
+    pub fn project(&self, p: DVec3, reach: f64) -> DVec3 {
+        let mut q = p;
+        for _ in 0..12 {
+            let (f, g) = self.eval(q);
+            let gg = g.length_squared();
+            if gg <= 1e-300 {
+                break;
+            }
+            let mut step = g * ((THRESHOLD - f) / gg);
+            let len = step.length();
+            if len > reach {
+                step *= reach / len;
+            }
+            q += step;
+            if len <= 1e-12 * (1.0 + q.length()) {
+                break;
+            }
+        }
+        q
+    }
+
+    /// The outward unit normal at `p` (`-grad`, normalised; +z where it vanishes).
+    pub fn normal(&self, p: DVec3) -> DVec3 {
+        (-self.eval(p).1).try_normalize().unwrap_or(DVec3::Z)
+    }
+
+    /// A coarse triangle mesh of the surface: marching tetrahedra (six per cube, Kuhn's
+    /// conforming split) over the bound grown by one cell, the cell a quarter of the
+    /// smallest feature (at most [`MAX_CELLS`] along the bound's longest side), each vertex
+    /// found on its lattice edge by bisection. Vertices are shared (each once per lattice
+    /// edge); triangles wind outward. The dicer dices on these triangles, projecting every
+    /// point onto the surface ([`Program::project`]); the lattice only has to catch the
+    /// surface's topology. Also returns the cell size (the projection's reach).
+    pub fn coarse_mesh(&self) -> (Vec<DVec3>, Vec<[u32; 3]>, f64) {
+        let Some((lo, hi)) = self.bound else { return (Vec::new(), Vec::new(), 0.0) };
+        let extent = (hi - lo).max_element();
+        let h = (0.5 * self.feature).max(extent / MAX_CELLS as f64);
+        if !(h > 0.0 && h.is_finite()) {
+            return (Vec::new(), Vec::new(), 0.0);
+        }
+        let origin = lo - DVec3::splat(h);
+        let n = ((hi - lo + DVec3::splat(2.0 * h)) / h).ceil().as_uvec3();
+        let (nx, ny, nz) = (n.x as usize + 1, n.y as usize + 1, n.z as usize + 1);
+        let index = |x: usize, y: usize, z: usize| (z * ny + y) * nx + x;
+        let at =
+            |x: usize, y: usize, z: usize| origin + DVec3::new(x as f64, y as f64, z as f64) * h;
+        let mut values = vec![0.0; nx * ny * nz];
+        for z in 0..nz {
+            for y in 0..ny {
+                for x in 0..nx {
+                    values[index(x, y, z)] = self.field(at(x, y, z)) - THRESHOLD;
+                }
+            }
+        }
+        let mut points: Vec<DVec3> = Vec::new();
+        let mut on_edge: std::collections::HashMap<(usize, usize), u32> =
+            std::collections::HashMap::new();
+        let mut triangles = Vec::new();
+        let corner = |x: usize, y: usize, z: usize, k: usize| {
+            (x + (k & 1), y + ((k >> 1) & 1), z + ((k >> 2) & 1))
+        };
+        // Kuhn's six tetrahedra: 0 -> e_a -> e_a + e_b -> 7 for each order (a, b, c).
+        const ORDERS: [[usize; 3]; 6] =
+            [[1, 2, 4], [1, 4, 2], [2, 1, 4], [2, 4, 1], [4, 1, 2], [4, 2, 1]];
+        for z in 0..nz - 1 {
+            for y in 0..ny - 1 {
+                for x in 0..nx - 1 {
+                    for order in ORDERS {
+                        let ks = [0, order[0], order[0] | order[1], 7];
+                        let ids = ks.map(|k| {
+                            let (a, b, c) = corner(x, y, z, k);
+                            index(a, b, c)
+                        });
+                        let pos = ks.map(|k| {
+                            let (a, b, c) = corner(x, y, z, k);
+                            at(a, b, c)
+                        });
+                        self.tetrahedron(
+                            ids,
+                            pos,
+                            &values,
+                            h,
+                            &mut points,
+                            &mut on_edge,
+                            &mut triangles,
+                        );
+                    }
+                }
+            }
+        }
+        (points, triangles, h)
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn tetrahedron(
+        &self,
+        ids: [usize; 4],
+        pos: [DVec3; 4],
+        values: &[f64],
+        h: f64,
+        points: &mut Vec<DVec3>,
+        on_edge: &mut std::collections::HashMap<(usize, usize), u32>,
+        triangles: &mut Vec<[u32; 3]>,
+    ) {
+        let inside: Vec<usize> = (0..4).filter(|&k| values[ids[k]] >= 0.0).collect();
+        let outside: Vec<usize> = (0..4).filter(|&k| values[ids[k]] < 0.0).collect();
+        if inside.is_empty() || outside.is_empty() {
+            return;
+        }
+        let mut vertex = |a: usize, b: usize| -> u32 {
+            let key = (ids[a].min(ids[b]), ids[a].max(ids[b]));
+            *on_edge.entry(key).or_insert_with(|| {
+                // Bisection from the inside end to the outside end, in lattice order so that
+                // both tetrahedra sharing the edge find the same point.
+                let (mut p_in, mut p_out) =
+                    if values[ids[a]] >= 0.0 { (pos[a], pos[b]) } else { (pos[b], pos[a]) };
+                for _ in 0..40 {
+                    let mid = 0.5 * (p_in + p_out);
+                    if self.field(mid) >= THRESHOLD {
+                        p_in = mid;
+                    } else {
+                        p_out = mid;
+                    }
+                    if p_in.distance_squared(p_out) <= (1e-9 * h).powi(2) {
+                        break;
+                    }
+                }
+                points.push(0.5 * (p_in + p_out));
+                (points.len() - 1) as u32
+            })
+        };
+        let centre = |ks: &[usize]| ks.iter().map(|&k| pos[k]).sum::<DVec3>() / ks.len() as f64;
+        let out_dir = centre(&outside) - centre(&inside);
+        let mut emit = |t: [u32; 3], points: &Vec<DVec3>| {
+            let [a, b, c] = t.map(|i| points[i as usize]);
+            if (b - a).cross(c - a).dot(out_dir) >= 0.0 {
+                triangles.push(t);
+            } else {
+                triangles.push([t[0], t[2], t[1]]);
+            }
+        };
+        match (inside.len(), outside.len()) {
+            (1, 3) | (3, 1) => {
+                let (one, rest) =
+                    if inside.len() == 1 { (inside[0], &outside) } else { (outside[0], &inside) };
+                let t = [vertex(one, rest[0]), vertex(one, rest[1]), vertex(one, rest[2])];
+                emit(t, points);
+            }
+            _ => {
+                let (i0, i1, o0, o1) = (inside[0], inside[1], outside[0], outside[1]);
+                let q = [vertex(i0, o0), vertex(i0, o1), vertex(i1, o1), vertex(i1, o0)];
+                emit([q[0], q[1], q[2]], points);
+                emit([q[0], q[2], q[3]], points);
+            }
+        }
+    }
+}
+
+/// The smallest singular value of `m` (the square root of the smallest eigenvalue of
+/// `m^T m`, by the characteristic cubic).
+fn smallest_singular(m: DMat3) -> f64 {
+    let a = m.transpose() * m;
+    // Eigenvalues of a symmetric 3x3 (Smith's method).
+    let p1 = a.x_axis.y.powi(2) + a.x_axis.z.powi(2) + a.y_axis.z.powi(2);
+    let q = (a.x_axis.x + a.y_axis.y + a.z_axis.z) / 3.0;
+    let p2 =
+        (a.x_axis.x - q).powi(2) + (a.y_axis.y - q).powi(2) + (a.z_axis.z - q).powi(2) + 2.0 * p1;
+    let p = (p2 / 6.0).sqrt();
+    if p <= 1e-300 {
+        return q.max(0.0).sqrt();
+    }
+    let b = (a - DMat3::from_diagonal(DVec3::splat(q))) * (1.0 / p);
+    let r = (b.determinant() / 2.0).clamp(-1.0, 1.0);
+    let phi = r.acos() / 3.0;
+    let smallest = q + 2.0 * p * (phi + 2.0 * std::f64::consts::PI / 3.0).cos();
+    smallest.max(0.0).sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn translate(x: f32, y: f32, z: f32) -> Vec<f32> {
+        vec![1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, x, y, z, 1.0]
+    }
+
+    #[test]
+    fn a_lone_sphere_has_radius_one_half() {
+        let p = Program::parse(&[1001, 0], &translate(0.0, 0.0, 0.0), &[]).unwrap();
+        let r = p.project(DVec3::new(0.3, 0.0, 0.0), 0.1).length();
+        assert!((r - 0.5).abs() < 1e-9, "{r}");
+        assert!((p.field(DVec3::new(0.0, 0.5, 0.0)) - THRESHOLD).abs() < 1e-12);
+        let n = p.normal(DVec3::new(0.0, 0.5, 0.0));
+        assert!(n.distance(DVec3::Y) < 1e-9);
+    }
+
+    #[test]
+    fn gradients_match_differences() {
+        let mut floats = translate(-0.4, 0.0, 0.0);
+        floats.extend(translate(0.4, 0.1, 0.0));
+        floats.extend([0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.4]);
+        floats.extend(translate(0.0, 0.0, 0.2));
+        let code = [1001, 0, 1001, 16, 1002, 32, 0, 2, 0, 1, 1, 2, 2, 1, 2, 3, 0, 3, 4, 1, 5, 3, 4];
+        let p = Program::parse(&code, &floats, &[]).unwrap();
+        for q in [DVec3::new(0.1, 0.2, 0.05), DVec3::new(-0.3, 0.1, 0.1), DVec3::new(0.2, 0.6, 0.2)]
+        {
+            let (_, g) = p.eval(q);
+            let e = 1e-6;
+            let d = DVec3::new(
+                p.field(q + DVec3::X * e) - p.field(q - DVec3::X * e),
+                p.field(q + DVec3::Y * e) - p.field(q - DVec3::Y * e),
+                p.field(q + DVec3::Z * e) - p.field(q - DVec3::Z * e),
+            ) / (2.0 * e);
+            assert!(g.distance(d) < 1e-5 * (1.0 + d.length()), "{g} {d}");
+        }
+    }
+
+    #[test]
+    fn bad_code_names_its_place() {
+        let f = translate(0.0, 0.0, 0.0);
+        let e = Program::parse(&[1001, 0, 1010, 0], &f, &[]).unwrap_err();
+        assert_eq!(e.index, 2);
+        assert!(e.message.contains("unknown blobby opcode 1010"), "{}", e.message);
+        let e = Program::parse(&[1001, 4], &f, &[]).unwrap_err();
+        assert_eq!(e.index, 1);
+        let e = Program::parse(&[1001, 0, 0, 2, 0, 1], &f, &[]).unwrap_err();
+        assert_eq!(e.index, 5);
+        let e = Program::parse(&[1001], &f, &[]).unwrap_err();
+        assert_eq!(e.index, 1);
+    }
+
+    #[test]
+    fn the_coarse_mesh_lies_on_the_surface_and_winds_out() {
+        let p = Program::parse(&[1001, 0], &translate(0.0, 0.0, 0.0), &[]).unwrap();
+        let (points, tris, _) = p.coarse_mesh();
+        assert!(tris.len() > 20);
+        for q in &points {
+            assert!((q.length() - 0.5).abs() < 1e-6, "{q}");
+        }
+        let mut volume = 0.0;
+        for t in &tris {
+            let [a, b, c] = t.map(|i| points[i as usize]);
+            assert!((b - a).cross(c - a).dot(a + b + c) > 0.0);
+            volume += a.dot(b.cross(c)) / 6.0;
+        }
+        let exact = 4.0 / 3.0 * std::f64::consts::PI * 0.125;
+        assert!(volume > 0.6 * exact && volume <= exact, "{volume} {exact}");
+    }
+}
