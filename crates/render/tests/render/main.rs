@@ -10,6 +10,7 @@ mod cracks;
 mod csg;
 mod filters;
 mod geometry;
+mod hair;
 mod lens;
 mod lookdev;
 mod meshes;
