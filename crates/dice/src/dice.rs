@@ -225,10 +225,12 @@ impl<'b> Emitter<'b> {
                 let v = Patch::at(patch.v, j, nv);
                 for i in 0..=nu {
                     let u = Patch::at(patch.u, i, nu);
+                    // A point batch's vertices are its disks', not a parametric grid's.
+                    let batch = pose.surface.grid_vertex(patch.u, i, j, nu);
                     if b == 0 {
                         // Shutter open, where the vertex is shaded (REYES shades once, before
                         // motion): the surface point, displaced, and its normal.
-                        let mut sp = pose.surface.eval(u, v);
+                        let mut sp = batch.unwrap_or_else(|| pose.surface.eval(u, v));
                         let vertex = j * (nu + 1) + i;
                         // Crack-free dicing: a boundary vertex lies on its side's polyline,
                         // up to the edge tolerance off the surface; it is shaded (and its
@@ -283,6 +285,7 @@ impl<'b> Emitter<'b> {
                             None => None,
                         }
                         .or_else(|| boundary(b, u, v, i, j))
+                        .or(batch.map(|sp| sp.p))
                         .unwrap_or_else(|| pose.surface.position(u, v));
                         let p_camera = pose.moment.world_and_camera(p_object).1;
                         g.pos.push(project(p_camera));
@@ -308,7 +311,11 @@ impl<'b> Emitter<'b> {
             self.camera = Some(camera.clone());
         }
         let mut quads = std::mem::take(&mut self.quads);
+        let surface0 = poses.first().map(|p| p.surface);
         for cell in 0..(nu * nv) as u32 {
+            if surface0.is_some_and(|s| s.skips(patch.u, cell as usize, nu)) {
+                continue;
+            }
             // A trimmed patch's cell: dropped whole in the trimmed region, flagged for the
             // hider's per-sample test where a trim curve crosses it.
             if let Some(t) = &object.trim {

@@ -320,7 +320,8 @@ impl ObjectMotion {
         // Camera-facing ribbons face the camera of each breakpoint: their surfaces are made
         // per breakpoint when the object or the camera moves.
         let facing_at = |t: f32, place: &Placement| facing(camera, t, place);
-        let faces_camera = matches!(&object.shape, Shape::Curves { normals: None, .. });
+        let faces_camera =
+            matches!(&object.shape, Shape::Curves { normals: None, .. } | Shape::Points { .. });
         let caps = if closed { shapes::end_caps(&object.shape) } else { Vec::new() };
         let with_caps = |mut set: Vec<Surface>| {
             set.extend(caps.iter().cloned());

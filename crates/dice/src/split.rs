@@ -504,6 +504,9 @@ impl Splitter {
     /// (`poses`, in time order; one pose for a still object), with the top of the patch's
     /// raster bound (see [`Splitter::decide_grids_bound`]).
     pub fn decide_bound(&self, poses: &[Pose<'_>], patch: &Patch) -> (Decision, Option<f32>) {
+        if let Some(crate::shapes::Surface::Points(_)) = poses.first().map(|p| p.surface) {
+            return self.decide_points(poses, patch);
+        }
         if self.displace > 0.0 {
             return self.decide_displaced(poses, patch);
         }
@@ -520,6 +523,50 @@ impl Splitter {
         }
         let grids: Vec<TestGrid> = poses.iter().map(|pose| self.test_grid(pose, patch)).collect();
         self.decide_grids_bound(&grids, patch)
+    }
+
+    /// [`Splitter::decide_bound`] of a batch of points (`shapes/points.rs`): culled, split
+    /// (halving its points) or held as the bound-and-cull tests of its hull decide, then
+    /// diced into one grid of `count (m + 1) - 1` cells, `m` the sides per half disk its
+    /// largest raster radius asks for, unless that is above the largest grid, when the batch
+    /// is halved.
+    fn decide_points(&self, poses: &[Pose<'_>], patch: &Patch) -> (Decision, Option<f32>) {
+        let hulls: Vec<Vec<Vec3>> =
+            poses.iter().map(|pose| self.hull_points(pose, patch).unwrap_or_default()).collect();
+        if hulls.iter().any(Vec::is_empty) {
+            return (Decision::Cull, None);
+        }
+        let grids: Vec<TestGrid> = poses.iter().map(|pose| self.test_grid(pose, patch)).collect();
+        let (decision, top) = self.decide_grids_hulls_bound(&grids, &hulls, patch);
+        let mut radius = 0.0_f32;
+        let mut count = 0;
+        for pose in poses {
+            let crate::shapes::Surface::Points(batch) = pose.surface else { continue };
+            let (r, n) = batch.raster_radius(patch.u, |p| {
+                let c = self.to_camera(pose, p);
+                (c.is_finite() && c.z >= self.near).then(|| self.camera.eye_to_raster(c))
+            });
+            radius = radius.max(r);
+            count = n;
+        }
+        let splittable = count > 1 && patch.depth < MAX_SPLIT_DEPTH;
+        match decision {
+            Decision::Cull => return (Decision::Cull, top),
+            Decision::Split { hither: true, .. } if splittable => {
+                return (Decision::Split { along_u: true, hither: true, count: 0 }, top);
+            }
+            _ => {}
+        }
+        let m = u64::from(crate::shapes::points::sides(radius));
+        let cells = (count as u64 * (m + 1)).saturating_sub(1).max(1);
+        if cells > self.max_grid && splittable {
+            return (Decision::Split { along_u: true, hither: false, count: cells }, top);
+        }
+        let limited = cells > self.max_grid;
+        (
+            Decision::Dice { nu: cells.min(u64::from(u32::MAX)) as u32, nv: 1, limited, extra: 0 },
+            top,
+        )
     }
 
     /// [`Splitter::decide_bound`] of a displaced surface: the hull of every breakpoint is

@@ -64,6 +64,47 @@ pub struct Program {
     /// Smallest feature: half the smallest semi-axis of an ellipsoid or radius of a segment
     /// (object space), the scale of the coarse lattice.
     feature: f64,
+    /// Where the bounded fields are not 0: a lattice of cells over `bound`, each listing
+    /// the instructions of the fields whose support box meets it (see [`Program::eval`]).
+    cells: LeafGrid,
+    /// Primitive fields without bounded support (constants, repellers), evaluated everywhere.
+    unbounded: Vec<u32>,
+    /// The operators, in order.
+    operators: Vec<usize>,
+    /// Per instruction, its place in `operators` (`usize::MAX` for a primitive field).
+    slot: Vec<usize>,
+    /// Per operator, for a sum of primitive fields only (the usual last instruction), which
+    /// instructions it adds: it then adds the fields near the point, not all of them.
+    sums: Vec<Option<Vec<bool>>>,
+}
+
+/// Cells per axis of [`LeafGrid`].
+const GRID: usize = 32;
+
+/// The bounded primitive fields that may be non-zero in each cell of a lattice over the
+/// program's bound.
+#[derive(Debug, Clone, Default, PartialEq)]
+struct LeafGrid {
+    lo: DVec3,
+    /// Cells per unit length along each axis.
+    scale: DVec3,
+    cells: Vec<Vec<u32>>,
+}
+
+impl LeafGrid {
+    /// The list of the cell holding `p`; `None` outside the lattice (where every bounded
+    /// field is 0).
+    fn at(&self, p: DVec3) -> Option<&[u32]> {
+        if self.cells.is_empty() {
+            return None;
+        }
+        let c = (p - self.lo) * self.scale;
+        if !(c.min_element() >= 0.0) || c.max_element() >= GRID as f64 {
+            return None;
+        }
+        let i = |x: f64| (x as usize).min(GRID - 1);
+        self.cells.get((i(c.z) * GRID + i(c.y)) * GRID + i(c.x)).map(Vec::as_slice)
+    }
 }
 
 /// A code stream fault: the index in `code` (or, with `floats`, in `floats`) and why.
@@ -258,8 +299,37 @@ impl Program {
         if ops.is_empty() {
             return Err(err(0, "the code holds no instruction".into()));
         }
-        let mut program = Program { ops, leaves, bound: None, feature: f64::INFINITY };
+        let mut program = Program {
+            ops,
+            leaves,
+            bound: None,
+            feature: f64::INFINITY,
+            cells: LeafGrid::default(),
+            unbounded: Vec::new(),
+            operators: Vec::new(),
+            slot: Vec::new(),
+            sums: Vec::new(),
+        };
         program.measure();
+        program.slot = vec![usize::MAX; program.ops.len()];
+        for (s, &k) in program.operators.iter().enumerate() {
+            program.slot[k] = s;
+        }
+        program.sums = program
+            .operators
+            .iter()
+            .map(|&k| match &program.ops[k] {
+                Op::Add(list) if list.iter().all(|&i| program.slot[i] == usize::MAX) => {
+                    let mut member = vec![false; program.ops.len()];
+                    let mut distinct = true;
+                    for &i in list {
+                        distinct &= !std::mem::replace(&mut member[i], true);
+                    }
+                    distinct.then_some(member)
+                }
+                _ => None,
+            })
+            .collect();
         Ok(program)
     }
 
@@ -273,7 +343,9 @@ impl Program {
         let mut lo = DVec3::INFINITY;
         let mut hi = DVec3::NEG_INFINITY;
         let mut feature = f64::INFINITY;
+        let mut boxes: Vec<(usize, DVec3, DVec3)> = Vec::new();
         let mut grow = |m: DMat4, corners: [DVec3; 2]| {
+            let (mut blo, mut bhi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
             for k in 0..8 {
                 let c = DVec3::new(
                     if k & 1 == 0 { corners[0].x } else { corners[1].x },
@@ -281,23 +353,34 @@ impl Program {
                     if k & 4 == 0 { corners[0].z } else { corners[1].z },
                 );
                 let p = m.transform_point3(c);
-                lo = lo.min(p);
-                hi = hi.max(p);
+                blo = blo.min(p);
+                bhi = bhi.max(p);
             }
+            lo = lo.min(blo);
+            hi = hi.max(bhi);
+            (blo, bhi)
         };
-        for op in &self.ops {
+        for (k, op) in self.ops.iter().enumerate() {
             let (inv, local) = match op {
                 Op::Ellipsoid(inv) => (*inv, [DVec3::splat(-1.0), DVec3::splat(1.0)]),
                 Op::Segment { a, b, radius, inv } => {
                     (*inv, [a.min(*b) - *radius, a.max(*b) + *radius])
                 }
-                _ => continue,
+                Op::Constant(_) | Op::Repeller(_) => {
+                    self.unbounded.push(k as u32);
+                    continue;
+                }
+                _ => {
+                    self.operators.push(k);
+                    continue;
+                }
             };
             if inv == DMat4::ZERO {
                 continue;
             }
             let m = inv.inverse();
-            grow(m, local);
+            let (blo, bhi) = grow(m, local);
+            boxes.push((k, blo, bhi));
             // Half the smallest semi-axis: the smallest singular value of the linear part.
             let l = DMat3::from_mat4(m);
             let smallest = smallest_singular(l);
@@ -309,6 +392,52 @@ impl Program {
         }
         self.bound = (lo.x <= hi.x).then_some((lo, hi));
         self.feature = feature;
+        if let Some((lo, hi)) = self.bound {
+            let size = (hi - lo).max(DVec3::splat(1e-12 * (1.0 + hi.abs().max_element())));
+            let scale = DVec3::splat(GRID as f64) / size;
+            let mut cells = vec![Vec::new(); GRID * GRID * GRID];
+            let cell = |x: f64| (x.max(0.0) as usize).min(GRID - 1);
+            for (k, blo, bhi) in boxes {
+                let (a, b) = ((blo - lo) * scale, (bhi - lo) * scale);
+                for z in cell(a.z)..=cell(b.z) {
+                    for y in cell(a.y)..=cell(b.y) {
+                        for x in cell(a.x)..=cell(b.x) {
+                            cells[(z * GRID + y) * GRID + x].push(k as u32);
+                        }
+                    }
+                }
+            }
+            self.cells = LeafGrid { lo, scale, cells };
+        }
+    }
+
+    /// The value and gradient of primitive field `op` at `p` (operators give zeros).
+    fn leaf(&self, op: &Op, p: DVec3) -> (f64, DVec3) {
+        match op {
+            Op::Constant(c) => (*c, DVec3::ZERO),
+            Op::Ellipsoid(inv) => {
+                let q = inv.transform_point3(p);
+                let (f, df) = bump(q.length_squared());
+                (f, DMat3::from_mat4(*inv).transpose() * (q * (2.0 * df)))
+            }
+            Op::Segment { a, b, radius, inv } => {
+                let q = inv.transform_point3(p);
+                let ab = *b - *a;
+                let t = if ab.length_squared() > 0.0 {
+                    ((q - *a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                let d = (q - (*a + ab * t)) / *radius;
+                let (f, df) = bump(d.length_squared());
+                (f, DMat3::from_mat4(*inv).transpose() * (d * (2.0 * df / *radius)))
+            }
+            Op::Repeller(params) => {
+                let (f, df) = repulsion(p.z, *params);
+                (f, DVec3::new(0.0, 0.0, df))
+            }
+            _ => (0.0, DVec3::ZERO),
+        }
     }
 
     /// The object-space box holding every point where a bounded primitive field is not 0
@@ -318,66 +447,75 @@ impl Program {
         self.bound
     }
 
-    /// The field and its gradient at `p`.
+    /// The field and its gradient at `p`. Only the bounded fields whose support box holds
+    /// `p` (its cell's list) are evaluated; every other one is exactly 0 there, and a sum of
+    /// fields adds the ones near `p` alone.
     pub fn eval(&self, p: DVec3) -> (f64, DVec3) {
-        let mut v: Vec<(f64, DVec3)> = Vec::with_capacity(self.ops.len());
-        for op in &self.ops {
-            let r = match op {
-                Op::Constant(c) => (*c, DVec3::ZERO),
-                Op::Ellipsoid(inv) => {
-                    let q = inv.transform_point3(p);
-                    let (f, df) = bump(q.length_squared());
-                    (f, DMat3::from_mat4(*inv).transpose() * (q * (2.0 * df)))
-                }
-                Op::Segment { a, b, radius, inv } => {
-                    let q = inv.transform_point3(p);
-                    let ab = *b - *a;
-                    let t = if ab.length_squared() > 0.0 {
-                        ((q - *a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
-                    } else {
-                        0.0
-                    };
-                    let d = (q - (*a + ab * t)) / *radius;
-                    let (f, df) = bump(d.length_squared());
-                    (f, DMat3::from_mat4(*inv).transpose() * (d * (2.0 * df / *radius)))
-                }
-                Op::Repeller(params) => {
-                    let (f, df) = repulsion(p.z, *params);
-                    (f, DVec3::new(0.0, 0.0, df))
-                }
-                Op::Add(list) => {
-                    list.iter().fold((0.0, DVec3::ZERO), |(f, g), &k| (f + v[k].0, g + v[k].1))
-                }
-                Op::Multiply(list) => list
+        let near = self.cells.at(p).unwrap_or(&[]);
+        let finite = |r: (f64, DVec3)| {
+            if r.0.is_finite() && r.1.is_finite() { r } else { (0.0, DVec3::ZERO) }
+        };
+        // A primitive field's value: computed where it may be non-zero.
+        let leaf = |k: usize| -> (f64, DVec3) {
+            let k32 = k as u32;
+            if near.binary_search(&k32).is_ok() || self.unbounded.contains(&k32) {
+                finite(self.leaf(&self.ops[k], p))
+            } else {
+                (0.0, DVec3::ZERO)
+            }
+        };
+        let mut done: Vec<(f64, DVec3)> = Vec::with_capacity(self.operators.len());
+        let value = |k: usize, done: &[(f64, DVec3)]| {
+            if self.slot[k] == usize::MAX { leaf(k) } else { done[self.slot[k]] }
+        };
+        for (s, &k) in self.operators.iter().enumerate() {
+            let r = match (&self.ops[k], &self.sums[s]) {
+                (Op::Add(_), Some(member)) => near
                     .iter()
-                    .fold((1.0, DVec3::ZERO), |(f, g), &k| (f * v[k].0, g * v[k].0 + v[k].1 * f)),
-                Op::Max(list) => list
+                    .chain(&self.unbounded)
+                    .filter(|&&i| member[i as usize])
+                    .map(|&i| finite(self.leaf(&self.ops[i as usize], p)))
+                    .fold((0.0, DVec3::ZERO), |(f, g), (a, b)| (f + a, g + b)),
+                (Op::Add(list), None) => list.iter().fold((0.0, DVec3::ZERO), |(f, g), &i| {
+                    let (a, b) = value(i, &done);
+                    (f + a, g + b)
+                }),
+                (Op::Multiply(list), _) => list.iter().fold((1.0, DVec3::ZERO), |(f, g), &i| {
+                    let (a, b) = value(i, &done);
+                    (f * a, g * a + b * f)
+                }),
+                (Op::Max(list), _) => list
                     .iter()
-                    .map(|&k| v[k])
+                    .map(|&i| value(i, &done))
                     .reduce(|a, b| if b.0 > a.0 { b } else { a })
                     .unwrap_or_default(),
-                Op::Min(list) => list
+                (Op::Min(list), _) => list
                     .iter()
-                    .map(|&k| v[k])
+                    .map(|&i| value(i, &done))
                     .reduce(|a, b| if b.0 < a.0 { b } else { a })
                     .unwrap_or_default(),
-                Op::Subtract(a, b) => (v[*a].0 - v[*b].0, v[*a].1 - v[*b].1),
-                Op::Divide(a, b) => {
-                    let (fa, ga) = v[*a];
-                    let (fb, gb) = v[*b];
+                (Op::Subtract(a, b), _) => {
+                    let ((fa, ga), (fb, gb)) = (value(*a, &done), value(*b, &done));
+                    (fa - fb, ga - gb)
+                }
+                (Op::Divide(a, b), _) => {
+                    let ((fa, ga), (fb, gb)) = (value(*a, &done), value(*b, &done));
                     if fb == 0.0 {
                         (0.0, DVec3::ZERO)
                     } else {
                         (fa / fb, (ga * fb - gb * fa) / (fb * fb))
                     }
                 }
-                Op::Negate(a) => (-v[*a].0, -v[*a].1),
-                Op::Identity(a) => v[*a],
+                (Op::Negate(a), _) => {
+                    let (f, g) = value(*a, &done);
+                    (-f, -g)
+                }
+                (Op::Identity(a), _) => value(*a, &done),
+                _ => (0.0, DVec3::ZERO),
             };
-            let finite = r.0.is_finite() && r.1.is_finite();
-            v.push(if finite { r } else { (0.0, DVec3::ZERO) });
+            done.push(finite(r));
         }
-        v.last().copied().unwrap_or_default()
+        value(self.ops.len() - 1, &done)
     }
 
     /// The field at `p`.
@@ -388,24 +526,13 @@ impl Program {
     /// The weights of the primitive fields at `p` for blending their colours: each bounded
     /// field's value over their sum (all equal where none reaches `p`).
     pub fn leaf_weights(&self, p: DVec3) -> Vec<f64> {
-        let mut w: Vec<f64> = self
-            .leaves
-            .iter()
-            .map(|&k| match &self.ops[k] {
-                Op::Ellipsoid(inv) => bump(inv.transform_point3(p).length_squared()).0,
-                Op::Segment { a, b, radius, inv } => {
-                    let q = inv.transform_point3(p);
-                    let ab = *b - *a;
-                    let t = if ab.length_squared() > 0.0 {
-                        ((q - *a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
-                    } else {
-                        0.0
-                    };
-                    bump(((q - (*a + ab * t)) / *radius).length_squared()).0
-                }
-                _ => 0.0,
-            })
-            .collect();
+        let mut w = vec![0.0; self.leaves.len()];
+        let near = self.cells.at(p).unwrap_or(&[]);
+        for &k in near {
+            if let Ok(slot) = self.leaves.binary_search(&(k as usize)) {
+                w[slot] = self.leaf(&self.ops[k as usize], p).0.max(0.0);
+            }
+        }
         let sum: f64 = w.iter().sum();
         if sum > 0.0 {
             w.iter_mut().for_each(|x| *x /= sum);
@@ -425,6 +552,9 @@ impl Program {
             let (f, g) = self.eval(q);
             let gg = g.length_squared();
             if gg <= 1e-300 {
+                break;
+            }
+            if (f - THRESHOLD).abs() <= 1e-10 {
                 break;
             }
             let mut step = g * ((THRESHOLD - f) / gg);

@@ -28,6 +28,7 @@
 
 mod hair;
 mod patches;
+pub(crate) mod points;
 mod quadrics;
 mod subdivision;
 
@@ -37,6 +38,7 @@ use reyes_scene::{Object, PatchType, Shape};
 
 pub(crate) use hair::{BlobFace, Ribbon};
 use patches::{Bilinear, bezier_normal, bezier_position, lerp4};
+pub(crate) use points::PointBatch;
 use quadrics::{hyperboloid_normal, hyperboloid_position};
 use reyes_scene::curves::Facing;
 pub(crate) use subdivision::SubdivPatch;
@@ -84,6 +86,8 @@ pub(crate) enum Surface {
     Ribbon(Box<Ribbon>),
     /// A face of a blobby's coarse mesh, its points on the isosurface.
     Blob(Box<BlobFace>),
+    /// A batch of points, `u` over the points (diced by [`PointBatch::vertex`]).
+    Points(Box<PointBatch>),
 }
 
 /// `(sin, cos)` of the sweep angle `u * theta_max`, exactly `(0, 1)` where a full turn
@@ -155,6 +159,7 @@ impl Surface {
             Surface::Subdiv(s) => s.position(u, v),
             Surface::Ribbon(r) => r.position(u, v),
             Surface::Blob(b) => b.position(u, v),
+            Surface::Points(b) => b.position(u, v),
         }
     }
 
@@ -209,13 +214,34 @@ impl Surface {
             }
             Surface::Bezier(b) => (bezier_normal(b, u, v), white),
             Surface::Subdiv(s) => (s.point(u, v).1, s.tint(u, v)),
-            Surface::Ribbon(_) | Surface::Blob(_) => (Vec3::Z, white),
+            Surface::Ribbon(_) | Surface::Blob(_) | Surface::Points(_) => (Vec3::Z, white),
         };
         SurfacePoint { p, n, tint, opacity: Vec3::ONE }
     }
 }
 
 impl Surface {
+    /// Vertex `(i, j)` of `patch` diced `nu` across, for surfaces whose grid is not a
+    /// parametric one (point batches); `None` for every other surface, whose vertex is
+    /// [`Surface::eval`] at the vertex's `(u, v)`.
+    #[inline]
+    pub fn grid_vertex(&self, u: [f32; 2], i: usize, j: usize, nu: usize) -> Option<SurfacePoint> {
+        match self {
+            Surface::Points(b) => Some(b.vertex(u, i, j, nu)),
+            _ => None,
+        }
+    }
+
+    /// True if cell `cell` of `patch` diced `nu` across is not part of the surface (the cell
+    /// joining two points of a batch).
+    #[inline]
+    pub fn skips(&self, u: [f32; 2], cell: usize, nu: usize) -> bool {
+        match self {
+            Surface::Points(b) => b.skips(u, cell, nu),
+            _ => false,
+        }
+    }
+
     /// The texture coordinates at `(u, v)` and their change over one step `duv` of the
     /// parameters (per axis, the larger of the changes along u and along v): a mesh's or a
     /// subdivision mesh's `st` where it has them, else `(u, v)` itself and `duv`.
@@ -248,6 +274,7 @@ impl Surface {
             }
             Surface::Subdiv(s) => Some(s.hull(u, v)),
             Surface::Ribbon(r) => Some(r.hull(v)),
+            Surface::Points(b) => Some(b.hull(u)),
             _ => None,
         }
     }
@@ -424,8 +451,7 @@ pub(crate) fn shape_surfaces(
                 .collect()
         }
         Shape::Blobby { .. } => hair::blob_faces(shape),
-        // Points are diced in batches by their own path (`points.rs`).
-        Shape::Points { .. } => Vec::new(),
+        Shape::Points { .. } => points::batches(shape, points_object, facing),
         // Read into a Mesh or SubdivisionMesh when the scene was loaded.
         Shape::MeshFile { .. } => Vec::new(),
     }

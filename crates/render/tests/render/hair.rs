@@ -161,3 +161,42 @@ fn a_field_of_thin_hairs_keeps_its_area() {
     );
     check("field of 0.1 px hairs", field(&shape, 12, 24, ""), w * total, total, w);
 }
+
+/// A point of width `w` covers `pi (w/2)^2`: its disk is diced as a polygon of the disk's
+/// area, whatever its size (the polygon's sides only shape its outline). The noise is that
+/// of a disk's edge: about `8 pi w` boundary strata.
+#[test]
+fn a_point_covers_its_disk() {
+    for w in [0.2_f64, 0.6, 1.5, 4.0, 12.0] {
+        let shape = format!("Points(points: [(0.2, 0.1, 0.0)], width: Constant({w}))");
+        let exact = std::f64::consts::PI * (w / 2.0).powi(2);
+        // A disk's boundary strata: its perimeter over the stratum side, times 1.5.
+        let length = std::f64::consts::PI * w / 8.0 * 1.5;
+        check(
+            &format!("point {w} px wide"),
+            field(&shape, 16, 16, ""),
+            exact,
+            length.max(0.5),
+            0.0,
+        );
+    }
+}
+
+/// Many points in one batch keep their area too (they are diced together, one grid per
+/// batch): 40 points of varying width per cell, none overlapping.
+#[test]
+fn a_batch_of_points_keeps_its_area() {
+    let mut points = Vec::new();
+    let mut widths = Vec::new();
+    let mut exact = 0.0;
+    for k in 0..40 {
+        let (x, y) = ((k % 8) as f64 * 1.8 - 6.3, (k / 8) as f64 * 1.8 - 3.6);
+        let w = 0.3 + 0.03 * k as f64;
+        points.push(format!("({x}, {y}, 0.0)"));
+        widths.push(format!("{w}"));
+        exact += std::f64::consts::PI * (w / 2.0).powi(2);
+    }
+    let shape =
+        format!("Points(points: [{}], width: Vertex([{}]))", points.join(", "), widths.join(", "));
+    check("batch of 40 points", field(&shape, 8, 16, ""), exact, 40.0 * 0.6, 0.0);
+}

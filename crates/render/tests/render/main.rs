@@ -5,6 +5,7 @@
 
 mod accuracy;
 mod aovs;
+mod blobby;
 mod camera;
 mod cracks;
 mod csg;

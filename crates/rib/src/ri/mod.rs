@@ -18,6 +18,7 @@ mod build;
 mod detail;
 mod frame;
 pub(crate) mod geometry;
+mod hair;
 mod options;
 mod primitives;
 mod program;
