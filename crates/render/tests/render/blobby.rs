@@ -104,8 +104,10 @@ fn height(x: f64, s: f64, d: f64) -> f64 {
 /// `(1 - R^2)^3` at `R^2 = (d^2/4 + rho^2) / s^2`, sum to `T`. Measured as the summed alpha
 /// of the one-pixel column through the waist (no random offset: the blobs are centred on
 /// that column's middle), over 64 copies; the column's exact coverage is the silhouette's
-/// height integrated over it (`2 rho` to within its curvature), and the measure must be
-/// within 1% of it, with noise below a third of that.
+/// height integrated over it (`2 rho` to within its curvature). The dicer's flatness rule
+/// puts every silhouette point within `tol = min(flatness, relative_flatness * extent)` =
+/// `min(0.05, extent / 512)` pixels of the true one, so the column is within `2 tol` of
+/// exact (its two edges), plus three standard errors of the sampling.
 #[test]
 fn two_blobs_join_in_the_predicted_waist() {
     let s = 8.0_f64;
@@ -155,8 +157,13 @@ fn two_blobs_join_in_the_predicted_waist() {
             "d {d}: waist column {mean:.4} +- {se:.4}, exact {exact:.4}, 2 rho {:.4}",
             2.0 * rho
         );
-        assert!(se / exact < 0.01 / 3.0, "d {d}: noise {se}");
-        assert!((mean / exact - 1.0).abs() <= 0.01, "d {d}: waist column {mean} of {exact}");
-        assert!((exact / (2.0 * rho) - 1.0).abs() < 0.01, "d {d}: the column is the waist");
+        // The blobby's raster extent: its bound, d + 2s by 2s.
+        let tol = 0.05_f64.min((d + 2.0 * s) / 512.0);
+        let bound = 2.0 * tol + 3.0 * se;
+        eprintln!("d {d}: error {:.4} px, bound {bound:.4} px", mean - exact);
+        assert!(se / exact < 0.01, "d {d}: noise {se}");
+        assert!((mean - exact).abs() <= bound, "d {d}: waist column {mean} of {exact}");
+        // The column spans the waist to within its curvature.
+        assert!((exact / (2.0 * rho) - 1.0).abs() < 0.02, "d {d}: the column is the waist");
     }
 }
