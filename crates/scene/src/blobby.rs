@@ -99,7 +99,7 @@ impl LeafGrid {
             return None;
         }
         let c = (p - self.lo) * self.scale;
-        if !(c.min_element() >= 0.0) || c.max_element() >= GRID as f64 {
+        if c.min_element().is_nan() || c.min_element() < 0.0 || c.max_element() >= GRID as f64 {
             return None;
         }
         let i = |x: f64| (x as usize).min(GRID - 1);

@@ -31,7 +31,7 @@ pub fn segment_count(kind: CurveType, wrap: Wrap, n: u32, step: u32) -> Result<u
         (CurveType::Linear, Wrap::Periodic) => Ok(n),
         (CurveType::Cubic, _) if step == 0 => Err("the step must be at least 1".into()),
         (CurveType::Cubic, Wrap::Nonperiodic) => {
-            if n < 4 || (n - 4) % step != 0 {
+            if n < 4 || !(n - 4).is_multiple_of(step) {
                 Err(format!(
                     "a nonperiodic cubic curve needs 4 + a multiple of the step ({step}) points, got {n}"
                 ))
@@ -40,7 +40,7 @@ pub fn segment_count(kind: CurveType, wrap: Wrap, n: u32, step: u32) -> Result<u
             }
         }
         (CurveType::Cubic, Wrap::Periodic) => {
-            if n < 4 || n % step != 0 {
+            if n < 4 || !n.is_multiple_of(step) {
                 Err(format!(
                     "a periodic cubic curve needs a multiple of the step ({step}) points, at least 4, got {n}"
                 ))

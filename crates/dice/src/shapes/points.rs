@@ -84,7 +84,7 @@ pub(crate) fn batches(
 /// Sides per half disk for a disk of raster radius `r`: enough that the polygon strays at
 /// most a tenth of a pixel from the circle, at least 2 (a square).
 pub(crate) fn sides(r: f32) -> u32 {
-    if !(r > 0.05) || !r.is_finite() {
+    if r.is_nan() || r <= 0.05 || !r.is_finite() {
         return 2;
     }
     let half_angle = (1.0 - (0.1 / r).min(1.0)).acos();
