@@ -56,29 +56,6 @@ pub const MICROPOLYGON_BYTES: u64 = 2 * std::mem::size_of::<Micropolygon>() as u
 // Split paths must fit a `u64`, one bit per split.
 const _: () = assert!(MAX_SPLIT_DEPTH < 64);
 
-/// The raster extent of a blobby's bound (the smallest over the breakpoints), or `None` for
-/// any other object.
-fn blobby_extent(motion: &ObjectMotion, decide: &Splitter) -> Option<f32> {
-    let poses = motion.poses(0);
-    let crate::shapes::Surface::Blob(face) = poses.first()?.surface else { return None };
-    let (lo, hi) = face.program.bound()?;
-    let corners = (0..8).map(|k| {
-        glam::DVec3::new(
-            if k & 1 == 0 { lo.x } else { hi.x },
-            if k & 2 == 0 { lo.y } else { hi.y },
-            if k & 4 == 0 { lo.z } else { hi.z },
-        )
-        .as_vec3()
-    });
-    let corners: Vec<glam::Vec3> = corners.collect();
-    Some(
-        poses
-            .iter()
-            .map(|pose| decide.extent_of(corners.iter().map(|p| pose.moment.camera_point(*p))))
-            .fold(f32::INFINITY, f32::min),
-    )
-}
-
 /// Where a grid comes in the eager dicer's emission order.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 pub(crate) struct GridKey {
@@ -342,7 +319,7 @@ impl<'a> Dicer<'a> {
             let mut beyond_hither = true;
             // Neighbouring surfaces of one object share their common sides (roots.rs).
             // A blobby's faces are pieces of one surface: its extent scales their flatness.
-            let whole = blobby_extent(&motion, decide);
+            let whole = crate::roots::blobby_extent(&motion, decide);
             let mut roots = crate::roots::Roots::new(object, crack_free, motion.surface_count())
                 .with_extent(whole);
             for surface in 0..motion.surface_count() {

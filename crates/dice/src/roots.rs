@@ -95,8 +95,9 @@ impl Roots {
                 let top = if vwrap { (r + 1) % rows } else { r + 1 };
                 let keys = [(false, c, r), (false, c, top), (true, c, r), (true, right, r)];
                 let [bottom, top_edge, left, right_edge] = keys.map(|k| self.grid.get(&k).cloned());
-                let given = SharedSides { bottom, top: top_edge, left, right: right_edge };
-                let root = decide.root_sharing(poses, given, self.extent);
+                let (top, right, extent) = (top_edge, right_edge, self.extent);
+                let given = SharedSides { bottom, top, left, right, extent };
+                let root = decide.root_sharing(poses, given);
                 if let Some(sides) = &root.sides {
                     let made = [&sides.bottom, &sides.top, &sides.left, &sides.right];
                     for (k, e) in keys.into_iter().zip(made) {
@@ -121,11 +122,9 @@ impl Roots {
                         if *from == a { e.clone() } else { Arc::new(e.reversed()) }
                     })
                 });
-                let root = decide.root_sharing(
-                    poses,
-                    SharedSides { bottom, top, left, right },
-                    self.extent,
-                );
+                let extent = self.extent;
+                let root =
+                    decide.root_sharing(poses, SharedSides { bottom, top, left, right, extent });
                 if let Some(sides) = &root.sides {
                     let made = [&sides.bottom, &sides.top, &sides.left, &sides.right];
                     for (run, e) in runs.into_iter().zip(made) {
@@ -136,4 +135,30 @@ impl Roots {
             }
         }
     }
+}
+
+/// The raster extent of a blobby's bound (the smallest over the breakpoints), or `None` for
+/// any other object.
+pub(crate) fn blobby_extent(
+    motion: &crate::motion::ObjectMotion,
+    decide: &Splitter,
+) -> Option<f32> {
+    let poses = motion.poses(0);
+    let crate::shapes::Surface::Blob(face) = poses.first()?.surface else { return None };
+    let (lo, hi) = face.program.bound()?;
+    let corners = (0..8).map(|k| {
+        glam::DVec3::new(
+            if k & 1 == 0 { lo.x } else { hi.x },
+            if k & 2 == 0 { lo.y } else { hi.y },
+            if k & 4 == 0 { lo.z } else { hi.z },
+        )
+        .as_vec3()
+    });
+    let corners: Vec<glam::Vec3> = corners.collect();
+    Some(
+        poses
+            .iter()
+            .map(|pose| decide.extent_of(corners.iter().map(|p| pose.moment.camera_point(*p))))
+            .fold(f32::INFINITY, f32::min),
+    )
 }

@@ -274,21 +274,6 @@ impl Splitter {
         extent
     }
 
-    /// Raster extent of camera-space points (the larger side of their raster bound; infinite
-    /// when one is not in front of the eye), as [`Splitter::extent`] measures a patch.
-    pub fn extent_of(&self, points_camera: impl Iterator<Item = Vec3>) -> f32 {
-        let (mut lo, mut hi) = (Vec2::INFINITY, Vec2::NEG_INFINITY);
-        for p in points_camera {
-            if !(p.is_finite() && p.z >= self.near) {
-                return f32::INFINITY;
-            }
-            let r = self.camera.eye_to_raster(p);
-            lo = lo.min(r);
-            hi = hi.max(r);
-        }
-        (hi - lo).max_element()
-    }
-
     /// The same decisions for a displaced surface whose points move up to `reach` in
     /// camera space (RenderMan's displacement bound): bounds, depth ranges and side-plane
     /// tests take in the cube of half-side `reach` about every test and hull point.
@@ -355,7 +340,7 @@ impl Splitter {
     /// The root patch of a surface seen in `poses`, with its four sides for crack-free
     /// dicing ([`edge`]), its corners on the surface.
     pub fn root_with_sides(&self, poses: &[Pose<'_>]) -> Patch {
-        self.root_sharing(poses, SharedSides::default(), None)
+        self.root_sharing(poses, SharedSides::default())
     }
 
     /// [`Splitter::root_with_sides`], taking the sides a neighbouring surface of the same
@@ -363,14 +348,7 @@ impl Splitter {
     /// mesh meet along a curve each evaluates from its own control points, to rounding; each
     /// halving its own copy could halve it differently, so the first one to reach a shared
     /// boundary makes its edge and the other reads it ([`SharedSides`]).
-    /// `extent` is the raster extent of the primitive the surface is part of when that is
-    /// more than the surface (a blobby's faces); `None`: the surface's own.
-    pub fn root_sharing(
-        &self,
-        poses: &[Pose<'_>],
-        given: SharedSides,
-        extent: Option<f32>,
-    ) -> Patch {
+    pub fn root_sharing(&self, poses: &[Pose<'_>], given: SharedSides) -> Patch {
         let corner = |u: f32, v: f32| -> Vec<Vec3> {
             poses.iter().map(|pose| pose.surface.position(u, v)).collect()
         };
@@ -379,7 +357,7 @@ impl Splitter {
         let ends = |a: &[Vec3], b: &[Vec3]| -> Vec<[Vec3; 2]> {
             a.iter().zip(b).map(|(a, b)| [*a, *b]).collect()
         };
-        let extent = extent.unwrap_or_else(|| self.extent(poses, &Patch::root()));
+        let extent = given.extent.unwrap_or_else(|| self.extent(poses, &Patch::root()));
         let tol = self.edge_tolerance(extent);
         let edge = |line: Line, a: &[Vec3], b: &[Vec3]| {
             Arc::new(Edge::new(self, poses, line, [0.0, 1.0], &ends(a, b), tol))
@@ -523,50 +501,6 @@ impl Splitter {
         }
         let grids: Vec<TestGrid> = poses.iter().map(|pose| self.test_grid(pose, patch)).collect();
         self.decide_grids_bound(&grids, patch)
-    }
-
-    /// [`Splitter::decide_bound`] of a batch of points (`shapes/points.rs`): culled, split
-    /// (halving its points) or held as the bound-and-cull tests of its hull decide, then
-    /// diced into one grid of `count (m + 1) - 1` cells, `m` the sides per half disk its
-    /// largest raster radius asks for, unless that is above the largest grid, when the batch
-    /// is halved.
-    fn decide_points(&self, poses: &[Pose<'_>], patch: &Patch) -> (Decision, Option<f32>) {
-        let hulls: Vec<Vec<Vec3>> =
-            poses.iter().map(|pose| self.hull_points(pose, patch).unwrap_or_default()).collect();
-        if hulls.iter().any(Vec::is_empty) {
-            return (Decision::Cull, None);
-        }
-        let grids: Vec<TestGrid> = poses.iter().map(|pose| self.test_grid(pose, patch)).collect();
-        let (decision, top) = self.decide_grids_hulls_bound(&grids, &hulls, patch);
-        let mut radius = 0.0_f32;
-        let mut count = 0;
-        for pose in poses {
-            let crate::shapes::Surface::Points(batch) = pose.surface else { continue };
-            let (r, n) = batch.raster_radius(patch.u, |p| {
-                let c = self.to_camera(pose, p);
-                (c.is_finite() && c.z >= self.near).then(|| self.camera.eye_to_raster(c))
-            });
-            radius = radius.max(r);
-            count = n;
-        }
-        let splittable = count > 1 && patch.depth < MAX_SPLIT_DEPTH;
-        match decision {
-            Decision::Cull => return (Decision::Cull, top),
-            Decision::Split { hither: true, .. } if splittable => {
-                return (Decision::Split { along_u: true, hither: true, count: 0 }, top);
-            }
-            _ => {}
-        }
-        let m = u64::from(crate::shapes::points::sides(radius));
-        let cells = (count as u64 * (m + 1)).saturating_sub(1).max(1);
-        if cells > self.max_grid && splittable {
-            return (Decision::Split { along_u: true, hither: false, count: cells }, top);
-        }
-        let limited = cells > self.max_grid;
-        (
-            Decision::Dice { nu: cells.min(u64::from(u32::MAX)) as u32, nv: 1, limited, extra: 0 },
-            top,
-        )
     }
 
     /// [`Splitter::decide_bound`] of a displaced surface: the hull of every breakpoint is
@@ -731,13 +665,14 @@ impl Splitter {
     }
 }
 
-/// Root sides already made by a neighbouring surface ([`Splitter::root_sharing`]).
+/// Root sides made by a neighbour ([`Splitter::root_sharing`]); a whole blobby's extent.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct SharedSides {
     pub bottom: Option<Arc<Edge>>,
     pub top: Option<Arc<Edge>>,
     pub left: Option<Arc<Edge>>,
     pub right: Option<Arc<Edge>>,
+    pub extent: Option<f32>,
 }
 
 /// What the decisions need to know of one breakpoint's test grid.
@@ -758,6 +693,7 @@ struct GridFacts<'a> {
 mod blur;
 pub(crate) mod edge;
 mod flat;
+mod points;
 mod rate;
 
 #[cfg(test)]
