@@ -208,7 +208,7 @@ impl Segment {
 
     /// The unit direction across the ribbon at `t` and the ribbon's unit normal there, for a
     /// ribbon facing `facing`. The normal of a camera-facing ribbon points toward the camera;
-    /// `side x tangent` is the normal, so `dP/du x dP/dv` points along it for `u` across.
+    /// `side = tangent x normal`, so `dP/du x dP/dv` (`side x tangent`) points along it.
     pub fn frame(&self, t: f32, facing: Facing) -> (Vec3, Vec3) {
         let tangent = self.tangent(t);
         // `toward`: a vector whose part across the tangent is the normal's direction.
@@ -220,7 +220,7 @@ impl Segment {
         let normal = (toward - tangent * toward.dot(tangent))
             .try_normalize()
             .unwrap_or_else(|| perpendicular(tangent));
-        (normal.cross(tangent), normal)
+        (tangent.cross(normal), normal)
     }
 
     /// The ribbon's point at `(u, t)`, `u` across it in `[0, 1]` (0.5 on the centre line),

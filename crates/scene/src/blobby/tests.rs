@@ -21,7 +21,8 @@ fn gradients_match_differences() {
     floats.extend(translate(0.4, 0.1, 0.0));
     floats.extend([0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.4]);
     floats.extend(translate(0.0, 0.0, 0.2));
-    let code = [1001, 0, 1001, 16, 1002, 32, 0, 2, 0, 1, 1, 2, 2, 1, 2, 3, 0, 3, 4, 1, 5, 3, 4];
+    let code =
+        [1001, 0, 1001, 16, 1002, 32, 0, 2, 0, 1, 1, 2, 2, 1, 2, 2, 3, 4, 4, 5, 2, 0, 2, 6, 3];
     let p = Program::parse(&code, &floats, &[]).unwrap();
     for q in [DVec3::new(0.1, 0.2, 0.05), DVec3::new(-0.3, 0.1, 0.1), DVec3::new(0.2, 0.6, 0.2)] {
         let (_, g) = p.eval(q);
