@@ -10,8 +10,8 @@
 //! warnings go to stderr, one line each, before rendering; nothing printed can panic.
 //!
 //! A first argument `measure` (FIG. 23's mass properties), `merge` (tiles reassembled), `farm`
-//! (Slurm jobs, [`farm`]) or `shader` (`check`, `info`) or `texture` (`make`, `info`) chooses another command with the same
-//! exit codes; a scene file of one of those names is `./measure` etc. (docs/farm.md).
+//! (Slurm jobs, [`farm`]), `shader` (`check`, `info`) or `texture` (`make`, `info`) chooses
+//! another command with the same exit codes; a scene file of one of those names is `./measure` etc. (docs/farm.md).
 #![deny(clippy::print_stdout, clippy::print_stderr)]
 
 mod args;
@@ -75,10 +75,7 @@ fn main() -> ExitCode {
         Some("measure") => measure_main(rest()),
         Some("merge") => merge_main(rest()),
         Some("farm") => farm::main(rest()),
-        Some("shader") => tool_main(rest(), |a| {
-            let o = reyes_sl::tool::run(a);
-            (o.stdout, o.errors, o.code)
-        }),
+        Some("shader") => tool_main(rest(), reyes_sl::tool::run_parts),
         Some("texture") => tool_main(rest(), reyes_texture::tool::run),
         _ => render_main(),
     };

@@ -266,13 +266,16 @@ impl<'b> Emitter<'b> {
                 let v = Patch::at(patch.v, j, nv);
                 for i in 0..=nu {
                     let u = Patch::at(patch.u, i, nu);
+                    // A point batch's vertices are its disks', not a parametric grid's.
+                    let batch = pose.surface.grid_vertex(patch.u, i, j, nu);
                     if b == 0 {
                         // Shutter open, where the vertex is shaded (REYES shades once, before
                         // motion): the surface point, displaced, and its normal.
                         let vertex = j * (nu + 1) + i;
-                        let mut sp = match fold {
-                            true => opened[vertex],
-                            false => pose.surface.eval(u, v),
+                        let mut sp = match (batch, fold) {
+                            (Some(sp), _) => sp,
+                            (None, true) => opened[vertex],
+                            (None, false) => pose.surface.eval(u, v),
                         };
                         // Crack-free dicing: a boundary vertex lies on its side's polyline,
                         // up to the edge tolerance off the surface; it is shaded (and its
@@ -317,6 +320,7 @@ impl<'b> Emitter<'b> {
                             p_lookup,
                             p_object: sp.p,
                             tint: sp.tint,
+                            opacity: sp.opacity,
                             p_world,
                             p_shaded,
                             n_world,
@@ -327,10 +331,11 @@ impl<'b> Emitter<'b> {
                             None => None,
                         }
                         .or_else(|| boundary(b, u, v, i, j));
-                        let p_camera = match (p_object, fold) {
-                            (Some(p), _) => pose.moment.world_and_camera(p).1,
-                            (None, true) => moved[j * (nu + 1) + i],
-                            (None, false) => {
+                        let p_camera = match (p_object, batch, fold) {
+                            (Some(p), _, _) => pose.moment.world_and_camera(p).1,
+                            (None, Some(sp), _) => pose.moment.world_and_camera(sp.p).1,
+                            (None, None, true) => moved[j * (nu + 1) + i],
+                            (None, None, false) => {
                                 pose.moment.world_and_camera(pose.surface.position(u, v)).1
                             }
                         };
@@ -357,7 +362,11 @@ impl<'b> Emitter<'b> {
             self.camera = Some(camera.clone());
         }
         let mut quads = std::mem::take(&mut self.quads);
+        let surface0 = poses.first().map(|p| p.surface);
         for cell in 0..(nu * nv) as u32 {
+            if surface0.is_some_and(|s| s.skips(patch.u, cell as usize, nu)) {
+                continue;
+            }
             // A trimmed patch's cell: dropped whole in the trimmed region, flagged for the
             // hider's per-sample test where a trim curve crosses it.
             if let Some(t) = &object.trim {

@@ -49,6 +49,8 @@ use crate::motion::{CameraMotion, ObjectMotion, Pose, ShutterTime};
 use crate::split::{Decision, MAX_SPLIT_DEPTH, Patch, Splitter};
 use crate::{DiceError, DiceStats, check_frame};
 
+mod access;
+
 /// What one held micropolygon takes, for the budget's messages: the micropolygon itself,
 /// its grid's shading and bucket ranges, and a few bucket-list entries.
 pub const MICROPOLYGON_BYTES: u64 = 2 * std::mem::size_of::<Micropolygon>() as u64;
@@ -321,13 +323,16 @@ impl<'a> Dicer<'a> {
             // The back of a closed object shows through where hither cuts it open.
             let mut beyond_hither = true;
             // Neighbouring surfaces of one object share their common sides (roots.rs).
-            let mut roots = crate::roots::Roots::new(object, crack_free, motion.surface_count());
+            // A blobby's faces are pieces of one surface: its extent scales their flatness.
+            let whole = crate::roots::blobby_extent(&motion, decide);
+            let mut roots = crate::roots::Roots::new(object, crack_free, motion.surface_count())
+                .with_extent(whole);
             for surface in 0..motion.surface_count() {
                 dicer.stats.primitives += 1;
                 let poses = motion.poses(surface);
                 beyond_hither &= decide.beyond_hither(&poses);
                 let root = roots.root(decide, surface, &poses);
-                let extent = decide.extent(&poses, &root);
+                let extent = whole.unwrap_or_else(|| decide.extent(&poses, &root));
                 let patch = root.with_extent(extent);
                 let (decision, top) = decide.decide_bound(&poses, &patch);
                 if decision == Decision::Cull {
@@ -343,31 +348,6 @@ impl<'a> Dicer<'a> {
         }
         dicer.csg_trees = csg.trees;
         Ok(dicer)
-    }
-
-    /// The CSG tree of every solid ([`CsgSetup::trees`]).
-    pub fn csg_trees(&self) -> &[CsgTree] {
-        &self.csg_trees
-    }
-
-    /// The trim regions of the scene's trimmed patches, for [`reyes_hider::Hider::with_trims`].
-    pub fn trim_regions(&self) -> Vec<std::sync::Arc<reyes_scene::patches::trim::TrimRegion>> {
-        self.trims.clone()
-    }
-
-    /// Rows of buckets.
-    pub fn rows(&self) -> u32 {
-        self.frame.buckets_y
-    }
-
-    /// The counts so far (the whole frame's once every row is diced).
-    pub fn stats(&self) -> DiceStats {
-        self.stats
-    }
-
-    /// The most micropolygons held at once (after dicing a row, before releasing one).
-    pub fn peak_micropolygons(&self) -> u64 {
-        self.peak_alive
     }
 
     /// The bucket row the top `top` of a patch's raster bound lies in (row 0 without a

@@ -12,7 +12,8 @@
 //! shutter is closed (`close == open`), has the single breakpoint 0: it does not move.
 
 use glam::{Mat3, Mat4, Vec3};
-use reyes_scene::{Object, Scene, Shutter};
+use reyes_scene::curves::Facing;
+use reyes_scene::{Object, Scene, Shape, Shutter};
 
 use crate::camera::{CameraSetup, View};
 use crate::shapes::{self, Surface};
@@ -172,6 +173,33 @@ impl Placement {
     }
 }
 
+/// Where the camera is, in the object's space at normalised time `t` under `place`: the
+/// eye of a perspective camera, the view direction of an orthographic one (what a
+/// camera-facing ribbon turns toward). Between two transform keys, the eyes the two keys'
+/// inverses give, lerped.
+pub(crate) fn facing(camera: &CameraMotion, t: f32, place: &Placement) -> Facing {
+    let w2c = camera.world_to_camera(t);
+    let orthographic = camera.setup().projection() == reyes_scene::Projection::Orthographic;
+    let seen = |m: Mat4| {
+        let c2o = (w2c * m).inverse();
+        if orthographic {
+            Facing::Along(c2o.transform_vector3(Vec3::Z).normalize_or_zero())
+        } else {
+            Facing::Eye(c2o.transform_point3(Vec3::ZERO))
+        }
+    };
+    match *place {
+        Placement::Matrix(m) => seen(m),
+        Placement::Between { from, to, f } => match (seen(from), seen(to)) {
+            (Facing::Eye(a), Facing::Eye(b)) => Facing::Eye(lerp(a, b, f)),
+            (Facing::Along(a), Facing::Along(b)) => {
+                Facing::Along(lerp(a, b, f).normalize_or_zero())
+            }
+            (a, _) => a,
+        },
+    }
+}
+
 /// An object and the camera at one breakpoint.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Moment {
@@ -289,15 +317,22 @@ impl ObjectMotion {
             times.dedup();
         }
 
+        // Camera-facing ribbons face the camera of each breakpoint: their surfaces are made
+        // per breakpoint when the object or the camera moves.
+        let facing_at = |t: f32, place: &Placement| facing(camera, t, place);
+        let faces_camera =
+            matches!(&object.shape, Shape::Curves { normals: None, .. } | Shape::Points { .. });
         let caps = if closed { shapes::end_caps(&object.shape) } else { Vec::new() };
         let with_caps = |mut set: Vec<Surface>| {
             set.extend(caps.iter().cloned());
             set
         };
         let deforming = !deform_points.is_empty();
-        let mut shapes = Vec::with_capacity(if deforming { times.len() } else { 1 });
-        if !deforming {
-            shapes.push(with_caps(shapes::surfaces(object)));
+        let per_moment = deforming || (faces_camera && times.len() > 1);
+        let mut shapes = Vec::with_capacity(if per_moment { times.len() } else { 1 });
+        if !per_moment {
+            let open = Placement::Matrix(xforms.first().copied().unwrap_or(still));
+            shapes.push(with_caps(shapes::surfaces(object, facing_at(0.0, &open))));
         }
         let mut moments = Vec::with_capacity(times.len());
         for (b, &t) in times.iter().enumerate() {
@@ -311,19 +346,24 @@ impl ObjectMotion {
                     }
                 }
             };
-            if deforming {
-                let points_object: Vec<Vec3> = match locate(&deform_times, t) {
-                    KeyAt::Key(i) => deform_points[i].clone(),
-                    KeyAt::Between(i, f) => deform_points[i]
-                        .iter()
-                        .zip(&deform_points[i + 1])
-                        .map(|(a, b)| lerp(*a, *b, f))
-                        .collect(),
-                };
-                let set = shapes::shape_surfaces(&object.shape, Some(&points_object));
+            if per_moment {
+                let points_object: Option<Vec<Vec3>> =
+                    deforming.then(|| match locate(&deform_times, t) {
+                        KeyAt::Key(i) => deform_points[i].clone(),
+                        KeyAt::Between(i, f) => deform_points[i]
+                            .iter()
+                            .zip(&deform_points[i + 1])
+                            .map(|(a, b)| lerp(*a, *b, f))
+                            .collect(),
+                    });
+                let set = shapes::shape_surfaces(
+                    &object.shape,
+                    points_object.as_deref(),
+                    facing_at(t, &place),
+                );
                 shapes.push(with_caps(set));
             }
-            let shape = if deforming { b } else { 0 };
+            let shape = if per_moment { b } else { 0 };
             moments.push(Moment::new(t, place, camera.world_to_camera(t), shape));
         }
         ObjectMotion { moments, shapes }

@@ -45,6 +45,9 @@ pub(crate) struct Roots {
     grid: HashMap<(bool, usize, usize), Arc<Edge>>,
     /// Subdivision edges by their corner ids (lower first), with the id they were made from.
     by_corners: HashMap<(usize, usize), (usize, Arc<Edge>)>,
+    /// The raster extent of the whole object, when its surfaces are pieces of one primitive
+    /// (a blobby's faces): the scale of the edges' relative flatness.
+    extent: Option<f32>,
 }
 
 impl Roots {
@@ -52,7 +55,11 @@ impl Roots {
     pub fn new(object: &Object, crack_free: bool, surface_count: usize) -> Roots {
         let layout = if !crack_free {
             Layout::Off
-        } else if matches!(object.shape, Shape::SubdivisionMesh { .. }) {
+        } else if matches!(object.shape, Shape::Curves { .. } | Shape::Points { .. }) {
+            // Ribbons meet their neighbours only at their ends, where both evaluate the
+            // same points; a million of them cannot each keep four edges.
+            Layout::Off
+        } else if matches!(object.shape, Shape::SubdivisionMesh { .. } | Shape::Blobby { .. }) {
             Layout::Corners
         } else if let Some((cols, rows)) = reyes_scene::patches::bezier_grid(&object.shape)
             .filter(|&(c, r)| c * r == surface_count)
@@ -67,7 +74,12 @@ impl Roots {
         } else {
             Layout::Alone
         };
-        Roots { layout, grid: HashMap::new(), by_corners: HashMap::new() }
+        Roots { layout, grid: HashMap::new(), by_corners: HashMap::new(), extent: None }
+    }
+
+    /// The same rule, with the object's raster extent the scale of every edge's tolerance.
+    pub fn with_extent(self, extent: Option<f32>) -> Roots {
+        Roots { extent, ..self }
     }
 
     /// The root patch of surface `surface` (in `poses`), its sides shared with the surfaces
@@ -83,7 +95,8 @@ impl Roots {
                 let top = if vwrap { (r + 1) % rows } else { r + 1 };
                 let keys = [(false, c, r), (false, c, top), (true, c, r), (true, right, r)];
                 let [bottom, top_edge, left, right_edge] = keys.map(|k| self.grid.get(&k).cloned());
-                let given = SharedSides { bottom, top: top_edge, left, right: right_edge };
+                let (top, right, extent) = (top_edge, right_edge, self.extent);
+                let given = SharedSides { bottom, top, left, right, extent };
                 let root = decide.root_sharing(poses, given);
                 if let Some(sides) = &root.sides {
                     let made = [&sides.bottom, &sides.top, &sides.left, &sides.right];
@@ -94,10 +107,11 @@ impl Roots {
                 root
             }
             Layout::Corners => {
-                let Some(Surface::Subdiv(s)) = poses.first().map(|p| p.surface) else {
-                    return decide.root_with_sides(poses);
+                let c = match poses.first().map(|p| p.surface) {
+                    Some(Surface::Subdiv(s)) => s.corners(),
+                    Some(Surface::Blob(b)) => b.corner_ids(),
+                    _ => return decide.root_with_sides(poses),
                 };
-                let c = s.corners();
                 // Each side from its start to its end, in the side's own direction of
                 // increasing parameter: bottom (0,0)->(1,0), top (0,1)->(1,1), left
                 // (0,0)->(0,1), right (1,0)->(1,1).
@@ -108,7 +122,9 @@ impl Roots {
                         if *from == a { e.clone() } else { Arc::new(e.reversed()) }
                     })
                 });
-                let root = decide.root_sharing(poses, SharedSides { bottom, top, left, right });
+                let extent = self.extent;
+                let root =
+                    decide.root_sharing(poses, SharedSides { bottom, top, left, right, extent });
                 if let Some(sides) = &root.sides {
                     let made = [&sides.bottom, &sides.top, &sides.left, &sides.right];
                     for (run, e) in runs.into_iter().zip(made) {
@@ -119,4 +135,30 @@ impl Roots {
             }
         }
     }
+}
+
+/// The raster extent of a blobby's bound (the smallest over the breakpoints), or `None` for
+/// any other object.
+pub(crate) fn blobby_extent(
+    motion: &crate::motion::ObjectMotion,
+    decide: &Splitter,
+) -> Option<f32> {
+    let poses = motion.poses(0);
+    let crate::shapes::Surface::Blob(face) = poses.first()?.surface else { return None };
+    let (lo, hi) = face.program.bound()?;
+    let corners = (0..8).map(|k| {
+        glam::DVec3::new(
+            if k & 1 == 0 { lo.x } else { hi.x },
+            if k & 2 == 0 { lo.y } else { hi.y },
+            if k & 4 == 0 { lo.z } else { hi.z },
+        )
+        .as_vec3()
+    });
+    let corners: Vec<glam::Vec3> = corners.collect();
+    Some(
+        poses
+            .iter()
+            .map(|pose| decide.extent_of(corners.iter().map(|p| pose.moment.camera_point(*p))))
+            .fold(f32::INFINITY, f32::min),
+    )
 }

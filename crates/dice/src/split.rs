@@ -277,18 +277,6 @@ impl Splitter {
         extent
     }
 
-    /// The same decisions for a displaced surface whose points move up to `reach` in
-    /// camera space (RenderMan's displacement bound): bounds, depth ranges and side-plane
-    /// tests take in the cube of half-side `reach` about every test and hull point.
-    pub fn with_displacement(&self, reach: f32) -> Splitter {
-        Splitter { displace: reach, ..self.clone() }
-    }
-
-    /// The same decisions at another shading rate (an object's own `shading_rate`).
-    pub fn with_shading_rate(&self, shading_rate: f32) -> Splitter {
-        Splitter { step: step(shading_rate), ..self.clone() }
-    }
-
     /// The depth below which a micropolygon vertex is not kept (`hither / 2`).
     pub fn near(&self) -> f32 {
         self.near
@@ -361,7 +349,8 @@ impl Splitter {
         let ends = |a: &[Vec3], b: &[Vec3]| -> Vec<[Vec3; 2]> {
             a.iter().zip(b).map(|(a, b)| [*a, *b]).collect()
         };
-        let tol = self.edge_tolerance(self.extent(poses, &Patch::root()));
+        let extent = given.extent.unwrap_or_else(|| self.extent(poses, &Patch::root()));
+        let tol = self.edge_tolerance(extent);
         let edge = |line: Line, a: &[Vec3], b: &[Vec3]| {
             Arc::new(Edge::new(self, poses, line, [0.0, 1.0], &ends(a, b), tol))
         };
@@ -485,6 +474,9 @@ impl Splitter {
     /// (`poses`, in time order; one pose for a still object), with the top of the patch's
     /// raster bound (see [`Splitter::decide_grids_bound`]).
     pub fn decide_bound(&self, poses: &[Pose<'_>], patch: &Patch) -> (Decision, Option<f32>) {
+        if let Some(crate::shapes::Surface::Points(_)) = poses.first().map(|p| p.surface) {
+            return self.decide_points(poses, patch);
+        }
         if self.displace > 0.0 {
             return self.decide_displaced(poses, patch);
         }
@@ -665,13 +657,14 @@ impl Splitter {
     }
 }
 
-/// Root sides already made by a neighbouring surface ([`Splitter::root_sharing`]).
+/// Root sides made by a neighbour ([`Splitter::root_sharing`]); a whole blobby's extent.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct SharedSides {
     pub bottom: Option<Arc<Edge>>,
     pub top: Option<Arc<Edge>>,
     pub left: Option<Arc<Edge>>,
     pub right: Option<Arc<Edge>>,
+    pub extent: Option<f32>,
 }
 
 /// What the decisions need to know of one breakpoint's test grid.
@@ -692,6 +685,7 @@ struct GridFacts<'a> {
 mod blur;
 pub(crate) mod edge;
 mod flat;
+mod points;
 mod rate;
 
 #[cfg(test)]

@@ -96,8 +96,12 @@ pub(crate) fn closed_quadric(shape: &Shape) -> Result<Option<Quadric>, String> {
         Shape::Mesh { .. } | Shape::SubdivisionMesh { .. } => return Ok(None),
         // Read into a Mesh when the scene was loaded; closure() calls it open.
         Shape::MeshFile { .. } => return Err("MeshFile (not read)".into()),
+        // Not in the ray engine yet, which the parity test needs.
+        Shape::Blobby { .. } => return Err("Blobby (not measured yet)".into()),
         // `closure` calls these open.
-        Shape::Disk { .. }
+        Shape::Curves { .. }
+        | Shape::Points { .. }
+        | Shape::Disk { .. }
         | Shape::BilinearPatch { .. }
         | Shape::Hyperboloid { .. }
         | Shape::PatchMesh { .. }

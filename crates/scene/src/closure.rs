@@ -61,6 +61,10 @@ pub fn closure(shape: &Shape) -> Closure {
         Shape::PatchMesh { .. } => Closure::Open("PatchMesh".into()),
         Shape::NuPatch { .. } => Closure::Open("NuPatch".into()),
         Shape::Mesh { faces, .. } => mesh_closure(faces),
+        // Ribbons and disks bound nothing; a blobby's level set of a bounded field does.
+        Shape::Curves { .. } => Closure::Open("Curves".into()),
+        Shape::Points { .. } => Closure::Open("Points".into()),
+        Shape::Blobby { .. } => Closure::Closed,
         // Read into a Mesh or SubdivisionMesh before anything asks.
         Shape::MeshFile { .. } => Closure::Open("MeshFile (not read)".into()),
         // The limit surface of a closed control mesh is closed; a hole opens it.

@@ -6,7 +6,9 @@
 #![deny(missing_docs)]
 
 pub mod animate;
+pub mod blobby;
 pub mod closure;
+pub mod curves;
 mod error;
 pub mod filter;
 mod locate;

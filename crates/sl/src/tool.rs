@@ -32,6 +32,13 @@ pub struct Outcome {
 const USAGE: &str = "usage: reyes-render shader check [-I DIR]... FILE.sl... | \
                      reyes-render shader info [-I DIR]... NAME|FILE.sl";
 
+/// [`run`]'s outcome as `(stdout, errors, exit code)`, the form the command line takes for
+/// each of its tools.
+pub fn run_parts(args: &[String]) -> (String, Vec<String>, u8) {
+    let o = run(args);
+    (o.stdout, o.errors, o.code)
+}
+
 /// Runs `shader ARGS...` (the arguments after `shader`).
 pub fn run(args: &[String]) -> Outcome {
     let mut dirs = Vec::new();

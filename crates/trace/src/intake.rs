@@ -355,6 +355,8 @@ impl Builder {
             Shape::PatchMesh { .. } | Shape::NuPatch { .. } | Shape::SubdivisionMesh { .. } => {}
             // Read into a Mesh when the scene was loaded.
             Shape::MeshFile { .. } => {}
+            // Not in the ray engine yet (docs/geometry.md, "Curves, points and blobbies").
+            Shape::Curves { .. } | Shape::Points { .. } | Shape::Blobby { .. } => {}
             Shape::Mesh { points, faces, .. } => {
                 let mut surface = 0u32;
                 for (f, face) in faces.iter().enumerate() {

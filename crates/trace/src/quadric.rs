@@ -153,6 +153,9 @@ impl Quadric {
             | Shape::PatchMesh { .. }
             | Shape::NuPatch { .. }
             | Shape::SubdivisionMesh { .. }
+            | Shape::Curves { .. }
+            | Shape::Points { .. }
+            | Shape::Blobby { .. }
             | Shape::MeshFile { .. } => return None,
         })
     }

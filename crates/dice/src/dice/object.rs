@@ -165,7 +165,9 @@ pub(crate) fn setup_object<'a>(
     trims.extend(ctx.trim.as_ref().map(|t| t.region.clone()));
     let mut reach = ctx.look.as_ref().map_or(0.0, |l| l.object.bound);
     reach = reach.max(attach_sl(&mut ctx, scene, i, place, camera, (options.shader_budget, aov.2)));
-    if ctx.look.as_ref().is_some_and(|l| l.object.may_be_transparent()) {
+    if ctx.look.as_ref().is_some_and(|l| l.object.may_be_transparent())
+        || crate::shapes::own_opacity_below_one(&object.shape)
+    {
         ctx.labels.flags &= !flags::OPAQUE;
     }
     ctx.cull_back = reach == 0.0

@@ -26,6 +26,8 @@ pub(super) struct Open {
     pub(super) p_object: Vec3,
     /// Colour multiplying the material colour (mesh vertex colours; white otherwise).
     pub(super) tint: Vec3,
+    /// Opacity multiplying the shaded opacity (curves', points' and blobbies' `Os`).
+    pub(super) opacity: Vec3,
     /// World-space position (displaced) and its camera-space one: the surface point, not
     /// the crack-free corner on a side's polyline.
     pub(super) p_world: Vec3,
@@ -109,7 +111,7 @@ impl Emitter<'_> {
             // eye sees B from B's inside, i.e. the outside of the result, whose outward
             // normal there is B's inward one. The geometric (outward) normal itself is not
             // stored: the orientation survives only in the vertex winding.
-            let (mut color, trans) = match &hook {
+            let (color, trans) = match &hook {
                 None => object.shader.shade_looked(o.p_world, o.n_world, o.tint, &looked),
                 Some(hook) => hook.shader.shade(&VertexContext {
                     object: hook.object,
@@ -127,6 +129,15 @@ impl Emitter<'_> {
                     looked,
                 }),
             };
+            let (mut color, mut trans) = (color, trans);
+            if o.opacity != Vec3::ONE {
+                // A primitive's own opacity (`Os`): the colour is premultiplied, so it
+                // scales with the opacity, and what shows through grows.
+                for a in 0..3 {
+                    color[a] *= o.opacity[a];
+                    trans[a] = 1.0 - (1.0 - trans[a]) * o.opacity[a];
+                }
+            }
             if let Some(e) = object.look.as_ref().and_then(|l| l.object.emission) {
                 // Emission, premultiplied by the opacity (1 - trans).
                 for a in 0..3 {

@@ -26,7 +26,9 @@
 //! CSG operands must be closed solids: [`end_caps`] gives the disks that close cylinders,
 //! cones and paraboloids, each facing out of the solid.
 
+mod hair;
 mod patches;
+pub(crate) mod points;
 mod quadrics;
 mod subdivision;
 
@@ -34,8 +36,11 @@ use glam::{DVec3, Vec2, Vec3};
 use reyes_scene::patches::{self as rp, BezierPatch};
 use reyes_scene::{Object, PatchType, Shape};
 
+pub(crate) use hair::{BlobFace, Ribbon};
 use patches::{Bilinear, bezier_normal, bezier_position, lerp4};
+pub(crate) use points::PointBatch;
 use quadrics::{hyperboloid_normal, hyperboloid_position};
+use reyes_scene::curves::Facing;
 pub(crate) use subdivision::SubdivPatch;
 
 /// One evaluated surface point, in object space.
@@ -47,6 +52,9 @@ pub(crate) struct SurfacePoint {
     pub n: Vec3,
     /// Colour multiplying the material colour (mesh vertex colours; white otherwise).
     pub tint: Vec3,
+    /// Opacity multiplying the material opacity (curves', points' and blobbies' `Os`;
+    /// opaque otherwise).
+    pub opacity: Vec3,
 }
 
 /// A parametric surface. Angles are in radians.
@@ -74,6 +82,12 @@ pub(crate) enum Surface {
     Bezier(Box<BezierPatch>),
     /// A patch of a Catmull-Clark subdivision surface.
     Subdiv(Box<SubdivPatch>),
+    /// A curve segment's ribbon: `u` across the width, `v` along the curve.
+    Ribbon(Box<Ribbon>),
+    /// A face of a blobby's coarse mesh, its points on the isosurface.
+    Blob(Box<BlobFace>),
+    /// A batch of points, `u` over the points (diced by [`PointBatch::vertex`]).
+    Points(Box<PointBatch>),
 }
 
 /// `(sin, cos)` of the sweep angle `u * theta_max`, exactly `(0, 1)` where a full turn
@@ -143,6 +157,9 @@ impl Surface {
             }
             Surface::Bezier(b) => bezier_position(b, u, v),
             Surface::Subdiv(s) => s.position(u, v),
+            Surface::Ribbon(r) => r.position(u, v),
+            Surface::Blob(b) => b.position(u, v),
+            Surface::Points(b) => b.position(u, v),
         }
     }
 
@@ -151,7 +168,15 @@ impl Surface {
         if let Surface::Subdiv(s) = self {
             // Position and normal from one evaluation of the limit surface.
             let (p, n) = s.point(u, v);
-            return SurfacePoint { p, n, tint: s.tint(u, v) };
+            return SurfacePoint { p, n, tint: s.tint(u, v), opacity: Vec3::ONE };
+        }
+        let hair = match self {
+            Surface::Ribbon(r) => Some(r.eval(u, v)),
+            Surface::Blob(b) => Some(b.eval(u, v)),
+            _ => None,
+        };
+        if let Some((p, n, tint, opacity)) = hair {
+            return SurfacePoint { p, n, tint, opacity };
         }
         let p = self.position(u, v);
         let white = Vec3::ONE;
@@ -189,12 +214,34 @@ impl Surface {
             }
             Surface::Bezier(b) => (bezier_normal(b, u, v), white),
             Surface::Subdiv(s) => (s.point(u, v).1, s.tint(u, v)),
+            Surface::Ribbon(_) | Surface::Blob(_) | Surface::Points(_) => (Vec3::Z, white),
         };
-        SurfacePoint { p, n, tint }
+        SurfacePoint { p, n, tint, opacity: Vec3::ONE }
     }
 }
 
 impl Surface {
+    /// Vertex `(i, j)` of `patch` diced `nu` across, for surfaces whose grid is not a
+    /// parametric one (point batches); `None` for every other surface, whose vertex is
+    /// [`Surface::eval`] at the vertex's `(u, v)`.
+    #[inline]
+    pub fn grid_vertex(&self, u: [f32; 2], i: usize, j: usize, nu: usize) -> Option<SurfacePoint> {
+        match self {
+            Surface::Points(b) => Some(b.vertex(u, i, j, nu)),
+            _ => None,
+        }
+    }
+
+    /// True if cell `cell` of `patch` diced `nu` across is not part of the surface (the cell
+    /// joining two points of a batch).
+    #[inline]
+    pub fn skips(&self, u: [f32; 2], cell: usize, nu: usize) -> bool {
+        match self {
+            Surface::Points(b) => b.skips(u, cell, nu),
+            _ => false,
+        }
+    }
+
     /// The texture coordinates at `(u, v)` and their change over one step `duv` of the
     /// parameters (per axis, the larger of the changes along u and along v): a mesh's or a
     /// subdivision mesh's `st` where it has them, else `(u, v)` itself and `duv`.
@@ -226,6 +273,8 @@ impl Surface {
                 Some(sub.hull().map(|p| p.as_vec3()).collect())
             }
             Surface::Subdiv(s) => Some(s.hull(u, v)),
+            Surface::Ribbon(r) => Some(r.hull(v)),
+            Surface::Points(b) => Some(b.hull(u)),
             _ => None,
         }
     }
@@ -236,9 +285,10 @@ impl Surface {
 pub(crate) fn control_points(shape: &Shape) -> Option<Vec<Vec3>> {
     match shape {
         Shape::BilinearPatch { points } => Some(points.iter().map(|p| Vec3::from(*p)).collect()),
-        Shape::Mesh { points, .. } | Shape::SubdivisionMesh { points, .. } => {
-            Some(points.iter().map(|p| Vec3::from(*p)).collect())
-        }
+        Shape::Mesh { points, .. }
+        | Shape::SubdivisionMesh { points, .. }
+        | Shape::Curves { points, .. }
+        | Shape::Points { points, .. } => Some(points.iter().map(|p| Vec3::from(*p)).collect()),
         Shape::PatchMesh { .. } | Shape::NuPatch { .. } => {
             rp::control_positions(shape).map(|p| p.iter().map(|q| q.as_vec3()).collect())
         }
@@ -249,14 +299,19 @@ pub(crate) fn control_points(shape: &Shape) -> Option<Vec<Vec3>> {
 /// The surfaces of an object, in a fixed order (mesh faces in list order). Faces with
 /// fewer than three valid indices are skipped; faces with more than four are fanned into
 /// triangles around their first vertex.
-pub(crate) fn surfaces(object: &Object) -> Vec<Surface> {
-    shape_surfaces(&object.shape, None)
+pub(crate) fn surfaces(object: &Object, facing: Facing) -> Vec<Surface> {
+    shape_surfaces(&object.shape, None, facing)
 }
 
 /// The surfaces of `shape` (as [`surfaces`]), with its control points replaced by
 /// `points_object` when given (a deformation key). A point missing from `points_object`
 /// keeps the shape's own, so the surfaces are always those of the shape's point count.
-pub(crate) fn shape_surfaces(shape: &Shape, points_object: Option<&[Vec3]>) -> Vec<Surface> {
+/// Camera-facing ribbons face as `facing` says.
+pub(crate) fn shape_surfaces(
+    shape: &Shape,
+    points_object: Option<&[Vec3]>,
+    facing: Facing,
+) -> Vec<Surface> {
     let moved = |i: usize, own: Vec3| points_object.and_then(|p| p.get(i).copied()).unwrap_or(own);
     match shape {
         Shape::Sphere { radius, zmin, zmax, thetamax } => {
@@ -388,9 +443,30 @@ pub(crate) fn shape_surfaces(shape: &Shape, points_object: Option<&[Vec3]>) -> V
             .into_iter()
             .map(|p| Surface::Subdiv(Box::new(p)))
             .collect(),
+        Shape::Curves { normals, .. } => {
+            let facing = if normals.is_some() { Facing::Normals } else { facing };
+            reyes_scene::curves::segments(shape, points_object)
+                .into_iter()
+                .map(|segment| Surface::Ribbon(Box::new(Ribbon { segment, facing })))
+                .collect()
+        }
+        Shape::Blobby { .. } => hair::blob_faces(shape),
+        Shape::Points { .. } => points::batches(shape, points_object, facing),
         // Read into a Mesh or SubdivisionMesh when the scene was loaded.
         Shape::MeshFile { .. } => Vec::new(),
     }
+}
+
+/// True if `shape` carries an opacity (`Os`) below 1 somewhere: its micropolygons are then
+/// not opaque.
+pub(crate) fn own_opacity_below_one(shape: &Shape) -> bool {
+    let opacities = match shape {
+        Shape::Curves { opacities, .. }
+        | Shape::Points { opacities, .. }
+        | Shape::Blobby { opacities, .. } => opacities,
+        _ => return false,
+    };
+    opacities.as_ref().is_some_and(|o| o.values().iter().flatten().any(|&a| a < 1.0))
 }
 
 /// The end caps that close `shape` into a solid, each facing out of it, for an object that
@@ -430,6 +506,9 @@ pub(crate) fn end_caps(shape: &Shape) -> Vec<Surface> {
         | Shape::PatchMesh { .. }
         | Shape::NuPatch { .. }
         | Shape::SubdivisionMesh { .. }
+        | Shape::Curves { .. }
+        | Shape::Points { .. }
+        | Shape::Blobby { .. }
         | Shape::MeshFile { .. } => Vec::new(),
     }
 }

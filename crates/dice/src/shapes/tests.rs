@@ -5,6 +5,16 @@ use super::*;
 use reyes_scene::{Basis, Faces, Material, PatchType, Wrap};
 use reyes_testkit::fixtures;
 
+/// The surfaces of an object whose ribbons (none here) face their normals.
+fn surfaces(object: &Object) -> Vec<Surface> {
+    super::surfaces(object, Facing::Normals)
+}
+
+/// [`super::shape_surfaces`] with ribbons facing their normals.
+fn shape_surfaces(shape: &Shape, points: Option<&[Vec3]>) -> Vec<Surface> {
+    super::shape_surfaces(shape, points, Facing::Normals)
+}
+
 fn object(shape: Shape) -> Object {
     Object::new(shape, Material::Constant { color: [1.0; 3], opacity: [1.0; 3] })
 }

@@ -102,6 +102,18 @@ impl Splitter {
         let csg_depth = operand.map(|(bounds, tree, object)| CsgDepth { bounds, tree, object });
         Splitter { csg_depth, ..self.clone() }
     }
+
+    /// The same decisions for a displaced surface whose points move up to `reach` in
+    /// camera space (RenderMan's displacement bound): bounds, depth ranges and side-plane
+    /// tests take in the cube of half-side `reach` about every test and hull point.
+    pub fn with_displacement(&self, reach: f32) -> Splitter {
+        Splitter { displace: reach, ..self.clone() }
+    }
+
+    /// The same decisions at another shading rate (an object's own `shading_rate`).
+    pub fn with_shading_rate(&self, shading_rate: f32) -> Splitter {
+        Splitter { step: super::step(shading_rate), ..self.clone() }
+    }
 }
 
 /// What [`Splitter::with_csg_depth`] needs to know.

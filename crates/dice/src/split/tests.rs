@@ -21,7 +21,7 @@ fn splitter(lens: Option<reyes_scene::Lens>) -> (CameraSetup, Splitter) {
 
 /// The one surface of a whole unit sphere.
 fn unit_sphere() -> Surface {
-    surfaces(&shape_object(fixtures::sphere(1.0))).remove(0)
+    surfaces(&shape_object(fixtures::sphere(1.0)), reyes_scene::curves::Facing::Normals).remove(0)
 }
 
 fn shape_object(shape: Shape) -> Object {
@@ -77,7 +77,7 @@ fn a_bezier_patch_is_bounded_by_its_control_hull() {
         })
         .collect();
     let shape = fixtures::patch_mesh(PatchType::Bicubic, 4, 4, points);
-    let surface = surfaces(&shape_object(shape)).remove(0);
+    let surface = surfaces(&shape_object(shape), reyes_scene::curves::Facing::Normals).remove(0);
     let (cam, sp) = splitter(None);
     let moment = Moment::new(0.0, Placement::Matrix(Mat4::IDENTITY), Mat4::IDENTITY, 0);
     let pose = Pose { surface: &surface, moment: &moment };
@@ -220,7 +220,7 @@ proptest! {
         } else {
             Shape::Sphere { radius: 1.2, zmin: None, zmax: None, thetamax: 360.0 }
         };
-        let surface = surfaces(&shape_object(shape)).remove(0);
+        let surface = surfaces(&shape_object(shape), reyes_scene::curves::Facing::Normals).remove(0);
         let m = Mat4::from_translation(Vec3::new(pos.0, pos.1, pos.2))
             * Mat4::from_axis_angle(Vec3::new(axis.0, axis.1, axis.2).normalize(), angle.to_radians());
         let patch = Patch { u: [u0, (u0 + du).min(1.0)], v: [v0, (v0 + dv).min(1.0)], ..Patch::root() };

@@ -5,12 +5,14 @@
 
 mod accuracy;
 mod aovs;
+mod blobby;
 mod camera;
 mod cracks;
 mod csg;
 mod csg_coverage;
 mod filters;
 mod geometry;
+mod hair;
 mod lens;
 mod lookdev;
 mod meshes;

@@ -18,6 +18,7 @@ mod build;
 mod detail;
 mod frame;
 pub(crate) mod geometry;
+mod hair;
 mod make;
 mod options;
 mod primitives;

@@ -146,6 +146,14 @@ impl Machine {
             Shape::Mesh { .. } | Shape::SubdivisionMesh { .. } => {
                 (a.color, self.constant_color(r)?)
             }
+            // A primitive's own Cs replaces the attribute colour, as the Specification has
+            // it: the material is white under per-curve, per-point or per-field colours.
+            Shape::Curves { colors: Some(_), .. }
+            | Shape::Points { colors: Some(_), .. }
+            | Shape::Blobby { colors: Some(_), .. } => ([1.0; 3], None),
+            Shape::Curves { .. } | Shape::Points { .. } | Shape::Blobby { .. } => {
+                (a.color, self.constant_color(r)?)
+            }
             _ => (a.color, None),
         };
         let cs = colors_constant.unwrap_or(cs);
@@ -378,6 +386,9 @@ impl Machine {
                     thetamax: r.float(2).unwrap_or(360.0),
                 }
             }
+            K::Curves => self.curves(r)?,
+            K::Points => self.points(r)?,
+            K::Blobby => self.blobby(r)?,
             K::SubdivisionMesh => match super::subdivision::shape(r, &mut self.warnings)? {
                 Some(shape) => shape,
                 None => return Ok(None),
@@ -581,7 +592,9 @@ fn control_points(shape: &Option<Shape>) -> Option<Vec<[f32; 3]>> {
     match shape.as_ref()? {
         Shape::Mesh { points, .. }
         | Shape::PatchMesh { points, .. }
-        | Shape::SubdivisionMesh { points, .. } => Some(points.clone()),
+        | Shape::SubdivisionMesh { points, .. }
+        | Shape::Curves { points, .. }
+        | Shape::Points { points, .. } => Some(points.clone()),
         Shape::BilinearPatch { points } => Some(points.to_vec()),
         Shape::NuPatch { points, .. } => {
             Some(points.iter().map(|p| [p[0] / p[3], p[1] / p[3], p[2] / p[3]]).collect())
@@ -599,7 +612,9 @@ fn same_topology(a: &Option<Shape>, b: &Option<Shape>) -> bool {
                 points.clear();
                 *colors = None;
             }
-            Shape::PatchMesh { points, .. } => points.clear(),
+            Shape::PatchMesh { points, .. }
+            | Shape::Curves { points, .. }
+            | Shape::Points { points, .. } => points.clear(),
             Shape::SubdivisionMesh { points, colors, .. } => {
                 points.clear();
                 *colors = None;

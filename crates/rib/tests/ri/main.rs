@@ -8,6 +8,7 @@ mod detail;
 mod errors;
 mod extensions;
 mod frames;
+mod hair;
 mod lookdev;
 mod mapping;
 mod peers;

@@ -14,6 +14,7 @@ use serde::{Deserialize, Serialize};
 
 mod camera;
 mod faces;
+mod hair;
 mod hider;
 mod light;
 mod lookdev;
@@ -27,6 +28,7 @@ mod solid;
 
 pub use camera::*;
 pub use faces::{FaceIter, Faces};
+pub use hair::*;
 pub use hider::*;
 pub use light::*;
 pub use lookdev::*;

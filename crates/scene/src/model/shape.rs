@@ -7,7 +7,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{Faces, Rgb, V3};
+use super::hair::default_width;
+use super::{CurveType, Faces, Primvar, Rgb, V3};
 
 fn deg360() -> f32 {
     360.0
@@ -238,6 +239,75 @@ pub enum Shape {
         #[serde(default)]
         st: Option<Vec<[f32; 2]>>,
     },
+    /// RenderMan curves (`RiCurves`): `nvertices.len()` curves, linear or cubic in `basis`,
+    /// each a ribbon of `width` (object space) along the curve. With `normals` the ribbon
+    /// faces them; without, it turns to face the camera at every point (docs/geometry.md,
+    /// "Curves").
+    Curves {
+        /// `Linear` or `Cubic`.
+        kind: CurveType,
+        /// Whether each curve closes on itself.
+        #[serde(default)]
+        wrap: Wrap,
+        /// Control points of each curve (linear: at least 2, or 3 periodic; cubic: 4 + a
+        /// multiple of the step, or a multiple of it periodic).
+        nvertices: Vec<u32>,
+        /// Every curve's control points, curve after curve.
+        points: Vec<V3>,
+        /// The cubic basis (ignored by linear curves).
+        #[serde(default)]
+        basis: Basis,
+        /// Step between segments; `None`: the basis's standard step.
+        #[serde(default)]
+        step: Option<u32>,
+        /// Width (> 0) along the curves: `Constant` (RenderMan's `constantwidth`), or per
+        /// curve, segment end or control point. Default 1.
+        #[serde(default = "default_width")]
+        width: Primvar<f32>,
+        /// Normals the ribbon faces (`N`); `None`: the ribbon faces the camera.
+        #[serde(default)]
+        normals: Option<Primvar<V3>>,
+        /// Colours multiplying the material colour (`Cs`).
+        #[serde(default)]
+        colors: Option<Primvar<Rgb>>,
+        /// Opacities multiplying the material opacity (`Os`).
+        #[serde(default)]
+        opacities: Option<Primvar<Rgb>>,
+    },
+    /// RenderMan points (`RiPoints`): each point a disk of `width` (object space) facing
+    /// the camera.
+    Points {
+        /// Centres.
+        points: Vec<V3>,
+        /// Diameter (> 0): `Constant` (`constantwidth`) or one per point. Default 1.
+        #[serde(default = "default_width")]
+        width: Primvar<f32>,
+        /// Colours multiplying the material colour (`Cs`), one per point or constant.
+        #[serde(default)]
+        colors: Option<Primvar<Rgb>>,
+        /// Opacities multiplying the material opacity (`Os`).
+        #[serde(default)]
+        opacities: Option<Primvar<Rgb>>,
+    },
+    /// A RenderMan blobby implicit surface (`RiBlobby`): the level set at the Specification's
+    /// threshold of the field the code stream computes (docs/geometry.md, "Blobby").
+    Blobby {
+        /// The instruction stream: primitive fields (1000 constant, 1001 ellipsoid, 1002
+        /// segment, 1003 repelling ground plane, 1004 plane) and operators (0 add, 1
+        /// multiply, 2 maximum, 3 minimum, 4 subtract, 5 divide, 6 negate, 7 identity).
+        code: Vec<i32>,
+        /// The floats the instructions index.
+        floats: Vec<f32>,
+        /// The strings the instructions index (depth-map names).
+        #[serde(default)]
+        strings: Vec<String>,
+        /// Colours multiplying the material colour (`Cs`), one per primitive field or constant.
+        #[serde(default)]
+        colors: Option<Primvar<Rgb>>,
+        /// Opacities multiplying the material opacity (`Os`).
+        #[serde(default)]
+        opacities: Option<Primvar<Rgb>>,
+    },
 }
 
 /// A tag of a [`Shape::SubdivisionMesh`] (the tags of `RiSubdivisionMesh`).
@@ -288,6 +358,9 @@ impl Shape {
             Shape::PatchMesh { .. } => "PatchMesh",
             Shape::NuPatch { .. } => "NuPatch",
             Shape::SubdivisionMesh { .. } => "SubdivisionMesh",
+            Shape::Curves { .. } => "Curves",
+            Shape::Points { .. } => "Points",
+            Shape::Blobby { .. } => "Blobby",
         }
     }
 }

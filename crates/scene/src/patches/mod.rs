@@ -76,7 +76,7 @@ impl Basis {
 
     /// `Mb^-1 M`: the matrix taking a geometry vector in this basis to the Bezier control
     /// points of the same cubic (the identity, exactly, for the Bezier basis).
-    fn bezier_conversion(&self) -> [[f64; 4]; 4] {
+    pub(crate) fn bezier_conversion(&self) -> [[f64; 4]; 4] {
         if *self == Basis::Bezier {
             return [
                 [1.0, 0.0, 0.0, 0.0],

@@ -29,6 +29,7 @@
 //! primitives in `primitives`. [`check_scene`] below is the one place that fixes the order.
 
 mod camera;
+mod hair;
 mod hider;
 mod keys;
 mod light;

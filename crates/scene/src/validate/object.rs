@@ -100,12 +100,13 @@ fn deform(at: &str, object: &Object, shutter: &Shutter) -> Check {
         Shape::PatchMesh { points, .. } => points.len(),
         Shape::NuPatch { points, .. } => points.len(),
         Shape::SubdivisionMesh { points, .. } => points.len(),
+        Shape::Curves { points, .. } | Shape::Points { points, .. } => points.len(),
         other => {
             return fail(
                 at,
                 format!(
-                    "deformation keys need a Mesh, BilinearPatch, PatchMesh, NuPatch or \
-                     SubdivisionMesh shape, got {}",
+                    "deformation keys need a Mesh, BilinearPatch, PatchMesh, NuPatch, \
+                     SubdivisionMesh, Curves or Points shape, got {}",
                     other.name()
                 ),
             );

@@ -95,6 +95,9 @@ pub(super) fn shape(at: &str, shape: &Shape) -> Check {
                 st.as_deref(),
             )
         }
+        Shape::Curves { .. } => super::hair::curves(at, shape),
+        Shape::Points { .. } => super::hair::points(at, shape),
+        Shape::Blobby { .. } => super::hair::blobby(at, shape),
         Shape::MeshFile { path, .. } => fail(
             field("path"),
             format!(
