@@ -111,3 +111,27 @@ fn a_shader_producing_nan_renders_finite_pixels_and_counts_them() {
     assert!(film.rgba().iter().all(|p| p.iter().all(|c| c.is_finite())));
     assert!(film.rgba().iter().any(|p| p[1] > 0.4), "the ball is drawn");
 }
+
+/// An imager shader's pixels are what the EXR holds: the file is not written from the lines
+/// as they were before the imager ran (the beauty's blocks are otherwise compressed while the
+/// frame renders).
+#[test]
+fn an_imager_changes_the_exr_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let rib = scene(dir.path(), "flat", "surface flat() { Oi = 1; Ci = 1; }");
+    std::fs::write(
+        dir.path().join("fill.sl"),
+        "imager fill(color bgcolor = 0) { Ci += (1 - alpha) * bgcolor; alpha = 1; }",
+    )
+    .unwrap();
+    let text = std::fs::read_to_string(&rib).unwrap();
+    let text =
+        text.replace("WorldBegin", "Imager \"fill\" \"bgcolor\" [0.25 0.5 0.75]\nWorldBegin");
+    std::fs::write(&rib, text).unwrap();
+    let out = dir.path().join("out.exr");
+    let o = render(&["-q", rib.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let film = reyes_film::read_exr(&out).unwrap();
+    // The top-left corner is background: the imager's colour, opaque.
+    assert_eq!(film.rgba()[0], [0.25, 0.5, 0.75, 1.0]);
+}

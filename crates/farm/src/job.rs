@@ -342,9 +342,11 @@ impl<'a> FrameJob<'a> {
         };
         // A whole frame's EXR beauty is compressed while the frame renders, block by block
         // as its lines are final (the write then stores those blocks as they are; the file
-        // is the same bytes). Not for tiles (their files hold bucket windows) or crops.
+        // is the same bytes). Not for tiles (their files hold bucket windows) or crops, nor
+        // under an imager shader, which changes every pixel after the last line is final.
         let exr_out = is_exr(&frame.main) || frame.extras.iter().any(|p| is_exr(p));
-        let early = (exr_out && request.tile.is_none() && scene.image.crop.is_none())
+        let plain = request.tile.is_none() && scene.image.crop.is_none();
+        let early = (exr_out && plain && scene.shaders.imager.is_none())
             .then(|| {
                 let named = reyes_render::aovs::AovSetup::for_scene(scene).is_some();
                 EarlyBlocks::new(scene.image.width, scene.image.height, &scene.outputs, named)
