@@ -117,7 +117,7 @@ mod roots;
 mod shade;
 mod shapes;
 mod sl;
-mod slinfo;
+pub mod slinfo;
 mod sltex;
 mod split;
 mod spot;

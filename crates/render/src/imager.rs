@@ -17,18 +17,23 @@ use crate::RenderError;
 /// it was without one.
 pub(crate) fn apply(scene: &Scene, film: Film, budget: u64) -> Result<(Film, u64), RenderError> {
     let Some(imager) = &scene.shaders.imager else { return Ok((film, 0)) };
-    run(imager, film, budget).map_err(|e| RenderError::Shader { message: format!("imager: {e}") })
+    let info = reyes_dice::slinfo::Info::of_scene(scene);
+    run(imager, film, budget, &info)
+        .map_err(|e| RenderError::Shader { message: format!("imager: {e}") })
 }
 
 fn run(
     imager: &ShaderInstance,
     film: Film,
     budget: u64,
+    info: &reyes_dice::slinfo::Info,
 ) -> Result<(Film, u64), reyes_scene::sl::exec::ExecError> {
     let (w, h) = (film.width() as usize, film.height() as usize);
     let n = w * h;
     let mut g = GridContext::new(&imager.shader, w.max(1), h.max(1));
     g.set_budget(budget);
+    // `option()`, `rendererinfo()`, `time` and `dtime`, as the other shaders see them.
+    info.bind(&mut g);
     let rgba = film.rgba();
     let ci: Vec<f32> = rgba.iter().flat_map(|p| [p[0], p[1], p[2]]).collect();
     let oi: Vec<f32> = rgba.iter().flat_map(|p| [p[3]; 3]).collect();

@@ -137,3 +137,16 @@ fn an_imager_takes_its_parameters() {
         assert_eq!(pixel(&f, SIZE - 1, 0), [0.2, 0.3, 0.5, 1.0], "{decl}");
     }
 }
+
+/// An imager asks the renderer's options as the other shaders do: `option("Format")` gives
+/// the picture's size in every pixel.
+#[test]
+fn an_imager_reads_the_options() {
+    let shader = "imager res() { float r[3]; option(\"Format\", r); \
+                  Ci = color(r[0] / 100, r[1] / 100, r[2]); alpha = 1; }";
+    let files = Files::new(&[("res", shader)]);
+    let rib = format!("{}Imager \"res\"\nWorldBegin\nWorldEnd\n", ortho(SIZE, W));
+    let f = render(&files.scene(&rib));
+    let s = SIZE as f32 / 100.0;
+    assert_eq!(pixel(&f, 3, 5), [s, s, 1.0, 1.0]);
+}
