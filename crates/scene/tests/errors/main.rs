@@ -320,7 +320,7 @@ fn exact_messages() {
     );
     assert_eq!(
         shown("deformation of a sphere"),
-        "scenes/bad.ron:7:56: objects[0].deform: deformation keys need a Mesh, BilinearPatch, PatchMesh, NuPatch or SubdivisionMesh shape, got Sphere"
+        "scenes/bad.ron:7:56: objects[0].deform: deformation keys need a Mesh, BilinearPatch, PatchMesh, NuPatch, SubdivisionMesh, Curves or Points shape, got Sphere"
     );
     assert_eq!(
         shown("deformation of a patch with 3 points"),
