@@ -72,6 +72,8 @@ pub(crate) struct Emitter<'b> {
     near: f32,
     /// One cell's positions at each breakpoint, with the breakpoint's time.
     quads: Vec<(f32, Quad)>,
+    /// Scratch for the pieces of a segment ([`Emitter::in_front`]).
+    parts: Vec<(Quad, Quad, [f32; 2])>,
     /// Emitted micropolygons flagged `MOVING`.
     pub moving: u64,
     /// Of `culled`, those dropped as back faces.
@@ -138,6 +140,7 @@ impl<'b> Emitter<'b> {
             yon,
             near,
             quads: Vec::new(),
+            parts: Vec::new(),
             moving: 0,
             backfacing: 0,
             escaped: 0,
@@ -355,8 +358,14 @@ impl<'b> Emitter<'b> {
             }
         }
         self.cull = if object.cull_back { self.calibrate(&cosines) } else { None };
-        // Camera-space positions are needed only where some vertex comes near the eye.
-        if self.grid.cam.iter().all(|p| p.z >= self.near) {
+        // Camera-space positions are needed only where some vertex comes near the eye,
+        // goes beyond yon or changes depth by more than `DEPTH_RATIO` (`Emitter::in_front`).
+        let (cam, n) = (&self.grid.cam, self.grid.count as usize);
+        let deep = n > 0
+            && cam.chunks(n).zip(cam.chunks(n).skip(1)).any(|(a, b)| {
+                a.iter().zip(b).any(|(p, q)| p.z.max(q.z) > emit::DEPTH_RATIO * p.z.min(q.z))
+            });
+        if !deep && self.grid.cam.iter().all(|p| p.z >= self.near && p.z <= self.yon) {
             self.grid.cam = Vec::new();
         } else {
             self.camera = Some(camera.clone());

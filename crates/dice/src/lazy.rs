@@ -326,13 +326,13 @@ impl<'a> Dicer<'a> {
             // A blobby's faces are pieces of one surface: its extent scales their flatness.
             let whole = crate::roots::blobby_extent(&motion, decide);
             let mut roots = crate::roots::Roots::new(object, crack_free, motion.surface_count())
-                .with_extent(whole);
+                .with_extent(whole.clone());
             for surface in 0..motion.surface_count() {
                 dicer.stats.primitives += 1;
                 let poses = motion.poses(surface);
                 beyond_hither &= decide.beyond_hither(&poses);
                 let root = roots.root(decide, surface, &poses);
-                let extent = whole.unwrap_or_else(|| decide.extent(&poses, &root));
+                let extent = whole.clone().unwrap_or_else(|| decide.extent(&poses, &root));
                 let patch = root.with_extent(extent);
                 let (decision, top) = decide.decide_bound(&poses, &patch);
                 if decision == Decision::Cull {

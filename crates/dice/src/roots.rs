@@ -22,7 +22,7 @@ use reyes_scene::{Object, Shape, Wrap};
 
 use crate::motion::Pose;
 use crate::shapes::Surface;
-use crate::split::{Edge, Patch, SharedSides, Splitter};
+use crate::split::{Edge, Extent, Patch, SharedSides, Splitter};
 
 /// How an object's surfaces meet.
 enum Layout {
@@ -47,7 +47,7 @@ pub(crate) struct Roots {
     by_corners: HashMap<(usize, usize), (usize, Arc<Edge>)>,
     /// The raster extent of the whole object, when its surfaces are pieces of one primitive
     /// (a blobby's faces): the scale of the edges' relative flatness.
-    extent: Option<f32>,
+    extent: Option<Extent>,
 }
 
 impl Roots {
@@ -78,7 +78,7 @@ impl Roots {
     }
 
     /// The same rule, with the object's raster extent the scale of every edge's tolerance.
-    pub fn with_extent(self, extent: Option<f32>) -> Roots {
+    pub fn with_extent(self, extent: Option<Extent>) -> Roots {
         Roots { extent, ..self }
     }
 
@@ -95,7 +95,7 @@ impl Roots {
                 let top = if vwrap { (r + 1) % rows } else { r + 1 };
                 let keys = [(false, c, r), (false, c, top), (true, c, r), (true, right, r)];
                 let [bottom, top_edge, left, right_edge] = keys.map(|k| self.grid.get(&k).cloned());
-                let (top, right, extent) = (top_edge, right_edge, self.extent);
+                let (top, right, extent) = (top_edge, right_edge, self.extent.clone());
                 let given = SharedSides { bottom, top, left, right, extent };
                 let root = decide.root_sharing(poses, given);
                 if let Some(sides) = &root.sides {
@@ -122,7 +122,7 @@ impl Roots {
                         if *from == a { e.clone() } else { Arc::new(e.reversed()) }
                     })
                 });
-                let extent = self.extent;
+                let extent = self.extent.clone();
                 let root =
                     decide.root_sharing(poses, SharedSides { bottom, top, left, right, extent });
                 if let Some(sides) = &root.sides {
@@ -137,12 +137,11 @@ impl Roots {
     }
 }
 
-/// The raster extent of a blobby's bound (the smallest over the breakpoints), or `None` for
-/// any other object.
+/// The raster extent of a blobby's bound at each breakpoint, or `None` for any other object.
 pub(crate) fn blobby_extent(
     motion: &crate::motion::ObjectMotion,
     decide: &Splitter,
-) -> Option<f32> {
+) -> Option<Extent> {
     let poses = motion.poses(0);
     let crate::shapes::Surface::Blob(face) = poses.first()?.surface else { return None };
     let (lo, hi) = face.program.bound()?;
@@ -155,10 +154,10 @@ pub(crate) fn blobby_extent(
         .as_vec3()
     });
     let corners: Vec<glam::Vec3> = corners.collect();
-    Some(
+    Some(Extent::per_breakpoint(
         poses
             .iter()
             .map(|pose| decide.extent_of(corners.iter().map(|p| pose.moment.camera_point(*p))))
-            .fold(f32::INFINITY, f32::min),
-    )
+            .collect(),
+    ))
 }

@@ -23,6 +23,7 @@ use reyes_scene::Projection;
 use crate::camera::CameraSetup;
 use crate::motion::Pose;
 pub(crate) use edge::{Edge, Line, OVERLAP, Sides};
+pub use extent::Extent;
 #[cfg(test)]
 use rate::clamp_grid;
 use rate::{max_lengths, stalls, step};
@@ -63,9 +64,9 @@ pub(crate) struct Patch {
     pub parent_count: u64,
     /// Consecutive splits down to this patch that did not make progress ([`rate::STALL_RATIO`]).
     pub stalls: u32,
-    /// Raster extent of the whole primitive the patch was split from, the scale of the
-    /// relative flatness bound (infinite when unknown: the patch's own extent is used).
-    pub extent: f32,
+    /// Raster extent of the whole primitive the patch was split from at each breakpoint,
+    /// the scale of the relative flatness bound (unknown: the patch's own extent is used).
+    pub extent: Extent,
     /// Its four sides, under crack-free dicing ([`edge`]); `None`: diced on its own.
     pub sides: Option<Arc<Sides>>,
 }
@@ -80,13 +81,13 @@ impl Patch {
             hither_splits: 0,
             parent_count: 0,
             stalls: 0,
-            extent: f32::INFINITY,
+            extent: Extent::unknown(),
             sides: None,
         }
     }
 
     /// The same patch as the root of a primitive of raster extent `extent`.
-    pub fn with_extent(self, extent: f32) -> Patch {
+    pub fn with_extent(self, extent: Extent) -> Patch {
         Patch { extent, ..self }
     }
 
@@ -256,27 +257,6 @@ impl Splitter {
         Splitter { flatness, relative_flatness: relative, ..self.clone() }
     }
 
-    /// Raster extent of `patch` in `poses` for the relative flatness bound: the larger
-    /// side of its test points' raster bound, the smallest over the breakpoints (infinite
-    /// when some breakpoint has a point that is not in front of the eye).
-    pub fn extent(&self, poses: &[Pose<'_>], patch: &Patch) -> f32 {
-        let mut extent = f32::INFINITY;
-        for pose in poses {
-            let grid = self.test_grid(pose, patch);
-            let (mut lo, mut hi) = (Vec2::INFINITY, Vec2::NEG_INFINITY);
-            for p in grid.iter().flatten() {
-                if !(p.is_finite() && p.z >= self.near) {
-                    return f32::INFINITY;
-                }
-                let r = self.camera.eye_to_raster(*p);
-                lo = lo.min(r);
-                hi = hi.max(r);
-            }
-            extent = extent.min((hi - lo).max_element());
-        }
-        extent
-    }
-
     /// The depth below which a micropolygon vertex is not kept (`hither / 2`).
     pub fn near(&self) -> f32 {
         self.near
@@ -310,25 +290,6 @@ impl Splitter {
         })
     }
 
-    /// How far in raster pixels an edge's polyline may stray from the surface
-    /// ([`edge`]): the flatness bound the grids are diced to, for a primitive of raster
-    /// extent `extent` (see [`Splitter::with_flatness`]); half a micropolygon side with both
-    /// bounds off; a tenth for a CSG operand. Never below a thousandth of a pixel.
-    pub fn edge_tolerance(&self, extent: f32) -> f32 {
-        let mut tol = f32::INFINITY;
-        if self.flatness > 0.0 {
-            tol = self.flatness;
-        }
-        if self.relative_flatness > 0.0 && extent.is_finite() {
-            tol = tol.min(self.relative_flatness * extent);
-        }
-        if !tol.is_finite() {
-            tol = 0.5 * self.step;
-        }
-        tol *= if self.csg_depth.is_some() { flat::CSG_DEPTH_FRACTION } else { 1.0 };
-        tol.max(1e-3)
-    }
-
     /// The root patch of a surface seen in `poses`, with its four sides for crack-free
     /// dicing ([`edge`]), its corners on the surface.
     pub fn root_with_sides(&self, poses: &[Pose<'_>]) -> Patch {
@@ -350,9 +311,9 @@ impl Splitter {
             a.iter().zip(b).map(|(a, b)| [*a, *b]).collect()
         };
         let extent = given.extent.unwrap_or_else(|| self.extent(poses, &Patch::root()));
-        let tol = self.edge_tolerance(extent);
+        let tol = self.edge_tolerances(&extent, poses.len());
         let edge = |line: Line, a: &[Vec3], b: &[Vec3]| {
-            Arc::new(Edge::new(self, poses, line, [0.0, 1.0], &ends(a, b), tol))
+            Arc::new(Edge::new(self, poses, line, [0.0, 1.0], &ends(a, b), &tol))
         };
         let sides = Sides {
             bottom: given.bottom.unwrap_or_else(|| edge(Line::AlongU(0.0), &c00, &c10)),
@@ -384,8 +345,8 @@ impl Splitter {
         };
         let ends: Vec<[Vec3; 2]> =
             (0..poses.len()).map(|b| [from.0.at(b, from.1), to.0.at(b, to.1)]).collect();
-        let tol = self.edge_tolerance(patch.extent);
-        let middle = Arc::new(Edge::new(self, poses, line, range, &ends, tol));
+        let tol = self.edge_tolerances(&patch.extent, poses.len());
+        let middle = Arc::new(Edge::new(self, poses, line, range, &ends, &tol));
         let (mut lower, mut upper) = ((**sides).clone(), (**sides).clone());
         if along_u {
             lower.right = middle.clone();
@@ -545,7 +506,7 @@ impl Splitter {
         let per_time: Vec<Option<GridFacts<'_>>> = grids
             .iter()
             .enumerate()
-            .map(|(k, g)| self.grid_facts(g, hulls.get(k).map(Vec::as_slice)))
+            .map(|(k, g)| self.grid_facts(k, g, hulls.get(k).map(Vec::as_slice)))
             .collect();
         // Breakpoints ending a segment some micropolygon may be seen in; only they count.
         let mut live = vec![false; per_time.len()];
@@ -588,6 +549,7 @@ impl Splitter {
     /// no point of it is finite.
     fn grid_facts<'a>(
         &self,
+        pose: usize,
         grid: &'a TestGrid,
         hull: Option<&'a [Vec3]>,
     ) -> Option<GridFacts<'a>> {
@@ -611,7 +573,7 @@ impl Splitter {
             }
         }
         let raster = if all_finite { self.margin_bound_with(grid, hull) } else { None };
-        (lo.z <= hi.z).then_some(GridFacts { grid, hull, lo, hi, all_finite, raster })
+        (lo.z <= hi.z).then_some(GridFacts { pose, grid, hull, lo, hi, all_finite, raster })
     }
 
     /// True if no micropolygon of the segment from test grid `a` to test grid `b` (the same
@@ -664,12 +626,14 @@ pub(crate) struct SharedSides {
     pub top: Option<Arc<Edge>>,
     pub left: Option<Arc<Edge>>,
     pub right: Option<Arc<Edge>>,
-    pub extent: Option<f32>,
+    pub extent: Option<Extent>,
 }
 
 /// What the decisions need to know of one breakpoint's test grid.
 #[derive(Debug, Clone, Copy)]
 struct GridFacts<'a> {
+    /// The breakpoint it is of.
+    pose: usize,
     grid: &'a TestGrid,
     /// The control hull of a surface that has one (empty otherwise).
     hull: &'a [Vec3],
@@ -684,6 +648,7 @@ struct GridFacts<'a> {
 
 mod blur;
 pub(crate) mod edge;
+pub(crate) mod extent;
 mod flat;
 mod points;
 mod rate;

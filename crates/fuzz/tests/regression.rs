@@ -110,3 +110,8 @@ fn sl_no_shader_names_the_file() {
 fn sl_control_character_in_run_error() {
     replay("sl", "sl-control-character-in-run-error.sl");
 }
+
+#[test]
+fn render_shrunk_lens_huge_floor_slow() {
+    replay_with("render", "render-shrunk-lens-huge-floor-slow.ron", &["--timeout", "2"]);
+}

@@ -93,14 +93,14 @@ pub(crate) struct Edge {
 impl Edge {
     /// The edge along `line` over `range`, with its end points `ends[b]` at every
     /// breakpoint `b` (of `poses`), its polyline fixed by `splitter`: no piece strays from
-    /// the curve by more than `tol` raster pixels at its test points.
+    /// the curve by more than `tol[b]` raster pixels at its test points at breakpoint `b`.
     pub fn new(
         splitter: &Splitter,
         poses: &[Pose<'_>],
         line: Line,
         range: [f32; 2],
         ends: &[[Vec3; 2]],
-        tol: f32,
+        tol: &[f32],
     ) -> Edge {
         let mut t = vec![range[0]];
         let mut per_pose: Vec<Vec<Vec3>> = ends.iter().map(|e| vec![e[0]]).collect();
@@ -174,7 +174,8 @@ struct Piece<'a, 'p> {
     splitter: &'a Splitter,
     poses: &'a [Pose<'p>],
     line: Line,
-    tol: f32,
+    /// Per breakpoint.
+    tol: &'a [f32],
     t: &'a mut Vec<f32>,
     points: &'a mut Vec<Vec<Vec3>>,
     /// Per piece, in order: within the tolerance of the curve (not left long for being off
@@ -245,14 +246,15 @@ impl Piece<'_, '_> {
         self.halve([mid, range[1]], &m, b, level + 1);
     }
 
-    /// Whether the piece strays from its chord by more than `tol` in raster at one of its
+    /// Whether the piece strays from its chord by more than `tol[b]` in raster at one of its
     /// `EDGE_TEST` points at some breakpoint (points not in front of the eye skipped), unless
     /// it is in a pinhole camera's view and its raster bound, grown by its own size, is off
     /// the screen at every breakpoint (it is never seen, so its shape does not matter).
     fn strays(&self, range: [f32; 2], a: &[Vec3], b: &[Vec3]) -> Stray {
         let sp = self.splitter;
         let (mut lo, mut hi) = (Vec2::INFINITY, Vec2::NEG_INFINITY);
-        let mut stray = 0.0_f32;
+        // Some breakpoint's stray is over its tolerance.
+        let mut beyond = false;
         let mut all_seen = true;
         // Camera-space point and its raster position, for a point in front of the eye.
         let seen = |pose: &Pose<'_>, p: Vec3| {
@@ -266,6 +268,7 @@ impl Piece<'_, '_> {
         let perspective = sp.camera.projection() == reyes_scene::Projection::Perspective;
         let px = |z: f32| if perspective { k / z } else { k };
         for (k, pose) in self.poses.iter().enumerate() {
+            let mut stray = 0.0_f32;
             let subdiv = matches!(pose.surface, crate::shapes::Surface::Subdiv(_));
             let (ea, eb) = (seen(pose, a[k]), seen(pose, b[k]));
             // The chord in camera space, even where an end is behind the eye: the part of
@@ -319,11 +322,12 @@ impl Piece<'_, '_> {
                     stray = stray.max(distance_to_segment(c, ca, cb).max(along) * px(c.z));
                 }
             }
+            beyond |= !(stray <= self.tol.get(k).copied().unwrap_or(f32::INFINITY));
         }
         // No exemption for short pieces: the grids along the edge are diced to the same
         // flatness bound (flat.rs), so a piece that strays more than it would leave the grids'
         // boundary coarser than their insides (a small sphere at 1/512 of its extent).
-        if stray <= self.tol {
+        if !beyond {
             return Stray::Within;
         }
         if all_seen && sp.lens.is_none() {

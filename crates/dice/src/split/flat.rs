@@ -26,8 +26,8 @@ impl Splitter {
     /// bunched up but straight) has no normal part and counts for nothing, rightly: its
     /// flat micropolygons are exact. So `n` micropolygons along the row keep the error
     /// within `tol` when `d (TEST_N - 1)^2 / (4 n^2) <= tol`, where `tol` is the smaller of
-    /// the absolute bound and the relative one times the primitive's extent
-    /// ([`Patch::extent`]). With a lens, a point seen from lens position `l` (`|l| <= 1`)
+    /// the absolute bound and the relative one times the primitive's extent at that
+    /// breakpoint ([`Patch::extent`], extent.rs). With a lens, a point seen from lens position `l` (`|l| <= 1`)
     /// moves by `l * coc(z)`: the bend is measured at the lens's centre and around its rim,
     /// and the largest counts. The estimate is multiplied by [`FLAT_SAFETY`]
     /// (an 8-point sampling of a full circle underestimates its curvature by 7%).
@@ -40,46 +40,32 @@ impl Splitter {
         if self.flatness <= 0.0 && self.relative_flatness <= 0.0 {
             return (1, 1);
         }
-        let (mut bend_u, mut bend_v) = (0.0_f32, 0.0_f32);
-        let mut extent = f32::INFINITY;
-        for f in facts {
-            let b = bends(f.grid, &map, self.lens.as_ref());
-            bend_u = bend_u.max(b.u);
-            bend_v = bend_v.max(b.v);
-            extent = extent.min(b.extent);
-        }
-        let mut tol = f32::INFINITY;
-        if self.flatness > 0.0 {
-            tol = self.flatness;
-        }
-        // The primitive's extent: the patch is part of a surface whose silhouette the
-        // relative bound is about (its own extent would tighten the bound split by split).
-        if patch.extent.is_finite() {
-            extent = patch.extent;
-        }
-        if self.relative_flatness > 0.0 && extent.is_finite() {
-            tol = tol.min(self.relative_flatness * extent);
-        }
-        // Below a millionth of a pixel nothing is measurable (and a point has no extent).
-        let tol = f64::from(tol.max(1e-6));
-        let need = |bend: f32| {
+        // Micropolygons along a row for a bend of `bend` pixels within `tol` pixels.
+        let need = |bend: f32, tol: f64| {
             let n = (TEST_N - 1) as f64 * (FLAT_SAFETY * f64::from(bend) / (4.0 * tol)).sqrt();
             if n.is_finite() { n.ceil().clamp(1.0, MAX_SIDE) as u64 } else { MAX_SIDE as u64 }
         };
-        let (mut nu, mut nv) = (need(bend_u), need(bend_v));
-        if self.csg_depth.as_ref().is_some_and(|c| c.near_another(facts)) {
-            // The bend in space, as pixels at its depth, within a tenth of the tolerance.
-            let tol = tol * f64::from(CSG_DEPTH_FRACTION);
-            let k = self.camera.raster_scale().abs().max_element();
-            let perspective = self.camera.projection() == reyes_scene::Projection::Perspective;
-            let px = |z: f32| if perspective { k / z } else { k };
-            let need = |bend: f32| {
-                let n = (TEST_N - 1) as f64 * (FLAT_SAFETY * f64::from(bend) / (4.0 * tol)).sqrt();
-                if n.is_finite() { n.ceil().clamp(1.0, MAX_SIDE) as u64 } else { MAX_SIDE as u64 }
-            };
-            for f in facts {
+        // The csg rule's bends in space are measured as pixels at their depth.
+        let csg = self.csg_depth.as_ref().is_some_and(|c| c.near_another(facts));
+        let k = self.camera.raster_scale().abs().max_element();
+        let perspective = self.camera.projection() == reyes_scene::Projection::Perspective;
+        let px = |z: f32| if perspective { k / z } else { k };
+        let (mut nu, mut nv) = (1, 1);
+        for f in facts {
+            let b = bends(f.grid, &map, self.lens.as_ref());
+            // The primitive's extent at this breakpoint: the patch is part of a surface
+            // whose silhouette the relative bound is about (its own extent would tighten
+            // the bound split by split); the patch's own where the primitive's is unknown.
+            let extent =
+                Some(patch.extent.at(f.pose)).filter(|e| e.is_finite()).unwrap_or(b.extent);
+            // Below a millionth of a pixel nothing is measurable (and a point has no extent).
+            let tol = f64::from(self.flat_tolerance(extent).max(1e-6));
+            (nu, nv) = (nu.max(need(b.u, tol)), nv.max(need(b.v, tol)));
+            if csg {
+                // The bend in space, as pixels at its depth, within a tenth of the tolerance.
+                let tol = tol * f64::from(CSG_DEPTH_FRACTION);
                 let (u, v) = bends_in_space(f.grid, self.near, px);
-                (nu, nv) = (nu.max(need(u)), nv.max(need(v)));
+                (nu, nv) = (nu.max(need(u, tol)), nv.max(need(v, tol)));
             }
         }
         (nu, nv)
