@@ -378,7 +378,11 @@ fn a_render_killed_at_half_resumes_to_the_same_file() {
     );
     assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
     let err = String::from_utf8_lossy(&o.stderr);
-    let first = err.lines().next().and_then(parse_progress).expect("a progress line");
+    let first = err
+        .lines()
+        .next()
+        .and_then(parse_progress)
+        .unwrap_or_else(|| panic!("the first line is not a progress line:\n{err}"));
     assert_eq!(first.done, kept as u64 + 1, "{err}");
     assert!(bytes(&dir.join("whole.exr")) == bytes(&dir.join("out.exr")), "resumed file differs");
     assert_eq!(std::fs::read_dir(&ck).map(|d| d.count()).unwrap_or(0), 0, "checkpoint removed");

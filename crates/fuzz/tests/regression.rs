@@ -115,3 +115,8 @@ fn sl_control_character_in_run_error() {
 fn render_shrunk_lens_huge_floor_slow() {
     replay_with("render", "render-shrunk-lens-huge-floor-slow.ron", &["--timeout", "2"]);
 }
+
+#[test]
+fn sl_nested_macro_blowup() {
+    replay_with("sl", "sl-nested-macro-blowup.sl", &["--timeout", "2", "--memory", "512"]);
+}

@@ -246,3 +246,22 @@ fn unreadable_shader_is_an_io_error() {
     assert!(msg.starts_with("/nonexistent/dir/x.sl: cannot read the shader: "), "{msg}");
     assert!(!msg.contains('\n'));
 }
+
+/// A macro whose parameter appears 64 times, nested five deep in its own arguments, would
+/// make 64^5 (1e9) tokens: it is one error at the use, once a million tokens are made (the
+/// budget is checked as each body is built, so the last level is never built whole; fuzz
+/// regression `sl-nested-macro-blowup`, which took 19.5 GB before).
+#[test]
+fn an_exponential_expansion_is_one_error() {
+    let body = vec!["(b) * (x)"; 64].join(" + ");
+    let src = format!(
+        "#define M(a, b, x) ((a) * (1 - (x)) + {body})\nf = M(1, M(1, M(1, M(1, M(1, 0.5, s), t), s), t), s);\n"
+    );
+    let e = error(&src);
+    assert!(e.starts_with("t.sl:2:"), "{e}");
+    assert!(e.contains("macro \"M\": expansion makes more than 1000000 tokens"), "{e}");
+    // The body is 525 tokens (13 before the sum, 64 terms of 7, 63 '+', one ')'); two levels
+    // put the inner body's 525 in place of each of the 64 one-token `b`s.
+    let two = format!("#define M(a, b, x) ((a) * (1 - (x)) + {body})\nM(1, M(1, 0.5, s), t)\n");
+    assert_eq!(text(&two).split(' ').count(), 525 + 64 * 524);
+}

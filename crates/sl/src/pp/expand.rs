@@ -14,8 +14,10 @@ use super::{Preprocessor, ident, is_punct, spell};
 
 /// Deepest nesting of macro calls in macro arguments.
 const MAX_ARG_DEPTH: usize = 200;
-/// Most tokens macro expansion may make for one compilation.
-const MAX_EXPANDED: usize = 4_000_000;
+/// Most tokens macro expansion may make for one compilation: some 5 MB of source text, far
+/// beyond any real shader's, and at most a few hundred megabytes of tokens while they are
+/// made (each carries its hide set).
+const MAX_EXPANDED: usize = 1_000_000;
 
 /// A token during expansion, with the macros it may no longer expand (its hide set).
 #[derive(Debug, Clone)]
@@ -106,10 +108,7 @@ impl Preprocessor<'_> {
             };
             self.expanded += result.len();
             if self.expanded > MAX_EXPANDED {
-                return Err(Diag::new(
-                    site,
-                    format!("macro \"{name}\": expansion makes more than {MAX_EXPANDED} tokens"),
-                ));
+                return Err(too_many(&name, site));
             }
             for t in result.into_iter().rev() {
                 input.push_front(t);
@@ -271,6 +270,12 @@ impl Preprocessor<'_> {
                     piece.remove(0);
                 }
             }
+            // The budget holds while the body is built, not only after: a macro whose
+            // parameter appears k times, nested n deep in its own arguments, makes k^n
+            // copies, and the last level alone can be many gigabytes.
+            if self.expanded + out.len() + piece.len() > MAX_EXPANDED {
+                return Err(too_many(name, site));
+            }
             out.extend(piece);
         }
         for t in &mut out {
@@ -282,6 +287,11 @@ impl Preprocessor<'_> {
         }
         Ok(out)
     }
+}
+
+/// The error of an expansion over [`MAX_EXPANDED`] tokens.
+fn too_many(name: &str, site: Pos) -> Diag {
+    Diag::new(site, format!("macro \"{name}\": expansion makes more than {MAX_EXPANDED} tokens"))
 }
 
 fn quote_spelling(t: &Tok) -> String {
