@@ -232,7 +232,11 @@ fn render_one(args: &[String]) -> Result<u8, String> {
 fn replay(args: &[String]) -> Result<u8, String> {
     let [target, rest @ ..] = args else { return Err("replay: arguments".into()) };
     let target = Target::parse(target).ok_or_else(|| format!("unknown target {target}"))?;
-    let flags = rest.iter().take_while(|a| a.starts_with("--")).count() * 2;
+    // Flags come in pairs (`--timeout 2 --memory 512`), then the files.
+    let mut flags = 0;
+    while rest.get(flags).is_some_and(|a| a.starts_with("--")) {
+        flags += 2;
+    }
     let a = parse_args(&rest[..flags.min(rest.len())])?;
     let files = &rest[flags.min(rest.len())..];
     target::quiet_panics();

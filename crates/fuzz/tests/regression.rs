@@ -118,5 +118,7 @@ fn render_shrunk_lens_huge_floor_slow() {
 
 #[test]
 fn sl_nested_macro_blowup() {
-    replay_with("sl", "sl-nested-macro-blowup.sl", &["--timeout", "2", "--memory", "512"]);
+    // The sl target runs in process, without the child's limits: the bound on time and
+    // memory is the preprocessor's budget, tested in crates/sl/tests/preprocessor.rs.
+    replay("sl", "sl-nested-macro-blowup.sl");
 }
