@@ -163,7 +163,7 @@ impl Emitter<'_> {
         let at_time = |s: f32| if s >= 1.0 { time[1] } else { time[0] + s * span };
         for w in cuts.windows(2) {
             let (s0, s1) = (w[0], w[1]);
-            if !(s1 > s0) {
+            if s1.partial_cmp(&s0) != Some(std::cmp::Ordering::Greater) {
                 continue;
             }
             let (Some(a), Some(b)) = (project(s0), project(s1)) else { return };

@@ -322,7 +322,8 @@ impl Piece<'_, '_> {
                     stray = stray.max(distance_to_segment(c, ca, cb).max(along) * px(c.z));
                 }
             }
-            beyond |= !(stray <= self.tol.get(k).copied().unwrap_or(f32::INFINITY));
+            // (`f32::max` never keeps a NaN: `stray` is a number.)
+            beyond |= stray > self.tol.get(k).copied().unwrap_or(f32::INFINITY);
         }
         // No exemption for short pieces: the grids along the edge are diced to the same
         // flatness bound (flat.rs), so a piece that strays more than it would leave the grids'
