@@ -20,17 +20,20 @@ const LIGHT: &str = r#"light shadowlight(float intensity = 1; string shadowname 
 }
 "#;
 
-/// The two frames, the second's light reading the map with `blur`.
-fn multipass(blur: f32) -> String {
+/// The two frames, the first's depth filter `filter`, the second's light reading the map
+/// with `blur` and `bias`.
+fn multipass(blur: f32, bias: f32, filter: &str) -> String {
     let world = "AttributeBegin\nTranslate 0 0 5\nSphere 1 -1 1 360\nAttributeEnd\n\
                  Polygon \"P\" [-8 -8 10  8 -8 10  8 8 10  -8 8 10]\n";
     format!(
         "FrameBegin 1\nDisplay \"shadow.z\" \"zfile\" \"z\"\nFormat 256 256 1\nPixelSamples 2 2\n\
+         Hider \"hidden\" \"depthfilter\" \"{filter}\"\n\
          Projection \"perspective\" \"fov\" [40]\nWorldBegin\n{world}WorldEnd\nFrameEnd\n\
          MakeShadow \"shadow.z\" \"shadow.shd\"\n\
          FrameBegin 2\nDisplay \"beauty.exr\" \"file\" \"rgba\"\nFormat 160 160 1\n\
          PixelSamples 4 4\nProjection \"perspective\" \"fov\" [60]\nTranslate -3 0 0\n\
          WorldBegin\nLightSource \"shadowlight\" 1 \"shadowname\" [\"shadow.shd\"] \"blur\" [{blur}]\n\
+         \"bias\" [{bias}]\n\
          ShadingInterpolation \"smooth\"\nSurface \"matte\" \"Ka\" [0] \"Kd\" [1]\n\
          {world}WorldEnd\nFrameEnd\n"
     )
@@ -40,12 +43,12 @@ fn multipass(blur: f32) -> String {
 /// returns the picture's red channel, row by row. The depth map and the shadow map are
 /// written beside the RIB file (its maps' names resolve there); the picture, as every
 /// `Display` picture, in the working directory.
-fn render(blur: f32) -> (tempfile::TempDir, Vec<f32>) {
+fn render(blur: f32, bias: f32, filter: &str) -> (tempfile::TempDir, Vec<f32>) {
     let dir = tempfile::tempdir().unwrap();
     let cwd = tempfile::tempdir().unwrap();
     std::fs::write(dir.path().join("shadowlight.sl"), LIGHT).unwrap();
     let rib = dir.path().join("multipass.rib");
-    std::fs::write(&rib, multipass(blur)).unwrap();
+    std::fs::write(&rib, multipass(blur, bias, filter)).unwrap();
     let o = Command::new(env!("CARGO_BIN_EXE_reyes-render"))
         .current_dir(cwd.path())
         .arg("-q")
@@ -88,7 +91,7 @@ fn crossing(values: &[f32], at: impl Fn(usize) -> f64, light: impl Fn(usize) -> 
 
 #[test]
 fn a_depth_pass_shadows_the_beauty_pass_where_the_silhouette_projects() {
-    let (_dir, red) = render(0.0);
+    let (_dir, red) = render(0.0, 0.05, "min");
     let px = |x: usize, y: usize| red[y * 160 + x];
     // Raster <-> wall.
     let wall_x = |rx: f64| 3.0 + (rx - 80.0) / K;
@@ -162,8 +165,8 @@ fn blur_widens_the_penumbra_as_the_filter_predicts() {
     // blurs of an edge add about in quadrature, so the blur's part is sqrt(w1^2 - w0^2).
     // Its 16 samples are a 4 x 4 grid of strata: the ramp is four jittered steps, whose
     // 10-90% width may be off by a quarter of the box.
-    let (_d0, sharp) = render(0.0);
-    let (_d1, blurred) = render(0.05);
+    let (_d0, sharp) = render(0.0, 0.05, "min");
+    let (_d1, blurred) = render(0.05, 0.05, "min");
     let (w0, w1) = (edge_width(&sharp), edge_width(&blurred));
     let predicted = 0.8 * 0.05 * 20.0 * 0.363_970_234_266_202_4 * K;
     let blur = (w1 * w1 - w0 * w0).sqrt();
@@ -174,4 +177,74 @@ fn blur_widens_the_penumbra_as_the_filter_predicts() {
         (blur - predicted).abs() <= 0.25 * predicted,
         "blur's ramp {blur} px, predicted {predicted}"
     );
+}
+
+/// The sphere's pixels of the beauty pass that face the light well (`N.L` over 0.3, two
+/// pixels inside its outline): each pixel with the matte model's value there, `N.L` at the
+/// point its centre's ray meets (the light at the origin, the sphere at depth 5).
+fn sphere_pixels() -> Vec<(usize, f64)> {
+    let tan30 = 0.577_350_269_189_625_8;
+    let mut out = Vec::new();
+    for py in 0..160 {
+        for px in 0..160 {
+            let dir = |dx: f64, dy: f64| {
+                let x = (px as f64 + 0.5 + dx - 80.0) / 80.0 * tan30;
+                let y = (80.0 - (py as f64 + 0.5 + dy)) / 80.0 * tan30;
+                [x, y, 1.0]
+            };
+            // Ray from (3, 0, 0) against the unit sphere about (0, 0, 5).
+            let hit = |d: [f64; 3]| {
+                let o = [3.0, 0.0, -5.0];
+                let a = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+                let b = 2.0 * (o[0] * d[0] + o[1] * d[1] + o[2] * d[2]);
+                let c = o[0] * o[0] + o[1] * o[1] + o[2] * o[2] - 1.0;
+                let disc = b * b - 4.0 * a * c;
+                (disc > 0.0).then(|| {
+                    let t = (-b - disc.sqrt()) / (2.0 * a);
+                    [3.0 + t * d[0], t * d[1], t * d[2]]
+                })
+            };
+            let inside = [(-2.0, 0.0), (2.0, 0.0), (0.0, -2.0), (0.0, 2.0)]
+                .iter()
+                .all(|&(dx, dy)| hit(dir(dx, dy)).is_some());
+            let Some(p) = hit(dir(0.0, 0.0)).filter(|_| inside) else { continue };
+            let n = [p[0], p[1], p[2] - 5.0];
+            let l = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+            let ndotl = -(n[0] * p[0] + n[1] * p[1] + n[2] * p[2]) / l;
+            if ndotl > 0.3 {
+                out.push((py * 160 + px, ndotl));
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn a_midpoint_depth_map_needs_no_bias() {
+    // `depthfilter "midpoint"` stores, where the light sees the sphere, halfway between its
+    // near side and what is behind it, and where it sees only the wall, nothing (far): with
+    // no bias, the sphere's lit side and the wall are lit as the matte model says, and the
+    // shadow's edge is where it projects. With the least depth and no bias, the sphere's
+    // lit side shadows itself: the acne midpoint depths are for.
+    let pixels = sphere_pixels();
+    assert!(pixels.len() > 200, "{}", pixels.len());
+    let acne = |red: &[f32]| {
+        pixels.iter().filter(|&&(k, want)| (f64::from(red[k]) - want).abs() > 0.03 * want).count()
+    };
+    let (_d0, mid) = render(0.0, 0.0, "midpoint");
+    let (_d1, min) = render(0.0, 0.0, "min");
+    let (a_mid, a_min) = (acne(&mid), acne(&min));
+    println!(
+        "sphere pixels off the matte value by over 3%: midpoint {a_mid}, min {a_min} of {}",
+        pixels.len()
+    );
+    assert_eq!(a_mid, 0);
+    assert!(a_min * 10 > pixels.len(), "the least depth without bias shows no acne: {a_min}");
+    // The wall right of the shadow, lit exactly.
+    let wall_x = |rx: f64| 3.0 + (rx - 80.0) / K;
+    for x in 72..147 {
+        let want = lit(wall_x(x as f64 + 0.5), 0.0);
+        let got = 0.5 * f64::from(mid[79 * 160 + x] + mid[80 * 160 + x]);
+        assert!((got - want).abs() < 0.01 * want, "wall pixel ({x}, 80): {got} vs {want}");
+    }
 }

@@ -1,19 +1,21 @@
 //! Depth outputs of a frame (`Display "name" "zfile" "z"` and `"shadow" "z"`) and the
 //! `Make*` requests of a multipass RIB file, run in their place among the frames.
 //!
-//! A depth output is the frame's camera-space depth per pixel, the least over the pixel's
-//! own samples (RenderMan's `depthfilter "min"`, its default), written with Pixar's two
+//! A depth output is the frame's camera-space depth per pixel, made from the pixel's own
+//! samples by the scene's depth filter (RenderMan's `Hider "hidden" "depthfilter"`: the
+//! least by default; the greatest, the mean, or the least of each sample's midpoint between
+//! its two nearest surfaces), written with Pixar's two
 //! matrices ([`reyes_dice::depth_map_matrices`]): a `"zfile"` as a plain float map for
 //! `MakeShadow`, a `"shadow"` as a shadow map `shadow()` reads directly. Pixels where the
-//! frame sees nothing hold the scene's `zbackground` (infinite by default: never a
-//! shadow). Like the maps a file makes, its names resolve relative to the RIB file. The
+//! frame sees nothing hold the scene's `zbackground` (1e30 by default: never a
+//! shadow; an infinite depth is written as the largest float). Like the maps a file makes, its names resolve relative to the RIB file. The
 //! depth is rendered as an AOV of the frame's scene ([`DEPTH_LAYER`]), written to its EXR
 //! too when the frame also has a picture.
 
 use std::path::{Path, PathBuf};
 
 use reyes_rib::{Display, MakeJob, is_depth_driver};
-use reyes_scene::{Aov, AovFilter, AovSource, Scene};
+use reyes_scene::{Aov, AovFilter, AovSource, DepthFilter, Scene};
 use reyes_texture::prepared::MapKind;
 
 use crate::{FarmError, one_line};
@@ -42,11 +44,18 @@ pub fn outputs(displays: &[Display]) -> Vec<DepthOutput> {
         .collect()
 }
 
-/// `scene` rendering its depth for depth outputs: the [`DEPTH_LAYER`] AOV.
+/// `scene` rendering its depth for depth outputs: the [`DEPTH_LAYER`] AOV, made by the
+/// scene's depth filter (`hider.depth_filter`).
 pub fn with_depth(mut scene: Scene) -> Scene {
-    let mut aov = Aov::new(AovSource::Z);
+    let (source, filter) = match scene.hider.depth_filter {
+        DepthFilter::Min => (AovSource::Z, AovFilter::Min),
+        DepthFilter::Max => (AovSource::Z, AovFilter::Max),
+        DepthFilter::Average => (AovSource::Z, AovFilter::Average),
+        DepthFilter::Midpoint => (AovSource::ZMidpoint, AovFilter::Min),
+    };
+    let mut aov = Aov::new(source);
     aov.name = Some(DEPTH_LAYER.to_string());
-    aov.filter = Some(AovFilter::Min);
+    aov.filter = Some(filter);
     scene.outputs.aovs.push(aov);
     scene
 }
@@ -65,7 +74,10 @@ pub fn write(
     let layer = aovs.layers.iter().find(|l| l.name == DEPTH_LAYER).ok_or_else(missing)?;
     let film = &aovs.film;
     let (w, h, ch) = (film.width(), film.height(), film.channels());
-    let z: Vec<f32> = film.data().chunks(ch).map(|p| p[layer.start]).collect();
+    // Far is the largest float: the map files keep finite values only (an infinite depth
+    // would be written as 0, in front of everything).
+    let far = |z: f32| if z.is_nan() { f32::MAX } else { z.clamp(f32::MIN, f32::MAX) };
+    let z: Vec<f32> = film.data().chunks(ch).map(|p| far(p[layer.start])).collect();
     let (world_to_screen, world_to_camera) = reyes_dice::depth_map_matrices(scene);
     for out in outputs {
         let kind = if out.shadow { MapKind::Shadow } else { MapKind::Plain };

@@ -93,7 +93,7 @@ pub fn splat_aovs(
             for a in aovs {
                 let chosen = match a.filter {
                     AovFilter::Filter => continue,
-                    AovFilter::Min | AovFilter::Max => None,
+                    AovFilter::Min | AovFilter::Max | AovFilter::Average => None,
                     AovFilter::Zmin => Some(pick(ns, |k| s.front_z[pixel * ns + k])),
                     AovFilter::Nearest => Some(pick(ns, |k| {
                         let i = pixel * ns + k;
@@ -106,6 +106,10 @@ pub fn splat_aovs(
                         (Some(k), _) => value(pixel, k, c),
                         (None, AovFilter::Min) => {
                             (0..ns).map(|k| value(pixel, k, c)).fold(f32::INFINITY, f32::min)
+                        }
+                        (None, AovFilter::Average) => {
+                            let sum: f64 = (0..ns).map(|k| f64::from(value(pixel, k, c))).sum();
+                            (sum / ns as f64) as f32
                         }
                         (None, _) => {
                             (0..ns).map(|k| value(pixel, k, c)).fold(f32::NEG_INFINITY, f32::max)

@@ -35,6 +35,9 @@ pub enum AovValue {
     },
     /// Exact eye depth of the front point (1 float).
     Depth,
+    /// Halfway between the front point's depth and the nearest depth of a point behind it
+    /// at the sample, infinite where there is none ([`midpoint_depth`]; 1 float).
+    MidDepth,
     /// Raster motion of the front point over the shutter, pixels per shutter interval, from
     /// its micropolygon's `speed` over its segment (2 floats).
     Velocity,
@@ -54,7 +57,7 @@ impl AovValue {
     pub fn len(self) -> usize {
         match self {
             AovValue::Color | AovValue::Opacity | AovValue::Shaded { .. } => 3,
-            AovValue::Depth => 1,
+            AovValue::Depth | AovValue::MidDepth => 1,
             AovValue::Velocity => 2,
             AovValue::Vertex { len, .. } => len,
         }
@@ -139,9 +142,10 @@ impl Sources<'_> {
         }
     }
 
-    /// Fill `out` (the plan's channels) for one sample from its `steps`, and return the
-    /// front point's depth (`+inf` if none).
-    pub(crate) fn sample(&self, plan: &AovPlan, steps: &[Step], out: &mut [f32]) -> f32 {
+    /// Fill `out` (the plan's channels) for one sample from its `steps` (and `mid`, its
+    /// [`midpoint_depth`] when the plan takes it), and return the front point's depth
+    /// (`+inf` if none).
+    pub(crate) fn sample(&self, plan: &AovPlan, steps: &[Step], mid: f32, out: &mut [f32]) -> f32 {
         let front = steps.iter().find_map(|s| match s {
             Step::Add { point, .. } => Some(*point),
             _ => None,
@@ -166,6 +170,7 @@ impl Sources<'_> {
                 }
                 (_, None) => o.copy_from_slice(&plan.background[bg..bg + n]),
                 (AovValue::Depth, Some(_)) => o[0] = depth,
+                (AovValue::MidDepth, Some(_)) => o[0] = mid,
                 (AovValue::Velocity, Some(f)) => {
                     let mp = &self.mpolys[self.point_mp[f as usize] as usize];
                     let span = mp.time[1] - mp.time[0];
@@ -232,6 +237,28 @@ impl Sources<'_> {
 }
 
 pub use reyes_csg::bilinear_weights;
+
+/// The points of one sample's list (from `head`, linked by `next`) at least this fraction of
+/// the front depth behind it are another surface: nearer ones are the same surface seen
+/// twice (neighbouring micropolygons overlapping along a shared edge, by 4e-4 pixel).
+const SAME_SURFACE: f32 = 1e-4;
+
+/// RenderMan's `depthfilter "midpoint"` at one sample: halfway between the nearest point of
+/// its visible-point list (from `head`) and the nearest point that is another surface
+/// ([`SAME_SURFACE`]), infinite if there is none (nothing behind casts a shadow on).
+pub(crate) fn midpoint_depth(points: &[VisPoint], head: u32) -> f32 {
+    let depth = |p: &VisPoint| if p.flags & LERP_DONE != 0 { p.minz } else { lerpz(&p.v) };
+    let list = || {
+        std::iter::successors(Some(head).filter(|&h| h != reyes_csg::NIL), |&k| {
+            Some(points[k as usize].next).filter(|&n| n != reyes_csg::NIL)
+        })
+        .map(|k| depth(&points[k as usize]))
+    };
+    let front = list().fold(f32::INFINITY, f32::min);
+    let behind = front + SAME_SURFACE * front.abs();
+    let second = list().filter(|&z| z > behind).fold(f32::INFINITY, f32::min);
+    if second.is_finite() { 0.5 * (front + second) } else { f32::INFINITY }
+}
 
 #[cfg(test)]
 mod tests {

@@ -44,6 +44,7 @@ impl AovSetup {
                 AovSource::Ci => AovValue::Color,
                 AovSource::Oi => AovValue::Opacity,
                 AovSource::Z => AovValue::Depth,
+                AovSource::ZMidpoint => AovValue::MidDepth,
                 AovSource::N => front(VertexAovs::N, 3, true),
                 AovSource::P => front(VertexAovs::P, 3, true),
                 AovSource::S => front(VertexAovs::S, 1, true),
@@ -72,7 +73,8 @@ impl AovSetup {
             };
             let len = value.len();
             debug_assert_eq!(len, aov.channels().len());
-            let bg = if aov.source == AovSource::Z { o.zbackground.value() } else { 0.0 };
+            let depth = matches!(aov.source, AovSource::Z | AovSource::ZMidpoint);
+            let bg = if depth { o.zbackground.value() } else { 0.0 };
             background.extend(std::iter::repeat_n(bg, len));
             values.push(value);
             channels.push(AovChannels { start, len, filter: aov.filter_or_default() });

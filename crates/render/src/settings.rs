@@ -61,7 +61,9 @@ pub fn hider_config(scene: &Scene, camera: &CameraSetup) -> HiderConfig {
             threshold: h.adaptive.threshold,
         }),
         scan_all: false,
-        occlusion_cull: h.occlusion_cull,
+        // The midpoint depth reads the surfaces behind the front one, which culling skips.
+        occlusion_cull: h.occlusion_cull
+            && !scene.outputs.aovs.iter().any(|a| a.source == reyes_scene::AovSource::ZMidpoint),
     }
 }
 

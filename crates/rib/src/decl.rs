@@ -265,7 +265,7 @@ impl Default for Declarations {
 /// its standard shaders and requests (Appendix A, `Projection "perspective" "fov"`), then a few
 /// implementation tokens common in RIB files (`Option "statistics" "endofframe"`,
 /// `Option "searchpath"`, `Option "limits"`, `Attribute "identifier" "name"`,
-/// `Attribute "displacementbound"`, `Display "origin"`, `Hider "jitter"`).
+/// `Attribute "displacementbound"`, `Display "origin"`, `Hider "jitter"` and `"depthfilter"`).
 pub const STANDARD: &[(&str, Class, Type, Option<u32>)] = {
     use Class::*;
     use Type::*;
@@ -322,6 +322,7 @@ pub const STANDARD: &[(&str, Class, Type, Option<u32>)] = {
         ("sense", Uniform, String, None),
         ("origin", Uniform, Integer, Some(2)),
         ("jitter", Uniform, Integer, None),
+        ("depthfilter", Uniform, String, None),
     ]
 };
 

@@ -28,6 +28,7 @@ fn defaults_write_the_beauty_with_a_finite_background() {
     for source in AovSource::ALL {
         let expect = match source {
             AovSource::Z | AovSource::ObjectId | AovSource::MaterialId => AovFilter::Zmin,
+            AovSource::ZMidpoint => AovFilter::Min,
             _ => AovFilter::Filter,
         };
         assert_eq!(source.default_filter(), expect, "{source:?}");

@@ -8,7 +8,7 @@ use reyes_csg::shepard_weights;
 use reyes_csg::{Composite, LERP_DONE, NIL, Resolver, VisPoint, lerpz, resolve_sample_traced};
 
 use super::Surface;
-use crate::aov::{AovPlan, Sources};
+use crate::aov::{AovPlan, AovValue, Sources, midpoint_depth};
 use crate::mpoly::{Micropolygon, flags};
 use crate::{Hider, Scratch};
 
@@ -113,8 +113,11 @@ impl Hider {
         scratch.front_z.clear();
         scratch.front_z.resize(n, f32::INFINITY);
         let mut steps = std::mem::take(&mut scratch.steps);
+        let midpoint = plan.values.contains(&AovValue::MidDepth);
         for k in 0..n {
             let head = scratch.heads[k];
+            // Before the resolution, which may relink the list.
+            let mid = if midpoint { midpoint_depth(&scratch.points, head) } else { 0.0 };
             steps.0.clear();
             let c = if head == NIL {
                 Composite::EMPTY
@@ -126,7 +129,7 @@ impl Hider {
             let sources =
                 Sources { points: &scratch.points, point_mp: &scratch.point_mp, mpolys, data };
             let out = &mut scratch.aov[k * channels..(k + 1) * channels];
-            scratch.front_z[k] = sources.sample(plan, &steps.0, out);
+            scratch.front_z[k] = sources.sample(plan, &steps.0, mid, out);
         }
         scratch.steps = steps;
     }

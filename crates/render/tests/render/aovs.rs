@@ -289,8 +289,11 @@ fn the_shading_components_add_up_to_the_beauty() {
 #[test]
 fn asking_for_aovs_leaves_the_beauty_unchanged_for_any_thread_count() {
     let mut with = components_scene();
-    // A shader output variable too (no object has a shader: a layer of zeros).
+    // A shader output variable too (no object has a shader: a layer of zeros), and the
+    // midpoint depth of depth maps, which turns occlusion culling off: the beauty is the
+    // same bit for bit either way.
     with.outputs.aovs.push(reyes_scene::Aov::output("glow", None));
+    with.outputs.aovs.push(reyes_scene::Aov::new(AovSource::ZMidpoint));
     let mut without = with.clone();
     without.outputs = Default::default();
     let plain = rendered(&without, 1);

@@ -340,6 +340,7 @@ impl FrameBuild {
             pixel_samples: o.pixel_samples,
             filter: o.filter,
             jitter: o.jitter,
+            depth_filter: o.depth_filter,
             method: o.method,
             bucket_size: o.bucket_size.unwrap_or(Hider::default().bucket_size),
             max_grid_size: o.max_grid_size.unwrap_or(Hider::default().max_grid_size),

@@ -4,7 +4,7 @@
 //! Invariant: options never change inside the world block, where the Specification freezes
 //! them (there they are ignored with a warning, an error under `--strict`); every value is checked where the model needs it checked first (sizes, counts, names).
 
-use reyes_scene::{Aov, AovFilter, AovSource, FilterKind, HiderMethod, VariableType};
+use reyes_scene::{Aov, AovFilter, AovSource, DepthFilter, FilterKind, HiderMethod, VariableType};
 
 use super::frame::Machine;
 use super::search::Kind;
@@ -196,6 +196,20 @@ impl Machine {
                         .or_else(|| p.ints().map(|i| i.iter().map(|&k| k as f32).collect()))
                 }) {
                     o.jitter = j.first().is_some_and(|&x| x != 0.0);
+                }
+                if let Some(p) = r.param("depthfilter") {
+                    o.depth_filter = match p.strings().and_then(|s| s.first()).map(String::as_str) {
+                        Some("min") => DepthFilter::Min,
+                        Some("max") => DepthFilter::Max,
+                        Some("average") => DepthFilter::Average,
+                        Some("midpoint") => DepthFilter::Midpoint,
+                        _ => {
+                            return Err(r.param_error(
+                                p,
+                                "must be \"min\", \"max\", \"average\" or \"midpoint\"",
+                            ));
+                        }
+                    };
                 }
                 o.origin("hider.method", &r.at, r.name());
             }

@@ -62,6 +62,8 @@ pub(crate) struct FrameOptions {
     pub aovs: Vec<reyes_scene::Aov>,
     pub method: HiderMethod,
     pub jitter: bool,
+    /// `Hider "hidden" "depthfilter"`.
+    pub depth_filter: reyes_scene::DepthFilter,
     pub bucket_size: Option<(u32, u32)>,
     /// `Option "limits" "gridsize"`: most micropolygons in one grid.
     pub max_grid_size: Option<u32>,
@@ -99,6 +101,7 @@ impl Default for FrameOptions {
             aovs: Vec::new(),
             method: HiderMethod::Stochastic,
             jitter: true,
+            depth_filter: reyes_scene::DepthFilter::Min,
             bucket_size: None,
             max_grid_size: None,
             camera: Xform::default(),

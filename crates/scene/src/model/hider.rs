@@ -64,11 +64,31 @@ pub struct Hider {
     /// The image is the same bit for bit either way (docs/architecture.md, "Occlusion
     /// culling"); `false` is for comparison.
     pub occlusion_cull: bool,
+    /// How a depth output (`Display "zfile"`, `"shadow"`) makes a pixel's depth from its
+    /// samples: RenderMan's `Hider "hidden" "depthfilter"` (docs/textures.md).
+    pub depth_filter: DepthFilter,
     /// Adaptive sampling (the patent's reduced-scale repetition of the pattern): off unless
     /// `max_level` > 0.
     pub adaptive: Adaptive,
     /// Switches that reproduce the original 1985 behaviour where it differs from ours.
     pub original: Original,
+}
+
+/// RenderMan's depth filters: how a depth map's pixel is made from its samples' depths.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub enum DepthFilter {
+    /// The least depth of the pixel's samples (RenderMan's default).
+    #[default]
+    Min,
+    /// The greatest.
+    Max,
+    /// Their mean.
+    Average,
+    /// At each sample, halfway between the nearest surface and the next one behind it
+    /// (infinite where there is none), then the least over the pixel: a surface's own
+    /// points then lie well in front of its stored depth, so a shadow map needs no bias
+    /// against self-shadowing.
+    Midpoint,
 }
 
 /// Adaptive sampling: after a pixel's samples, a pixel whose samples disagree (some channel
@@ -111,6 +131,7 @@ impl Default for Hider {
             cull_back_faces: true,
             crack_free: true,
             occlusion_cull: true,
+            depth_filter: DepthFilter::default(),
             adaptive: Adaptive::default(),
             original: Original::default(),
         }

@@ -163,6 +163,11 @@ pub enum AovSource {
     Oi,
     /// Camera-space depth of the front-most visible surface, opaque or not: Z.
     Z,
+    /// Halfway between the front-most visible surface's depth and the next surface's behind
+    /// it at the sample (infinite where there is none; `zbackground` where nothing is
+    /// seen): Z. The depth of a shadow map under `depthfilter "midpoint"`; rendering it
+    /// turns occlusion culling off (the surfaces behind are needed).
+    ZMidpoint,
     /// Unit outward surface normal in camera space at shutter open (not face-forwarded):
     /// X, Y, Z.
     N,
@@ -194,10 +199,11 @@ pub enum AovSource {
 
 impl AovSource {
     /// Every source, in the order docs/outputs.md lists them.
-    pub const ALL: [AovSource; 14] = [
+    pub const ALL: [AovSource; 15] = [
         AovSource::Ci,
         AovSource::Oi,
         AovSource::Z,
+        AovSource::ZMidpoint,
         AovSource::N,
         AovSource::P,
         AovSource::S,
@@ -217,6 +223,7 @@ impl AovSource {
             AovSource::Ci => "Ci",
             AovSource::Oi => "Oi",
             AovSource::Z => "z",
+            AovSource::ZMidpoint => "z_midpoint",
             AovSource::N => "N",
             AovSource::P => "P",
             AovSource::S => "s",
@@ -239,7 +246,7 @@ impl AovSource {
             | AovSource::Ambient
             | AovSource::Diffuse
             | AovSource::Specular => &["R", "G", "B"],
-            AovSource::Z => &["Z"],
+            AovSource::Z | AovSource::ZMidpoint => &["Z"],
             AovSource::N | AovSource::P => &["X", "Y", "Z"],
             AovSource::S | AovSource::T => &["Y"],
             AovSource::DPdtime => &["X", "Y"],
@@ -263,6 +270,7 @@ impl AovSource {
     pub fn default_filter(self) -> AovFilter {
         match self {
             AovSource::Z | AovSource::ObjectId | AovSource::MaterialId => AovFilter::Zmin,
+            AovSource::ZMidpoint => AovFilter::Min,
             _ => AovFilter::Filter,
         }
     }
@@ -278,6 +286,8 @@ pub enum AovFilter {
     Min,
     /// Per channel, the largest value among the pixel's own samples.
     Max,
+    /// Per channel, the mean of the pixel's own samples.
+    Average,
     /// Every channel of the pixel's sample whose front surface is nearest the camera
     /// (background samples last; ties to the lower sample index).
     Zmin,

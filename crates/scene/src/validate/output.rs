@@ -95,7 +95,7 @@ pub(super) fn outputs(o: &Outputs, scene: &Scene) -> Check {
             _ => {}
         }
         if aov.source.is_id() {
-            if aov.filter == Some(AovFilter::Filter) {
+            if matches!(aov.filter, Some(AovFilter::Filter | AovFilter::Average)) {
                 return fail(
                     format!("{at}.filter"),
                     "ids are never averaged: use Zmin, Nearest, Min or Max",

@@ -44,6 +44,7 @@ fn the_full_example_parses_with_the_expected_values() {
             cull_back_faces: true,
             crack_free: true,
             occlusion_cull: true,
+            depth_filter: reyes_scene::DepthFilter::Min,
             adaptive: reyes_scene::Adaptive::default(),
             original: Original::default(),
         },
