@@ -116,7 +116,7 @@ pub struct GridContext<'a> {
     pub(crate) budget: u64,
     pub(crate) stats: Stats,
     pub(crate) frames: Vec<stmt::FuncFrame>,
-    pub(crate) light_cache: Option<(Num, String, Vec<LightSample>)>,
+    pub(crate) light_cache: Option<(Num, String, std::rc::Rc<[LightSample]>)>,
     pub(crate) light_out: Option<light::LightRecord>,
     pub(crate) current_light: Option<Vec<(String, Value)>>,
     pub(crate) messages: HashMap<(String, String), Value>,
@@ -216,8 +216,10 @@ impl<'a> GridContext<'a> {
                 v.data.len()
             )));
         }
-        self.inputs[k] = Some(Value::Num(v.clone()));
-        self.globals[k] = Some(Value::Num(v));
+        // Kept once: a run starts its globals from the inputs, and `get` reads the input
+        // until then.
+        self.inputs[k] = Some(Value::Num(v));
+        self.globals[k] = None;
         Ok(())
     }
 
@@ -291,7 +293,7 @@ impl<'a> GridContext<'a> {
     /// A global after the run (or as set).
     pub fn get(&self, name: &str) -> Option<&Value> {
         let k = GLOBALS.iter().position(|g| g.name == name)?;
-        self.globals[k].as_ref()
+        self.globals[k].as_ref().or(self.inputs[k].as_ref())
     }
 
     /// A global's triple at point `i`.
