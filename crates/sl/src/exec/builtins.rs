@@ -30,6 +30,20 @@ impl GridContext<'_> {
         for a in args {
             vals.push(self.eval(a, mask)?);
         }
+        let r = self.builtin_of(name, e, args, &vals, mask);
+        vals.into_iter().for_each(super::pool::recycle);
+        r
+    }
+
+    /// [`Self::builtin`] on the arguments' values.
+    fn builtin_of(
+        &mut self,
+        name: &str,
+        e: &Expr,
+        args: &[Expr],
+        vals: &[Value],
+        mask: &Mask,
+    ) -> Result<Value, ExecError> {
         self.at = e.pos;
         let n = self.n;
         let nums: Vec<&Num> = vals.iter().map(Value::num).collect();

@@ -8,6 +8,7 @@ use crate::types::{BaseType, Type};
 
 use super::space::{mat_inverse, mat_mul};
 use super::value::{self, Mask, Num, Value, map_c, map_c1, map_c2, map_n};
+use super::pool;
 use super::{ExecError, GridContext};
 
 impl GridContext<'_> {
@@ -33,12 +34,14 @@ impl GridContext<'_> {
                 convert(v, x.ty, e.ty, n, mask)
             }
             ExprKind::Unary(op, x) => {
-                let v = self.eval(x, mask)?;
-                let v = v.num();
-                Value::Num(match op {
+                let x = self.eval(x, mask)?;
+                let v = x.num();
+                let r = Value::Num(match op {
                     UnOp::Neg => map_c1(n, mask, v, |x| -x),
                     UnOp::Not => map_c1(n, mask, v, |x| bool01(x == 0.0)),
-                })
+                });
+                pool::recycle(x);
+                r
             }
             ExprKind::Binary(op @ (BinOp::And | BinOp::Or), a, b) => {
                 let a = self.eval(a, mask)?;
@@ -75,7 +78,10 @@ impl GridContext<'_> {
                         eq
                     }))));
                 }
-                Value::Num(binary(*op, a.num(), b.num(), n, mask))
+                let r = binary(*op, a.num(), b.num(), n, mask);
+                pool::recycle(a);
+                pool::recycle(b);
+                Value::Num(r)
             }
             ExprKind::Assign { place, index, op, value } => {
                 let v = self.eval(value, mask)?;
@@ -97,9 +103,15 @@ impl GridContext<'_> {
                         AssignOp::Mul => BinOp::Mul,
                         _ => BinOp::Div,
                     };
-                    Value::Num(binary(bop, cur.num(), v.num(), n, mask))
+                    let r = binary(bop, cur.num(), v.num(), n, mask);
+                    pool::recycle(cur);
+                    pool::recycle(v);
+                    Value::Num(r)
                 };
                 self.assign(place, idx.as_ref().map(Value::num), &v, mask);
+                if let Some(i) = idx {
+                    pool::recycle(i);
+                }
                 v
             }
             ExprKind::Cond(c, a, b) => {
@@ -113,10 +125,12 @@ impl GridContext<'_> {
                 if !mt.is_empty() {
                     let x = self.eval(a, &mt)?;
                     value::store(&mut out, &x, &mt, n);
+                    pool::recycle(x);
                 }
                 if !mf.is_empty() {
                     let y = self.eval(b, &mf)?;
                     value::store(&mut out, &y, &mf, n);
+                    pool::recycle(y);
                 }
                 out
             }
@@ -137,6 +151,7 @@ impl GridContext<'_> {
                         }
                     }
                 });
+                vals.into_iter().for_each(pool::recycle);
                 match space {
                     Some(s) => Value::Num(self.in_space(s, e.ty.base, &v, mask)?),
                     None => Value::Num(v),
@@ -225,7 +240,7 @@ impl GridContext<'_> {
         match (place, idx) {
             (Place::Global(g), _) => {
                 if *g == "P" {
-                    self.light_cache = None;
+                    pool::recycle_lights(self.light_cache.take());
                 }
                 self.set_global_masked(g, v.num(), mask);
             }
@@ -299,7 +314,7 @@ pub(crate) fn convert(v: Value, from: Type, to: Type, n: usize, mask: &Mask) -> 
         ),
         Value::Num(x) => {
             let (fb, tb) = (from.base, to.base);
-            Value::Num(match (fb, tb) {
+            let r = match (fb, tb) {
                 (BaseType::Float, t) if t.is_triple() => map_n(n, mask, &[&x], 3, |l, o| {
                     o.fill(l[0][0]);
                 }),
@@ -309,8 +324,10 @@ pub(crate) fn convert(v: Value, from: Type, to: Type, n: usize, mask: &Mask) -> 
                     }
                 }),
                 (_, BaseType::Bool) if x.w == 1 => map_c(n, mask, &[&x], |a| bool01(a[0] != 0.0)),
-                _ => x,
-            })
+                _ => return Value::Num(x),
+            };
+            pool::give(x.data);
+            Value::Num(r)
         }
         other => other,
     }

@@ -175,8 +175,10 @@ impl GridContext<'_> {
                 "light {bad} returned L, Cl, Ol not of 3 floats (per point, for {n} points) or lit not of {n} flags"
             )));
         }
+        super::pool::give(normal.data);
         let s: Rc<[LightSample]> = Rc::from(s);
-        self.light_cache = Some((position.clone(), category.to_string(), Rc::clone(&s)));
+        let old = self.light_cache.replace((position.clone(), category.to_string(), Rc::clone(&s)));
+        super::pool::recycle_lights(old);
         Ok(s)
     }
 

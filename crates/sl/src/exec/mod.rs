@@ -22,6 +22,7 @@ mod expr;
 mod geom;
 pub mod light;
 mod noise;
+mod pool;
 pub mod space;
 mod stmt;
 mod strings;
@@ -341,9 +342,10 @@ impl<'a> GridContext<'a> {
         }
         self.stats = Stats::default();
         self.printed.clear();
-        self.light_cache = None;
+        pool::recycle_lights(self.light_cache.take());
         self.init_globals();
         let n = self.n;
+        self.recycle_vars();
         self.vars =
             sh.vars.iter().map(|v| Value::zero(v.ty, v.detail == Detail::Varying, n)).collect();
         self.frames = vec![stmt::FuncFrame::new(n)];
@@ -396,8 +398,8 @@ impl<'a> GridContext<'a> {
             let v = match g.name {
                 "PI" => Num::scalar(std::f32::consts::PI),
                 "ncomps" => Num::scalar(3.0),
-                _ => match self.inputs[k].clone() {
-                    Some(Value::Num(v)) => v,
+                _ => match self.inputs[k].as_ref() {
+                    Some(Value::Num(v)) => pool::dup(v),
                     _ => match g.name {
                         "Cs" | "Os" => Num::uniform(&[1.0; 3]),
                         _ => Num::zeros(w, false, n),
@@ -411,8 +413,15 @@ impl<'a> GridContext<'a> {
             } else {
                 v
             };
-            self.globals[k] = Some(Value::Num(v));
+            if let Some(old) = self.globals[k].replace(Value::Num(v)) {
+                pool::recycle(old);
+            }
         }
+    }
+
+    /// Gives the variables' buffers of an earlier run back to the pool.
+    fn recycle_vars(&mut self) {
+        std::mem::take(&mut self.vars).into_iter().for_each(pool::recycle);
     }
 
     pub(crate) fn global_index(name: &str) -> usize {
@@ -457,5 +466,18 @@ impl<'a> GridContext<'a> {
             });
         }
         Ok(())
+    }
+}
+
+impl Drop for GridContext<'_> {
+    /// The grid's buffers go back to this thread's pool, for the next grid.
+    fn drop(&mut self) {
+        self.recycle_vars();
+        pool::recycle_lights(self.light_cache.take());
+        for v in self.globals.iter_mut().chain(self.inputs.iter_mut()) {
+            if let Some(v) = v.take() {
+                pool::recycle(v);
+            }
+        }
     }
 }

@@ -6,7 +6,7 @@
 use crate::types::{BaseType, Type};
 
 /// A number of the grid: one lane (uniform) or one lane per point (varying).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, PartialEq)]
 pub struct Num {
     /// Floats per lane: 1, 3 or 16.
     pub w: usize,
@@ -29,7 +29,7 @@ impl Num {
 
     /// Zeros: `n` lanes when varying.
     pub fn zeros(w: usize, varying: bool, n: usize) -> Num {
-        Num { w, varying, data: vec![0.0; if varying { w * n } else { w }] }
+        Num { w, varying, data: super::pool::zeros(if varying { w * n } else { w }) }
     }
 
     /// The lane of point `i` (the one lane of a uniform value).
@@ -63,8 +63,21 @@ impl Num {
         if self.varying {
             return self.clone();
         }
-        // `repeat` copies in doubling blocks: no call per lane.
-        Num { w: self.w, varying: true, data: self.data[..self.w].repeat(n) }
+        let lane = &self.data[..self.w];
+        let mut data = super::pool::take(self.w * n);
+        match *lane {
+            [x] => data.resize(n, x),
+            [x, y, z] => (0..n).for_each(|_| data.extend_from_slice(&[x, y, z])),
+            _ => (0..n).for_each(|_| data.extend_from_slice(lane)),
+        }
+        Num { w: self.w, varying: true, data }
+    }
+}
+
+impl Clone for Num {
+    /// A copy in a buffer from the machine's pool (see `pool`).
+    fn clone(&self) -> Num {
+        super::pool::dup(self)
     }
 }
 
@@ -426,8 +439,10 @@ pub fn store(dst: &mut Value, src: &Value, mask: &Mask, n: usize) {
 
 /// How many floats of `v` at the active points are not finite.
 pub fn count_nonfinite(v: &Num, mask: &Mask) -> u64 {
-    if !v.varying {
-        return v.data.iter().filter(|x| !x.is_finite()).count() as u64;
+    let count = |d: &[f32]| d.iter().filter(|x| !x.is_finite()).count() as u64;
+    if !v.varying || mask.idx.len() * v.w == v.data.len() {
+        // Uniform, or every point active: the whole buffer in one pass.
+        return count(&v.data);
     }
     mask.iter().map(|i| v.lane(i).iter().filter(|x| !x.is_finite()).count() as u64).sum()
 }
