@@ -21,6 +21,7 @@ mod deriv;
 mod expr;
 mod geom;
 pub mod light;
+mod lighting;
 mod noise;
 mod pool;
 pub mod space;
@@ -105,11 +106,11 @@ pub struct GridContext<'a> {
     pub(crate) nv: usize,
     pub(crate) n: usize,
     /// The globals, in [`GLOBALS`] order; `None` until set (then defaults at the run).
-    pub(crate) globals: Vec<Option<Value>>,
+    pub(crate) globals: pool::Pooled<Vec<Option<Value>>>,
     /// The globals as the caller set them: each run starts from these, so running twice gives
     /// the same results (a displacement does not move `P` twice).
-    pub(crate) inputs: Vec<Option<Value>>,
-    pub(crate) vars: Vec<Value>,
+    pub(crate) inputs: pool::Pooled<Vec<Option<Value>>>,
+    pub(crate) vars: pool::Pooled<Vec<Value>>,
     pub(crate) param_set: HashMap<usize, Value>,
     pub(crate) spaces: Spaces,
     pub(crate) lights: Option<&'a mut dyn Lights>,
@@ -135,9 +136,9 @@ impl<'a> GridContext<'a> {
             nu,
             nv,
             n: nu.saturating_mul(nv),
-            globals: vec![None; GLOBALS.len()],
-            inputs: vec![None; GLOBALS.len()],
-            vars: Vec::new(),
+            globals: pool::Pooled(vec![None; GLOBALS.len()]),
+            inputs: pool::Pooled(vec![None; GLOBALS.len()]),
+            vars: pool::Pooled(Vec::new()),
             param_set: HashMap::new(),
             spaces: Spaces::default(),
             lights: None,
@@ -346,8 +347,9 @@ impl<'a> GridContext<'a> {
         self.init_globals();
         let n = self.n;
         self.recycle_vars();
-        self.vars =
-            sh.vars.iter().map(|v| Value::zero(v.ty, v.detail == Detail::Varying, n)).collect();
+        self.vars = pool::Pooled(
+            sh.vars.iter().map(|v| Value::zero(v.ty, v.detail == Detail::Varying, n)).collect(),
+        );
         self.frames = vec![stmt::FuncFrame::new(n)];
         self.init_params()?;
         self.exec_block(&sh.body, &Mask::all(n))?;
@@ -362,8 +364,9 @@ impl<'a> GridContext<'a> {
         let n = self.n;
         self.stats = Stats::default();
         self.init_globals();
-        self.vars =
-            sh.vars.iter().map(|v| Value::zero(v.ty, v.detail == Detail::Varying, n)).collect();
+        self.vars = pool::Pooled(
+            sh.vars.iter().map(|v| Value::zero(v.ty, v.detail == Detail::Varying, n)).collect(),
+        );
         self.frames = vec![stmt::FuncFrame::new(n)];
         self.init_params()?;
         Ok(sh.params.iter().map(|&id| (sh.vars[id].name.clone(), self.vars[id].clone())).collect())
@@ -421,7 +424,7 @@ impl<'a> GridContext<'a> {
 
     /// Gives the variables' buffers of an earlier run back to the pool.
     fn recycle_vars(&mut self) {
-        std::mem::take(&mut self.vars).into_iter().for_each(pool::recycle);
+        pool::Recycle::recycle(&mut *self.vars);
     }
 
     pub(crate) fn global_index(name: &str) -> usize {
@@ -469,15 +472,3 @@ impl<'a> GridContext<'a> {
     }
 }
 
-impl Drop for GridContext<'_> {
-    /// The grid's buffers go back to this thread's pool, for the next grid.
-    fn drop(&mut self) {
-        self.recycle_vars();
-        pool::recycle_lights(self.light_cache.take());
-        for v in self.globals.iter_mut().chain(self.inputs.iter_mut()) {
-            if let Some(v) = v.take() {
-                pool::recycle(v);
-            }
-        }
-    }
-}

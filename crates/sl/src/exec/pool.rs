@@ -92,3 +92,45 @@ pub(crate) fn recycle(v: Value) {
         Value::Str(_) => {}
     }
 }
+
+/// What gives its buffers back to the pool when dropped inside a [`Pooled`].
+pub(crate) trait Recycle {
+    /// Gives the buffers back, leaving `self` empty.
+    fn recycle(&mut self);
+}
+
+impl Recycle for Vec<Value> {
+    fn recycle(&mut self) {
+        self.drain(..).for_each(recycle);
+    }
+}
+
+impl Recycle for Vec<Option<Value>> {
+    fn recycle(&mut self) {
+        self.iter_mut().filter_map(Option::take).for_each(recycle);
+    }
+}
+
+/// A grid's variables or globals, whose buffers go back to this thread's pool (for the
+/// next grid) when the grid is dropped. (A `Drop` on the grid itself would make its borrows
+/// of the lights and textures outlive it.)
+pub(crate) struct Pooled<T: Recycle>(pub(crate) T);
+
+impl<T: Recycle> Drop for Pooled<T> {
+    fn drop(&mut self) {
+        self.0.recycle();
+    }
+}
+
+impl<T: Recycle> std::ops::Deref for Pooled<T> {
+    type Target = T;
+    fn deref(&self) -> &T {
+        &self.0
+    }
+}
+
+impl<T: Recycle> std::ops::DerefMut for Pooled<T> {
+    fn deref_mut(&mut self) -> &mut T {
+        &mut self.0
+    }
+}

@@ -64,11 +64,16 @@ impl Num {
             return self.clone();
         }
         let lane = &self.data[..self.w];
-        let mut data = super::pool::take(self.w * n);
-        match *lane {
-            [x] => data.resize(n, x),
-            [x, y, z] => (0..n).for_each(|_| data.extend_from_slice(&[x, y, z])),
-            _ => (0..n).for_each(|_| data.extend_from_slice(lane)),
+        let total = self.w * n;
+        let mut data = super::pool::take(total);
+        if let [x] = *lane {
+            data.resize(n, x);
+        } else if n > 0 {
+            // Doubling copies: a handful of block copies, not one per lane.
+            data.extend_from_slice(lane);
+            while data.len() < total {
+                data.extend_from_within(..data.len().min(total - data.len()));
+            }
         }
         Num { w: self.w, varying: true, data }
     }
