@@ -14,7 +14,7 @@ use crate::ir::{CheckedShader, Expr, Stmt};
 
 use super::geom::{V3, dot, length, scale};
 use super::space::Spaces;
-use super::value::{Mask, Num, Value, ZERO1, map_n};
+use super::value::{Mask, Num, Value, map_n};
 use super::{ExecError, GridContext};
 
 /// What the surface asks: the points lit (and their normals), on an `nu` x `nv` grid.
@@ -191,7 +191,7 @@ impl GridContext<'_> {
     }
 
     /// The lights of every category at the global `P` (read in place when cached).
-    fn light_samples_at_p(&mut self) -> Result<Rc<[LightSample]>, ExecError> {
+    pub(crate) fn light_samples_at_p(&mut self) -> Result<Rc<[LightSample]>, ExecError> {
         let k = Self::global_index("P");
         if let Some(Value::Num(p)) = &self.globals[k]
             && let Some(s) = self.cached_lights("", p)
@@ -364,76 +364,6 @@ impl GridContext<'_> {
         };
         Ok(Value::Num(Num::scalar(hit)))
     }
-
-    /// `ambient`, `diffuse`, `specular`, `phong`: sums over the lights at the global `P`.
-    pub(crate) fn lighting(
-        &mut self,
-        name: &str,
-        args: &[Value],
-        mask: &Mask,
-    ) -> Result<Num, ExecError> {
-        let samples = self.light_samples_at_p()?;
-        let n = self.n;
-        let model = match name {
-            "ambient" => Model::Ambient,
-            "diffuse" => Model::Diffuse,
-            "specular" => Model::Specular,
-            _ => Model::Phong,
-        };
-        let arg = |k: usize| args.get(k).map_or(&*ZERO1, Value::num);
-        let (nn, v, x) = (arg(0), arg(1), arg(2));
-        let mut out = Num::zeros(3, true, n);
-        for s in samples.iter() {
-            if (model == Model::Ambient) != s.ambient {
-                continue;
-            }
-            let flag = |key: &str| s.outputs.iter().find(|(k, _)| k == key).map(|(_, v)| v.num());
-            let skip = match model {
-                Model::Diffuse => flag("__nondiffuse"),
-                Model::Specular | Model::Phong => flag("__nonspecular"),
-                Model::Ambient => None,
-            };
-            for i in mask.iter() {
-                if !s.lit.get(i).copied().unwrap_or(false) || skip.is_some_and(|f| f.f(i) != 0.0) {
-                    continue;
-                }
-                let cl = s.cl.v3(i);
-                let k = if model == Model::Ambient {
-                    1.0
-                } else {
-                    let ls = super::geom::normalize(scale(s.l.v3(i), -1.0));
-                    let nf = super::geom::normalize(nn.v3(i));
-                    let cos = dot(nf, ls);
-                    if cos <= 0.0 {
-                        continue;
-                    }
-                    match model {
-                        Model::Diffuse => cos,
-                        Model::Specular => specularbrdf(ls, nf, v.v3(i), x.f(i)),
-                        _ => {
-                            let vv = super::geom::normalize(v.v3(i));
-                            let r = super::geom::reflect(scale(vv, -1.0), nf);
-                            dot(r, ls).max(0.0).powf(x.f(i))
-                        }
-                    }
-                };
-                let o = out.lane_mut(i);
-                for c in 0..3 {
-                    o[c] += cl[c] * k;
-                }
-            }
-        }
-        Ok(out)
-    }
-}
-
-/// Which of the lighting functions.
-#[derive(Clone, Copy, PartialEq, Eq)]
-enum Model {
-    Ambient,
-    Diffuse,
-    Specular,
-    Phong,
 }
 
 /// The specular term for one light: `pow(max(0, N . H), 8 / roughness)` with `H` the half-way

@@ -1,0 +1,233 @@
+//! `ambient`, `diffuse`, `specular`, `phong`: sums over the lights at the global `P`.
+//!
+//! The lights' terms are computed a block of points at a time, each triple held as three
+//! arrays of components, so the normalisations (a square root and a division each) run on
+//! several points at once instead of one dependent chain per point. Every operation is the
+//! one the point-by-point formulas of `geom` and [`specularbrdf`] do, in the same order, so
+//! the results are the same to the bit; only `powf` stays one point at a time.
+//!
+//! [`specularbrdf`]: super::light::specularbrdf
+
+use super::geom::V3;
+use super::value::{Mask, Num, Value, ZERO1};
+use super::{ExecError, GridContext};
+
+/// Points per block.
+const B: usize = 8;
+
+/// One float per point of a block.
+type Fs = [f32; B];
+
+/// A triple per point of a block, component by component.
+#[derive(Clone, Copy)]
+struct T3([Fs; 3]);
+
+#[inline(always)]
+fn dot(a: &T3, b: &T3) -> Fs {
+    let mut o = [0.0; B];
+    for j in 0..B {
+        o[j] = a.0[0][j] * b.0[0][j] + a.0[1][j] * b.0[1][j] + a.0[2][j] * b.0[2][j];
+    }
+    o
+}
+
+#[inline(always)]
+fn scale(a: &T3, k: &Fs) -> T3 {
+    let mut o = *a;
+    for c in 0..3 {
+        for j in 0..B {
+            o.0[c][j] = a.0[c][j] * k[j];
+        }
+    }
+    o
+}
+
+#[inline(always)]
+fn add(a: &T3, b: &T3) -> T3 {
+    let mut o = *a;
+    for c in 0..3 {
+        for j in 0..B {
+            o.0[c][j] = a.0[c][j] + b.0[c][j];
+        }
+    }
+    o
+}
+
+#[inline(always)]
+fn sub(a: &T3, b: &T3) -> T3 {
+    let mut o = *a;
+    for c in 0..3 {
+        for j in 0..B {
+            o.0[c][j] = a.0[c][j] - b.0[c][j];
+        }
+    }
+    o
+}
+
+/// `geom::normalize` on each point: a zero vector stays as it is.
+#[inline(always)]
+fn normalize(a: &T3) -> T3 {
+    let d = dot(a, a);
+    let (mut l, mut k) = ([0.0; B], [0.0; B]);
+    for j in 0..B {
+        l[j] = d[j].sqrt();
+        k[j] = 1.0 / l[j];
+    }
+    let mut o = *a;
+    for c in 0..3 {
+        for j in 0..B {
+            o.0[c][j] = if l[j] > 0.0 { a.0[c][j] * k[j] } else { a.0[c][j] };
+        }
+    }
+    o
+}
+
+/// `geom::reflect`: `i - 2 (i . n) n`.
+#[inline(always)]
+fn reflect(i: &T3, n: &T3) -> T3 {
+    let mut d = dot(i, n);
+    for x in &mut d {
+        *x *= 2.0;
+    }
+    sub(i, &scale(n, &d))
+}
+
+/// A triple operand read at any point: uniform, or a lane per point (a float broadcast).
+#[derive(Clone, Copy)]
+enum Src<'a> {
+    Uniform(V3),
+    Lanes { data: &'a [f32], w: usize },
+}
+
+impl<'a> Src<'a> {
+    fn of(x: &'a Num) -> Src<'a> {
+        if x.varying { Src::Lanes { data: &x.data, w: x.w } } else { Src::Uniform(x.v3(0)) }
+    }
+
+    #[inline(always)]
+    fn at(&self, i: usize) -> V3 {
+        match *self {
+            Src::Uniform(v) => v,
+            Src::Lanes { data, w: 3 } => [data[3 * i], data[3 * i + 1], data[3 * i + 2]],
+            Src::Lanes { data, w } if w > 3 => [data[w * i], data[w * i + 1], data[w * i + 2]],
+            Src::Lanes { data, w } => [data[w * i]; 3],
+        }
+    }
+}
+
+/// Which of the lighting functions.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Model {
+    Ambient,
+    Diffuse,
+    Specular,
+    Phong,
+}
+
+impl GridContext<'_> {
+    /// `ambient`, `diffuse`, `specular`, `phong` (`args`: the normal, the viewing vector and
+    /// the roughness or exponent, as given).
+    pub(crate) fn lighting(
+        &mut self,
+        name: &str,
+        args: &[Value],
+        mask: &Mask,
+    ) -> Result<Num, ExecError> {
+        let samples = self.light_samples_at_p()?;
+        let n = self.n;
+        let model = match name {
+            "ambient" => Model::Ambient,
+            "diffuse" => Model::Diffuse,
+            "specular" => Model::Specular,
+            _ => Model::Phong,
+        };
+        let arg = |k: usize| args.get(k).map_or(&*ZERO1, Value::num);
+        let (nn, v, x) = (arg(0), arg(1), arg(2));
+        let (nn_at, v_at) = (Src::of(nn), Src::of(v));
+        let mut out = Num::zeros(3, true, n);
+        for s in samples.iter() {
+            if (model == Model::Ambient) != s.ambient {
+                continue;
+            }
+            let flag = |key: &str| s.outputs.iter().find(|(k, _)| k == key).map(|(_, v)| v.num());
+            let skip = match model {
+                Model::Diffuse => flag("__nondiffuse"),
+                Model::Specular | Model::Phong => flag("__nonspecular"),
+                Model::Ambient => None,
+            };
+            let (l_at, cl_at) = (Src::of(&s.l), Src::of(&s.cl));
+            let lit = |i: usize| {
+                s.lit.get(i).copied().unwrap_or(false) && !skip.is_some_and(|f| f.f(i) != 0.0)
+            };
+            if model == Model::Ambient {
+                for i in mask.iter().filter(|&i| lit(i)) {
+                    let cl = cl_at.at(i);
+                    let o = out.lane_mut(i);
+                    for c in 0..3 {
+                        o[c] += cl[c] * 1.0;
+                    }
+                }
+                continue;
+            }
+            for block in mask.idx.chunks(B) {
+                // The block's points, its lanes past the last point copies of the first.
+                let (mut idx, mut on) = ([0usize; B], [false; B]);
+                for j in 0..B {
+                    idx[j] = block[j.min(block.len() - 1)] as usize;
+                    on[j] = j < block.len() && lit(idx[j]);
+                }
+                if !on.contains(&true) {
+                    continue;
+                }
+                let gather = |src: &Src<'_>| {
+                    let mut t = T3([[0.0; B]; 3]);
+                    for j in 0..B {
+                        let v = src.at(idx[j]);
+                        for c in 0..3 {
+                            t.0[c][j] = v[c];
+                        }
+                    }
+                    t
+                };
+                let ls = normalize(&scale(&gather(&l_at), &[-1.0; B]));
+                let nf = normalize(&gather(&nn_at));
+                let cos = dot(&nf, &ls);
+                for j in 0..B {
+                    on[j] &= !(cos[j] <= 0.0);
+                }
+                let k: Fs = match model {
+                    Model::Specular => {
+                        let h = normalize(&add(&normalize(&ls), &normalize(&gather(&v_at))));
+                        let mut base = dot(&normalize(&nf), &h);
+                        base.iter_mut().for_each(|d| *d = d.max(0.0));
+                        let mut k = [0.0; B];
+                        for j in (0..B).filter(|&j| on[j]) {
+                            k[j] = base[j].powf(8.0 / x.f(idx[j]));
+                        }
+                        k
+                    }
+                    Model::Phong => {
+                        let vv = normalize(&gather(&v_at));
+                        let r = reflect(&scale(&vv, &[-1.0; B]), &nf);
+                        let mut base = dot(&r, &ls);
+                        base.iter_mut().for_each(|d| *d = d.max(0.0));
+                        let mut k = [0.0; B];
+                        for j in (0..B).filter(|&j| on[j]) {
+                            k[j] = base[j].powf(x.f(idx[j]));
+                        }
+                        k
+                    }
+                    _ => cos,
+                };
+                for j in (0..B).filter(|&j| on[j]) {
+                    let cl = cl_at.at(idx[j]);
+                    let o = out.lane_mut(idx[j]);
+                    for c in 0..3 {
+                        o[c] += cl[c] * k[j];
+                    }
+                }
+            }
+        }
+        Ok(out)
+    }
+}
