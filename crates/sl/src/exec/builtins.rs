@@ -10,6 +10,7 @@ use crate::types::BaseType;
 
 use super::geom::{self, V3};
 use super::space::{self, Mat, mat_det, mat_inverse, mat_mul, transform_num};
+use super::lanes::map_v3;
 use super::value::{Mask, Num, Value, map_c, map_f, map_n};
 use super::{ExecError, GridContext, noise};
 
@@ -135,9 +136,7 @@ impl GridContext<'_> {
                 num(Num::scalar(0.0))
             }
             "length" => num(map_n(n, mask, &[a(0)], 1, |l, o| o[0] = geom::length(v3(l[0])))),
-            "normalize" => num(map_n(n, mask, &[a(0)], 3, |l, o| {
-                o.copy_from_slice(&geom::normalize(v3(l[0])))
-            })),
+            "normalize" => num(map_v3(n, mask, [a(0)], |[x]| geom::normalize(x))),
             "distance" => num(map_n(n, mask, &[a(0), a(1)], 1, |l, o| {
                 o[0] = geom::length(geom::sub(v3(l[0]), v3(l[1])))
             })),
@@ -145,15 +144,14 @@ impl GridContext<'_> {
                 o[0] = geom::ptlined(v3(l[0]), v3(l[1]), v3(l[2]))
             })),
             "faceforward" => {
-                let ng = self.global_num("Ng");
-                let nref = if nums.len() >= 3 { a(2).clone() } else { ng };
-                num(map_n(n, mask, &[a(0), a(1), &nref], 3, |l, o| {
-                    o.copy_from_slice(&geom::faceforward(v3(l[0]), v3(l[1]), v3(l[2])))
-                }))
+                let nref = match &self.globals[Self::global_index("Ng")] {
+                    _ if nums.len() >= 3 => a(2),
+                    Some(Value::Num(ng)) => ng,
+                    _ => &super::value::ZERO1,
+                };
+                num(map_v3(n, mask, [a(0), a(1), nref], |[x, i, r]| geom::faceforward(x, i, r)))
             }
-            "reflect" => num(map_n(n, mask, &nums, 3, |l, o| {
-                o.copy_from_slice(&geom::reflect(v3(l[0]), v3(l[1])))
-            })),
+            "reflect" => num(map_v3(n, mask, [a(0), a(1)], |[i, x]| geom::reflect(i, x))),
             "refract" => num(map_n(n, mask, &nums, 3, |l, o| {
                 o.copy_from_slice(&geom::refract(v3(l[0]), v3(l[1]), l[2][0]))
             })),

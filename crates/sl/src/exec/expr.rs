@@ -8,6 +8,7 @@ use crate::types::{BaseType, Type};
 
 use super::space::{mat_inverse, mat_mul};
 use super::value::{self, Mask, Num, Value, map_c, map_c1, map_c2, map_n};
+use super::lanes::{map_v3, map_v3_f};
 use super::pool;
 use super::{ExecError, GridContext};
 
@@ -346,6 +347,14 @@ pub(crate) fn binary(op: BinOp, a: &Num, b: &Num, n: usize, mask: &Mask) -> Num 
         BinOp::Sub => map_c2(n, mask, a, b, |x, y| x - y),
         BinOp::Mul => map_c2(n, mask, a, b, |x, y| x * y),
         BinOp::Div => map_c2(n, mask, a, b, |x, y| x / y),
+        // Left to right, as the general case's `Iterator::sum` (which starts from -0, the
+        // identity of addition).
+        BinOp::Dot if a.w == 3 && b.w == 3 => {
+            map_v3_f(n, mask, [a, b], |[x, y]| super::geom::dot(x, y))
+        }
+        BinOp::Cross if a.w == 3 && b.w == 3 => {
+            map_v3(n, mask, [a, b], |[x, y]| super::geom::cross(x, y))
+        }
         BinOp::Dot => map_n(n, mask, &[a, b], 1, |l, o| {
             o[0] = l[0].iter().zip(l[1]).map(|(x, y)| x * y).sum();
         }),

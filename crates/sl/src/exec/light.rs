@@ -178,6 +178,7 @@ impl GridContext<'_> {
         super::pool::give(normal.data);
         let s: Rc<[LightSample]> = Rc::from(s);
         let old = self.light_cache.replace((position.clone(), category.to_string(), Rc::clone(&s)));
+        self.light_cache_at_p = false;
         super::pool::recycle_lights(old);
         Ok(s)
     }
@@ -192,14 +193,26 @@ impl GridContext<'_> {
 
     /// The lights of every category at the global `P` (read in place when cached).
     pub(crate) fn light_samples_at_p(&mut self) -> Result<Rc<[LightSample]>, ExecError> {
-        let k = Self::global_index("P");
-        if let Some(Value::Num(p)) = &self.globals[k]
-            && let Some(s) = self.cached_lights("", p)
+        if self.light_cache_at_p
+            && let Some((_, c, s)) = &self.light_cache
+            && c.is_empty()
         {
-            return Ok(s);
+            return Ok(Rc::clone(s));
         }
-        let p = self.global_num("P");
-        self.light_samples("", &p)
+        let k = Self::global_index("P");
+        let s = match &self.globals[k] {
+            Some(Value::Num(p)) => self.cached_lights("", p),
+            _ => None,
+        };
+        let s = match s {
+            Some(s) => s,
+            None => {
+                let p = self.global_num("P");
+                self.light_samples("", &p)?
+            }
+        };
+        self.light_cache_at_p = true;
+        Ok(s)
     }
 
     /// `illuminance`: the body once per non-ambient light, at the points it reaches inside

@@ -8,7 +8,7 @@
 //!
 //! [`specularbrdf`]: super::light::specularbrdf
 
-use super::geom::V3;
+use super::lanes::Src;
 use super::value::{Mask, Num, Value, ZERO1};
 use super::{ExecError, GridContext};
 
@@ -90,29 +90,6 @@ fn reflect(i: &T3, n: &T3) -> T3 {
         *x *= 2.0;
     }
     sub(i, &scale(n, &d))
-}
-
-/// A triple operand read at any point: uniform, or a lane per point (a float broadcast).
-#[derive(Clone, Copy)]
-enum Src<'a> {
-    Uniform(V3),
-    Lanes { data: &'a [f32], w: usize },
-}
-
-impl<'a> Src<'a> {
-    fn of(x: &'a Num) -> Src<'a> {
-        if x.varying { Src::Lanes { data: &x.data, w: x.w } } else { Src::Uniform(x.v3(0)) }
-    }
-
-    #[inline(always)]
-    fn at(&self, i: usize) -> V3 {
-        match *self {
-            Src::Uniform(v) => v,
-            Src::Lanes { data, w: 3 } => [data[3 * i], data[3 * i + 1], data[3 * i + 2]],
-            Src::Lanes { data, w } if w > 3 => [data[w * i], data[w * i + 1], data[w * i + 2]],
-            Src::Lanes { data, w } => [data[w * i]; 3],
-        }
-    }
 }
 
 /// Which of the lighting functions.

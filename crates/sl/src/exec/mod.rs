@@ -20,6 +20,7 @@ mod builtins;
 mod deriv;
 mod expr;
 mod geom;
+mod lanes;
 pub mod light;
 mod lighting;
 mod noise;
@@ -119,6 +120,9 @@ pub struct GridContext<'a> {
     pub(crate) stats: Stats,
     pub(crate) frames: Vec<stmt::FuncFrame>,
     pub(crate) light_cache: Option<(Num, String, std::rc::Rc<[LightSample]>)>,
+    /// The cached lights are those of every category at the global `P` as it is now (`P`
+    /// is assigned only through `assign`, which drops the cache).
+    pub(crate) light_cache_at_p: bool,
     pub(crate) light_out: Option<light::LightRecord>,
     pub(crate) current_light: Option<Vec<(String, Value)>>,
     pub(crate) messages: HashMap<(String, String), Value>,
@@ -147,6 +151,7 @@ impl<'a> GridContext<'a> {
             stats: Stats::default(),
             frames: Vec::new(),
             light_cache: None,
+            light_cache_at_p: false,
             light_out: None,
             current_light: None,
             messages: HashMap::new(),
