@@ -144,7 +144,7 @@ impl GridContext<'_> {
                 o[0] = geom::ptlined(v3(l[0]), v3(l[1]), v3(l[2]))
             })),
             "faceforward" => {
-                let nref = match &self.globals[Self::global_index("Ng")] {
+                let nref = match self.global_value(Self::global_index("Ng")) {
                     _ if nums.len() >= 3 => a(2),
                     Some(Value::Num(ng)) => ng,
                     _ => &super::value::ZERO1,

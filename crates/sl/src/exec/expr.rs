@@ -22,8 +22,9 @@ impl GridContext<'_> {
             ExprKind::Float(v) => Value::Num(Num::scalar(*v as f32)),
             ExprKind::Str(s) => Value::Str(s.clone()),
             ExprKind::Var(id) => self.vars[*id].clone(),
-            ExprKind::Global(g) => self.globals[Self::global_index(g)]
-                .clone()
+            ExprKind::Global(g) => self
+                .global_value(Self::global_index(g))
+                .cloned()
                 .unwrap_or_else(|| Value::Num(Num::scalar(0.0))),
             ExprKind::Index(a, i) => {
                 let a = self.eval(a, mask)?;
@@ -226,8 +227,9 @@ impl GridContext<'_> {
     pub(crate) fn read_place(&self, place: &Place) -> Value {
         match place {
             Place::Var(id) => self.vars[*id].clone(),
-            Place::Global(g) => self.globals[Self::global_index(g)]
-                .clone()
+            Place::Global(g) => self
+                .global_value(Self::global_index(g))
+                .cloned()
                 .unwrap_or_else(|| Value::Num(Num::scalar(0.0))),
         }
     }

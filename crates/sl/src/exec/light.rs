@@ -185,7 +185,7 @@ impl GridContext<'_> {
 
     /// The cached lights, if they were asked for at `position` in `category`.
     fn cached_lights(&self, category: &str, position: &Num) -> Option<Rc<[LightSample]>> {
-        match &self.light_cache {
+        match &*self.light_cache {
             Some((p, c, s)) if p == position && c == category => Some(Rc::clone(s)),
             _ => None,
         }
@@ -194,13 +194,13 @@ impl GridContext<'_> {
     /// The lights of every category at the global `P` (read in place when cached).
     pub(crate) fn light_samples_at_p(&mut self) -> Result<Rc<[LightSample]>, ExecError> {
         if self.light_cache_at_p
-            && let Some((_, c, s)) = &self.light_cache
+            && let Some((_, c, s)) = &*self.light_cache
             && c.is_empty()
         {
             return Ok(Rc::clone(s));
         }
         let k = Self::global_index("P");
-        let s = match &self.globals[k] {
+        let s = match self.global_value(k) {
             Some(Value::Num(p)) => self.cached_lights("", p),
             _ => None,
         };

@@ -119,7 +119,7 @@ pub struct GridContext<'a> {
     pub(crate) budget: u64,
     pub(crate) stats: Stats,
     pub(crate) frames: Vec<stmt::FuncFrame>,
-    pub(crate) light_cache: Option<(Num, String, std::rc::Rc<[LightSample]>)>,
+    pub(crate) light_cache: pool::Pooled<Option<pool::LightCache>>,
     /// The cached lights are those of every category at the global `P` as it is now (`P`
     /// is assigned only through `assign`, which drops the cache).
     pub(crate) light_cache_at_p: bool,
@@ -150,7 +150,7 @@ impl<'a> GridContext<'a> {
             budget: DEFAULT_BUDGET,
             stats: Stats::default(),
             frames: Vec::new(),
-            light_cache: None,
+            light_cache: pool::Pooled(None),
             light_cache_at_p: false,
             light_out: None,
             current_light: None,
@@ -238,7 +238,9 @@ impl<'a> GridContext<'a> {
     /// Sets a global to one value per point (`width * points` floats, point after point).
     pub fn set_varying(&mut self, name: &str, data: &[f32]) -> Result<(), ExecError> {
         let w = GLOBALS.iter().find(|g| g.name == name).map_or(1, |g| value::width(g.ty.base));
-        self.set_global(name, Num { w, varying: true, data: data.to_vec() })
+        let mut buf = pool::take(data.len());
+        buf.extend_from_slice(data);
+        self.set_global(name, Num { w, varying: true, data: buf })
     }
 
     /// Sets `u`, `v` (per point, evenly from `u0` to `u1` along a row and `v0` to `v1` down a
@@ -300,7 +302,7 @@ impl<'a> GridContext<'a> {
     /// A global after the run (or as set).
     pub fn get(&self, name: &str) -> Option<&Value> {
         let k = GLOBALS.iter().position(|g| g.name == name)?;
-        self.globals[k].as_ref().or(self.inputs[k].as_ref())
+        self.global_value(k)
     }
 
     /// A global's triple at point `i`.
@@ -401,30 +403,40 @@ impl<'a> GridContext<'a> {
         let written = &self.shader.globals_written;
         let light = self.shader.kind == ShaderKind::Light;
         for (k, g) in GLOBALS.iter().enumerate() {
+            if let Some(old) = self.globals[k].take() {
+                pool::recycle(old);
+            }
             let varying = g.detail == Detail::Varying;
             let w = value::width(g.ty.base);
+            // Places the shader writes (and the lights' L, Cl, Ol) hold a lane per point.
+            let lit = matches!(g.name, "L" | "Cl" | "Ol");
+            let lanes = varying && (written.contains(&g.name) || lit || (light && g.name == "Ps"));
+            let fixed = matches!(g.name, "PI" | "ncomps");
+            let given = matches!(self.inputs[k], Some(Value::Num(_)));
+            if given && !fixed && !lanes && !written.contains(&g.name) {
+                // Read in place from the input ([`Self::global_value`]): no copy per run.
+                continue;
+            }
             let v = match g.name {
                 "PI" => Num::scalar(std::f32::consts::PI),
                 "ncomps" => Num::scalar(3.0),
                 _ => match self.inputs[k].as_ref() {
-                    Some(Value::Num(v)) => pool::dup(v),
+                    Some(Value::Num(v)) => v.clone(),
                     _ => match g.name {
                         "Cs" | "Os" => Num::uniform(&[1.0; 3]),
                         _ => Num::zeros(w, false, n),
                     },
                 },
             };
-            // Places the shader writes (and the lights' L, Cl, Ol) hold a lane per point.
-            let lit = matches!(g.name, "L" | "Cl" | "Ol");
-            let v = if varying && (written.contains(&g.name) || lit || (light && g.name == "Ps")) {
-                v.to_varying(n)
-            } else {
-                v
-            };
-            if let Some(old) = self.globals[k].replace(Value::Num(v)) {
-                pool::recycle(old);
-            }
+            let v = if lanes && !v.varying { v.to_varying(n) } else { v };
+            self.globals[k] = Some(Value::Num(v));
         }
+    }
+
+    /// Global `k` as the shader sees it: its own copy once written (or made varying), else
+    /// the input as set (read in place), else its default.
+    pub(crate) fn global_value(&self, k: usize) -> Option<&Value> {
+        self.globals[k].as_ref().or(self.inputs[k].as_ref())
     }
 
     /// Gives the variables' buffers of an earlier run back to the pool.
@@ -437,7 +449,7 @@ impl<'a> GridContext<'a> {
     }
 
     pub(crate) fn global_num(&self, name: &str) -> Num {
-        match &self.globals[Self::global_index(name)] {
+        match self.global_value(Self::global_index(name)) {
             Some(Value::Num(v)) => v.clone(),
             _ => Num::zeros(1, false, self.n),
         }
@@ -446,6 +458,10 @@ impl<'a> GridContext<'a> {
     pub(crate) fn set_global_masked(&mut self, name: &str, v: &Num, mask: &Mask) {
         let k = Self::global_index(name);
         let n = self.n;
+        if self.globals[k].is_none() {
+            // Read in place until now: the run's own copy from here on.
+            self.globals[k] = self.inputs[k].clone();
+        }
         if let Some(Value::Num(dst)) = &mut self.globals[k] {
             if !dst.varying && (v.varying || mask.idx.len() != n) {
                 *dst = dst.to_varying(n);

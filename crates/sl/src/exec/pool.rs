@@ -71,8 +71,11 @@ pub(crate) fn give(v: Vec<f32>) {
     });
 }
 
+/// The lights a grid asked for last: the position, the category, and the lights.
+pub(crate) type LightCache = (Num, String, Rc<[LightSample]>);
+
 /// Gives the buffers of the cached lights back (those the cache alone holds).
-pub(crate) fn recycle_lights(cache: Option<(Num, String, Rc<[LightSample]>)>) {
+pub(crate) fn recycle_lights(cache: Option<LightCache>) {
     let Some((p, _, mut samples)) = cache else { return };
     give(p.data);
     if let Some(samples) = Rc::get_mut(&mut samples) {
@@ -108,6 +111,12 @@ impl Recycle for Vec<Value> {
 impl Recycle for Vec<Option<Value>> {
     fn recycle(&mut self) {
         self.iter_mut().filter_map(Option::take).for_each(recycle);
+    }
+}
+
+impl Recycle for Option<LightCache> {
+    fn recycle(&mut self) {
+        recycle_lights(self.take());
     }
 }
 
