@@ -136,7 +136,7 @@ impl GridContext<'_> {
                 num(Num::scalar(0.0))
             }
             "length" => num(map_n(n, mask, &[a(0)], 1, |l, o| o[0] = geom::length(v3(l[0])))),
-            "normalize" => num(map_v3(n, mask, [a(0)], |[x]| geom::normalize(x))),
+            "normalize" => num(super::lanes::normalize_lanes(n, mask, a(0))),
             "distance" => num(map_n(n, mask, &[a(0), a(1)], 1, |l, o| {
                 o[0] = geom::length(geom::sub(v3(l[0]), v3(l[1])))
             })),

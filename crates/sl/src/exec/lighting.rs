@@ -8,89 +8,9 @@
 //!
 //! [`specularbrdf`]: super::light::specularbrdf
 
-use super::lanes::Src;
+use super::lanes::{B, Fs, Src, T3, add, dot, normalize, reflect, scale};
 use super::value::{Mask, Num, Value, ZERO1};
 use super::{ExecError, GridContext};
-
-/// Points per block.
-const B: usize = 8;
-
-/// One float per point of a block.
-type Fs = [f32; B];
-
-/// A triple per point of a block, component by component.
-#[derive(Clone, Copy)]
-struct T3([Fs; 3]);
-
-#[inline(always)]
-fn dot(a: &T3, b: &T3) -> Fs {
-    let mut o = [0.0; B];
-    for j in 0..B {
-        o[j] = a.0[0][j] * b.0[0][j] + a.0[1][j] * b.0[1][j] + a.0[2][j] * b.0[2][j];
-    }
-    o
-}
-
-#[inline(always)]
-fn scale(a: &T3, k: &Fs) -> T3 {
-    let mut o = *a;
-    for c in 0..3 {
-        for j in 0..B {
-            o.0[c][j] = a.0[c][j] * k[j];
-        }
-    }
-    o
-}
-
-#[inline(always)]
-fn add(a: &T3, b: &T3) -> T3 {
-    let mut o = *a;
-    for c in 0..3 {
-        for j in 0..B {
-            o.0[c][j] = a.0[c][j] + b.0[c][j];
-        }
-    }
-    o
-}
-
-#[inline(always)]
-fn sub(a: &T3, b: &T3) -> T3 {
-    let mut o = *a;
-    for c in 0..3 {
-        for j in 0..B {
-            o.0[c][j] = a.0[c][j] - b.0[c][j];
-        }
-    }
-    o
-}
-
-/// `geom::normalize` on each point: a zero vector stays as it is.
-#[inline(always)]
-fn normalize(a: &T3) -> T3 {
-    let d = dot(a, a);
-    let (mut l, mut k) = ([0.0; B], [0.0; B]);
-    for j in 0..B {
-        l[j] = d[j].sqrt();
-        k[j] = 1.0 / l[j];
-    }
-    let mut o = *a;
-    for c in 0..3 {
-        for j in 0..B {
-            o.0[c][j] = if l[j] > 0.0 { a.0[c][j] * k[j] } else { a.0[c][j] };
-        }
-    }
-    o
-}
-
-/// `geom::reflect`: `i - 2 (i . n) n`.
-#[inline(always)]
-fn reflect(i: &T3, n: &T3) -> T3 {
-    let mut d = dot(i, n);
-    for x in &mut d {
-        *x *= 2.0;
-    }
-    sub(i, &scale(n, &d))
-}
 
 /// Which of the lighting functions.
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -156,12 +76,26 @@ impl GridContext<'_> {
                 if !on.contains(&true) {
                     continue;
                 }
+                let run = block.len() == B && idx[B - 1] - idx[0] == B - 1;
                 let gather = |src: &Src<'_>| {
                     let mut t = T3([[0.0; B]; 3]);
-                    for j in 0..B {
-                        let v = src.at(idx[j]);
-                        for c in 0..3 {
-                            t.0[c][j] = v[c];
+                    match *src {
+                        // Consecutive points of a triple per point: one slice.
+                        Src::Lanes { data, w: 3 } if run => {
+                            let x = &data[3 * idx[0]..3 * (idx[0] + B)];
+                            for j in 0..B {
+                                for c in 0..3 {
+                                    t.0[c][j] = x[3 * j + c];
+                                }
+                            }
+                        }
+                        _ => {
+                            for j in 0..B {
+                                let v = src.at(idx[j]);
+                                for c in 0..3 {
+                                    t.0[c][j] = v[c];
+                                }
+                            }
                         }
                     }
                     t
