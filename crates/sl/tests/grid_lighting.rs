@@ -202,10 +202,10 @@ fn normalize_matches_the_formula_to_the_bit() {
         g.set_varying("s", &svals).unwrap();
         g.run().unwrap();
         let (o, h) = (g.param("o").unwrap().num().clone(), g.param("h").unwrap().num().clone());
-        for i in 0..n {
+        for (i, sv) in svals.iter().enumerate() {
             let want = normalize(at(&nn, i)).map(f32::to_bits);
             assert_eq!(o.v3(i).map(f32::to_bits), want, "{nu}x{nv} at {i}");
-            let want_h = if svals[i] > 0.0 { want } else { [0; 3] };
+            let want_h = if *sv > 0.0 { want } else { [0; 3] };
             assert_eq!(h.v3(i).map(f32::to_bits), want_h, "{nu}x{nv} masked at {i}");
         }
     }

@@ -9,8 +9,8 @@ use crate::ir::Expr;
 use crate::types::BaseType;
 
 use super::geom::{self, V3};
-use super::space::{self, Mat, mat_det, mat_inverse, mat_mul, transform_num};
 use super::lanes::map_v3;
+use super::space::{self, Mat, mat_det, mat_inverse, mat_mul, transform_num};
 use super::value::{Mask, Num, Value, map_c, map_f, map_n};
 use super::{ExecError, GridContext, noise};
 
@@ -178,7 +178,7 @@ impl GridContext<'_> {
                 o.copy_from_slice(&geom::add(space::xform_vector(&m, geom::sub(p, p0)), p0));
             })),
             "transform" | "vtransform" | "ntransform" => {
-                self.transform(e.ty.base, args, &vals, mask)
+                self.transform(e.ty.base, args, vals, mask)
             }
             "depth" => {
                 let to_cam = mat_inverse(&self.space("camera")?);
@@ -251,17 +251,17 @@ impl GridContext<'_> {
                 }
                 num(out)
             }
-            "ambient" | "diffuse" | "specular" | "phong" => num(self.lighting(name, &vals, mask)?),
+            "ambient" | "diffuse" | "specular" | "phong" => num(self.lighting(name, vals, mask)?),
             "specularbrdf" => num(map_n(n, mask, &nums, 3, |l, o| {
                 o.fill(super::light::specularbrdf(v3(l[0]), v3(l[1]), v3(l[2]), l[3][0]))
             })),
             "concat" | "format" | "printf" | "match" | "shadername" => {
-                self.string_fn(name, args, &vals, mask)
+                self.string_fn(name, args, vals, mask)
             }
-            "spline" => Ok(self.spline(args, &vals, w_out, mask)),
-            "lightsource" => self.lightsource(args, &vals, mask),
+            "spline" => Ok(self.spline(args, vals, w_out, mask)),
+            "lightsource" => self.lightsource(args, vals, mask),
             "atmosphere" | "displacement" | "surface" | "incident" | "opposite" | "attribute"
-            | "option" | "rendererinfo" | "textureinfo" => self.message(name, args, &vals, mask),
+            | "option" | "rendererinfo" | "textureinfo" => self.message(name, args, vals, mask),
             _ => Err(self.err_at(format!("\"{name}\" is not available in the grid machine yet"))),
         }
     }

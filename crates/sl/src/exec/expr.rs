@@ -6,10 +6,10 @@ use crate::ast::{AssignOp, BinOp, UnOp};
 use crate::ir::{Callee, Expr, ExprKind, Place};
 use crate::types::{BaseType, Type};
 
-use super::space::{mat_inverse, mat_mul};
-use super::value::{self, Mask, Num, Value, map_c, map_c1, map_c2, map_n};
 use super::lanes::{map_v3, map_v3_f};
 use super::pool;
+use super::space::{mat_inverse, mat_mul};
+use super::value::{self, Mask, Num, Value, map_c, map_c1, map_c2, map_n};
 use super::{ExecError, GridContext};
 
 impl GridContext<'_> {

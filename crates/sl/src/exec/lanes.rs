@@ -3,6 +3,10 @@
 //! `reflect`, `.` and `^`) read each argument's lane as a `[f32; 3]` in place; `normalize`
 //! and the lighting functions work a block of points at a time, component by component.
 
+// Index loops over the blocks' lanes on purpose: fixed-length loops the compiler turns into
+// vector instructions.
+#![allow(clippy::needless_range_loop)]
+
 use super::geom::V3;
 use super::value::{Mask, Num};
 

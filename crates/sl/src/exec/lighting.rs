@@ -8,6 +8,10 @@
 //!
 //! [`specularbrdf`]: super::light::specularbrdf
 
+// Index loops over the blocks' lanes on purpose: fixed-length loops the compiler turns into
+// vector instructions.
+#![allow(clippy::needless_range_loop)]
+
 use super::lanes::{B, Fs, Src, T3, add, dot, normalize, reflect, scale};
 use super::value::{Mask, Num, Value, ZERO1};
 use super::{ExecError, GridContext};
@@ -104,7 +108,8 @@ impl GridContext<'_> {
                 let nf = normalize(&gather(&nn_at));
                 let cos = dot(&nf, &ls);
                 for j in 0..B {
-                    on[j] &= !(cos[j] <= 0.0);
+                    // Only a cosine `<= 0` leaves the light out (a NaN one does not).
+                    on[j] &= cos[j] > 0.0 || cos[j].is_nan();
                 }
                 let k: Fs = match model {
                     Model::Specular => {

@@ -492,4 +492,3 @@ impl<'a> GridContext<'a> {
         Ok(())
     }
 }
-
