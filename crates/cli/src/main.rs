@@ -192,7 +192,7 @@ fn render_main() -> Result<(), Exit> {
         let pause = |path: &Path, temp: Option<&Path>| hooks.after_first_chunk(path, temp, &say);
         let write = hooks.write_hooks(&pause);
         job.write(&mut rendered, &write).map_err(|e| failed(e, &frame.main))?;
-        job.finish(!args.quiet, &mut |w| say(w));
+        job.finish(!args.quiet, &mut |w| say(w))?;
         if args.stats {
             term::print(&rendered.rendered.stats.to_string())?;
         }

@@ -138,6 +138,7 @@ impl From<TextureError> for DiceError {
 }
 pub use reyes_texture::{TextureError, TextureStats};
 pub use shade::{Shader, facing};
+pub use sl::depth_map_matrices;
 pub use spot::{SpotLight, smoothstep};
 
 use reyes_hider::{CsgTree, Frame, Micropolygon};

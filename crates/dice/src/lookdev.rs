@@ -183,6 +183,12 @@ impl Lookdev {
         // The shaders' maps, read as stored (linear), each file once.
         let mut ids = HashMap::new();
         for (name, file) in &scene.shaders.maps {
+            // A map the scene's file was to write itself (a multipass file's depth pass or
+            // `Make*` request) that is not there: its lookups read 0, with the warning of a
+            // name that is no map.
+            if !file.exists() {
+                continue;
+            }
             let key = (file.to_string_lossy().into_owned(), ColorSpace::Linear);
             let id = match loaded.get(&key) {
                 Some(&id) => id,

@@ -156,19 +156,8 @@ impl SlSetup {
 /// the screen window, RenderMan's default for the image's aspect ratio when none is given),
 /// with the depth mapped as a projective z so that the matrix inverts.
 fn with_raster(spaces: Spaces, camera: &CameraSetup, window: Option<[f32; 4]>) -> Spaces {
-    let (k, c, size) = (camera.raster_scale(), camera.raster_centre(), camera.image_size());
-    let (n, f) = (camera.hither(), camera.yon().min(1e30));
-    // Row vectors: [x y z 1] M = (kx x + cx z, -ky y + cy z, a z + b, z) for perspective.
-    let to_raster: Mat = match camera.projection() {
-        reyes_scene::Projection::Perspective => {
-            let a = f / (f - n);
-            let b = -f * n / (f - n);
-            [k.x, 0., 0., 0., 0., -k.y, 0., 0., c.x, c.y, a, 1., 0., 0., b, 0.]
-        }
-        reyes_scene::Projection::Orthographic => {
-            [k.x, 0., 0., 0., 0., -k.y, 0., 0., 0., 0., 1., 0., c.x, c.y, 0., 1.]
-        }
-    };
+    let size = camera.image_size();
+    let to_raster = camera_to_raster(camera);
     let raster_to_ndc: Mat =
         [1. / size.x, 0., 0., 0., 0., 1. / size.y, 0., 0., 0., 0., 1., 0., 0., 0., 0., 1.];
     let from_raster = reyes_scene::sl::exec::space::mat_inverse(&to_raster);
@@ -187,6 +176,38 @@ fn with_raster(spaces: Spaces, camera: &CameraSetup, window: Option<[f32; 4]>) -
         .with("raster", from_raster)
         .with("NDC", mat_mul(&ndc_to_raster, &from_raster))
         .with("screen", mat_mul(&screen_to_raster, &from_raster))
+}
+
+/// Camera space to raster, homogeneous, row vectors: `[x y z 1] M = (kx x + cx z, -ky y + cy z,
+/// a z + b, z)` for perspective.
+fn camera_to_raster(camera: &CameraSetup) -> Mat {
+    let (k, c) = (camera.raster_scale(), camera.raster_centre());
+    let (n, f) = (camera.hither(), camera.yon().min(1e30));
+    match camera.projection() {
+        reyes_scene::Projection::Perspective => {
+            let a = f / (f - n);
+            let b = -f * n / (f - n);
+            [k.x, 0., 0., 0., 0., -k.y, 0., 0., c.x, c.y, a, 1., 0., 0., b, 0.]
+        }
+        reyes_scene::Projection::Orthographic => {
+            [k.x, 0., 0., 0., 0., -k.y, 0., 0., 0., 0., 1., 0., c.x, c.y, 0., 1.]
+        }
+    }
+}
+
+/// The matrices of a depth map that `scene`'s camera renders (`Display "zfile"`), as Pixar's
+/// tags hold them (row vectors, row by row): RenderMan's world to the camera, whose `z` is
+/// the depth stored; and world to the map's screen, where the picture spans `[-1, 1]` in `x`
+/// and `y` (`y` up), as `shadow()` reads it (`s = (x/w + 1)/2`, `t = (1 - y/w)/2`,
+/// docs/textures.md). Returns `(world_to_screen, world_to_camera)`.
+pub fn depth_map_matrices(scene: &Scene) -> ([f32; 16], [f32; 16]) {
+    let camera = CameraSetup::new(scene);
+    let world_to_camera = mat_mul(&scene.shaders.world_to_model, &sl(&camera.world_to_camera()));
+    let size = camera.image_size();
+    let raster_to_unit: Mat =
+        [2. / size.x, 0., 0., 0., 0., -2. / size.y, 0., 0., 0., 0., 1., 0., -1., 1., 0., 1.];
+    let camera_to_unit = mat_mul(&camera_to_raster(&camera), &raster_to_unit);
+    (mat_mul(&world_to_camera, &camera_to_unit), world_to_camera)
 }
 
 /// A light's categories (its `__category` parameter, comma-separated).

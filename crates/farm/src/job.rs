@@ -151,6 +151,15 @@ pub struct FramePlan {
     pub main: PathBuf,
     /// The RIB file's extra outputs (`Display "+name"`), the same image.
     pub extras: Vec<PathBuf>,
+    /// `main` is a picture; false for a frame whose only outputs are depth maps (`main` is
+    /// then the first of them).
+    pub image: bool,
+    /// Its depth outputs ([`crate::depth`]).
+    pub depth: Vec<crate::depth::DepthOutput>,
+    /// The `Make*` requests to run before it renders.
+    pub makes: Vec<reyes_rib::MakeJob>,
+    /// For the last frame, the `Make*` requests after it in the file, to run after it.
+    pub makes_after: Vec<reyes_rib::MakeJob>,
 }
 
 /// Load the scene of `request` and name every frame's outputs, before anything is rendered;
@@ -174,6 +183,8 @@ pub fn plan(request: &Request, warn: &mut dyn FnMut(String)) -> Result<Vec<Frame
     summarise(&loaded.warnings, warn);
     let scene_path = one_line(r.scene.display());
     if loaded.frames.is_empty() {
+        // A file of `Make*` requests alone still makes its maps.
+        crate::depth::run_makes(&loaded.makes_after, warn)?;
         return Err(FarmError::invalid(format_args!("{scene_path}: no frame to render")));
     }
     // Numbered names only for a file of several frames (and a pattern in the name): a
@@ -182,26 +193,40 @@ pub fn plan(request: &Request, warn: &mut dyn FnMut(String)) -> Result<Vec<Frame
     let several = loaded.several_frames || loaded.frames.len() > 1;
     let numbered = if r.output.is_some() { several } else { several && loaded.display_repeats };
     let mut plans = Vec::with_capacity(loaded.frames.len());
-    for frame in loaded.frames {
-        let output = match &r.output {
-            Some(output) => output.clone(),
-            None => {
-                let Some(named) = crate::output::display_output(&frame.displays, warn) else {
+    let mut makes_after = loaded.makes_after;
+    let count = loaded.frames.len();
+    for (k, frame) in loaded.frames.into_iter().enumerate() {
+        let depth = crate::depth::outputs(&frame.displays);
+        let pictures: Vec<reyes_rib::Display> = frame
+            .displays
+            .iter()
+            .filter(|d| !reyes_rib::is_depth_driver(&d.driver))
+            .cloned()
+            .collect();
+        let (output, image) = match &r.output {
+            Some(output) => (output.clone(), true),
+            None => match crate::output::display_output(&pictures, warn) {
+                Some(named) => {
+                    check_main(&named, r.tile.is_some())?;
+                    (named, true)
+                }
+                None if !depth.is_empty() => (depth[0].path.clone(), false),
+                None => {
                     return Err(FarmError::invalid(format_args!(
                         "{scene_path}: no output: the file names no Display, give -o OUT.exr"
                     )));
-                };
-                check_main(&named, r.tile.is_some())?;
-                named
-            }
+                }
+            },
         };
-        let scene = r.overrides.apply(frame.scene, &r.scene)?;
+        let scene =
+            if depth.is_empty() { frame.scene } else { crate::depth::with_depth(frame.scene) };
+        let scene = r.overrides.apply(scene, &r.scene)?;
         if let Some(w) = reyes_render::settings::pattern_fallback(&scene) {
             warn(format!("{scene_path}: warning: {w}"));
         }
-        let main = frame_path(&output, frame.number, numbered);
+        let main = if image { frame_path(&output, frame.number, numbered) } else { output.clone() };
         let mut extras = Vec::new();
-        for d in frame.displays.iter().filter(|d| d.extra) {
+        for d in pictures.iter().filter(|d| d.extra) {
             match extra_path(&output, &d.name, frame.number, numbered) {
                 Some(path) => extras.push(path),
                 None => warn(format!(
@@ -211,7 +236,17 @@ pub fn plan(request: &Request, warn: &mut dyn FnMut(String)) -> Result<Vec<Frame
                 )),
             }
         }
-        plans.push(FramePlan { scene, number: frame.number, main, extras });
+        let after = if k + 1 == count { std::mem::take(&mut makes_after) } else { Vec::new() };
+        plans.push(FramePlan {
+            scene,
+            number: frame.number,
+            main,
+            extras,
+            image,
+            depth,
+            makes: frame.makes,
+            makes_after: after,
+        });
     }
     // What a writer killed where the file system has no O_TMPFILE left behind.
     let mut dirs: Vec<PathBuf> = Vec::new();
@@ -326,6 +361,8 @@ impl<'a> FrameJob<'a> {
         frame: &'a FramePlan,
         warn: &mut dyn FnMut(String),
     ) -> Result<FrameJob<'a>, FarmError> {
+        // The maps the file makes before this frame (a multipass file's shadow maps).
+        crate::depth::run_makes(&frame.makes, warn)?;
         let scene = &frame.scene;
         let scene_path = request.scene.display().to_string();
         let buckets = buckets_of(scene, request.tile).map_err(|e| {
@@ -419,6 +456,9 @@ impl<'a> FrameJob<'a> {
     /// The files the frame is written to: a tile's one file, else the main output and the
     /// extra outputs.
     pub fn outputs(&self) -> Vec<&'a Path> {
+        if !self.frame.image {
+            return Vec::new();
+        }
         let main = std::iter::once(self.frame.main.as_path());
         let extras = self.frame.extras.iter().map(PathBuf::as_path);
         let n = if self.request.tile.is_some() { 1 } else { 1 + self.frame.extras.len() };
@@ -460,22 +500,32 @@ impl<'a> FrameJob<'a> {
                 picture.write(path, &opts)?;
             }
         }
+        if self.request.tile.is_none() {
+            crate::depth::write(scene, &frame.rendered, &self.frame.depth)?;
+        }
         frame.rendered.stats.t_write = started.elapsed();
         frame.rendered.stats.peak_memory = reyes_render::peak_memory();
         Ok(())
     }
 
     /// Every output is written: with `announce`, name each file written, one line each to
-    /// `say`; remove the checkpoint (a folder that cannot be removed is a line to `say`).
-    pub fn finish(self, announce: bool, say: &mut dyn FnMut(String)) {
+    /// `say`; remove the checkpoint (a folder that cannot be removed is a line to `say`); run
+    /// the `Make*` requests after the file's last frame.
+    ///
+    /// # Errors
+    ///
+    /// A `Make*` request after the file's last frame cannot make its map.
+    pub fn finish(self, announce: bool, say: &mut dyn FnMut(String)) -> Result<(), FarmError> {
         if announce {
-            for path in self.outputs() {
+            let depth = self.frame.depth.iter().map(|d| d.path.as_path());
+            for path in self.outputs().into_iter().chain(depth) {
                 say(format!("wrote {}", one_line(path.display())));
             }
         }
         if let Some(c) = self.checkpoint {
             c.finish(say);
         }
+        crate::depth::run_makes(&self.frame.makes_after, say)
     }
 }
 

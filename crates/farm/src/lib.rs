@@ -20,6 +20,7 @@
 //! paths and names escaped ([`one_line`]).
 
 pub mod checkpoint;
+pub mod depth;
 pub mod error;
 pub mod fingerprint;
 pub mod frames;

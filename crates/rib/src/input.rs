@@ -199,8 +199,10 @@ fn ron_frames(
         }
         None => {
             let scene = reyes_scene::parse_files(text, file)?;
-            let frames = vec![Frame { number: None, scene, displays: Vec::new() }];
+            let frames =
+                vec![Frame { number: None, scene, displays: Vec::new(), makes: Vec::new() }];
             return Ok(Loaded {
+                makes_after: Vec::new(),
                 frames,
                 warnings: Vec::new(),
                 several_frames: false,
@@ -212,10 +214,16 @@ fn ron_frames(
     for n in numbers {
         let text = reyes_scene::animate::substitute(text, n, file)?;
         let scene = reyes_scene::parse_files(&text, file)?;
-        frames.push(Frame { number: Some(n), scene, displays: Vec::new() });
+        frames.push(Frame { number: Some(n), scene, displays: Vec::new(), makes: Vec::new() });
     }
     let several_frames = reyes_scene::animate::is_animated(text);
-    Ok(Loaded { frames, warnings: Vec::new(), several_frames, display_repeats: false })
+    Ok(Loaded {
+        frames,
+        makes_after: Vec::new(),
+        warnings: Vec::new(),
+        several_frames,
+        display_repeats: false,
+    })
 }
 
 #[cfg(test)]

@@ -37,7 +37,9 @@ pub use error::{Location, Pos, RibError, Warning};
 pub use input::{Format, InputError, Refusal, detect, load_scene_file, load_scene_file_with};
 pub use reader::{Reader, ReaderOptions};
 pub use request::{Data, Param, Request, Value};
-pub use ri::{Display, Frame, Loaded, Permissions, RiOptions, load, load_with};
+pub use ri::{
+    Display, Frame, Loaded, MakeJob, Permissions, RiOptions, is_depth_driver, load, load_with,
+};
 pub use signature::{Arg, ArgKind, RequestKind, Signature};
 pub use source::Source;
 

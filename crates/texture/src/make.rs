@@ -56,7 +56,12 @@ fn bad(file: &Path, message: String) -> TextureError {
     TextureError::Decode { file: file.to_path_buf(), message }
 }
 
-fn check(opts: &MakeOptions, out: &Path) -> Result<(), TextureError> {
+/// Checks `opts` for making `out`: a known filter name and positive widths.
+///
+/// # Errors
+///
+/// [`TextureError::Decode`] naming `out` and what is wrong.
+pub fn check_options(opts: &MakeOptions, out: &Path) -> Result<(), TextureError> {
     if !FILTERS.contains(&opts.filter.as_str()) {
         return Err(bad(
             out,
@@ -104,7 +109,7 @@ fn make(
     wrap: [Wrap; 2],
     opts: &MakeOptions,
 ) -> Result<(), TextureError> {
-    check(opts, out)?;
+    check_options(opts, out)?;
     let image = decode(src, ColorSpace::Linear)?;
     let spec = Spec {
         kind,
@@ -148,7 +153,7 @@ pub fn make_latlong(src: &Path, out: &Path, opts: &MakeOptions) -> Result<(), Te
 ///
 /// As [`make_texture`], or the faces are not squares of one size.
 pub fn make_cube(faces: [&Path; 6], out: &Path, opts: &MakeOptions) -> Result<(), TextureError> {
-    check(opts, out)?;
+    check_options(opts, out)?;
     if !(opts.fov.is_finite() && opts.fov > 0.0 && opts.fov < 180.0) {
         return Err(bad(out, format!("field of view {} is not between 0 and 180", opts.fov)));
     }

@@ -24,14 +24,58 @@ fn parameters(patch: &Patch, (nu, nv): (usize, usize)) -> (Vec<f32>, Vec<f32>, f
     (u, v, du, dv)
 }
 
-/// Texture coordinates of every vertex (the surface's, else `u`, `v`).
-fn texture_coordinates(
-    open: &Pose<'_>,
-    u: &[f32],
-    v: &[f32],
-    duv: [f32; 2],
-) -> (Vec<f32>, Vec<f32>) {
-    u.iter().zip(v).map(|(&u, &v)| open.surface.st(u, v, duv).0).map(|st| (st[0], st[1])).unzip()
+/// The `nu x nv` grid of `patch` as the machine reads it, its values owned: parameters and
+/// texture coordinates (the surface's at shutter open, else `u`, `v`), and the positions,
+/// normals and colours the caller gives ([`Inputs::input`] lends them).
+struct Inputs {
+    nu: usize,
+    nv: usize,
+    u: Vec<f32>,
+    v: Vec<f32>,
+    du: f32,
+    dv: f32,
+    s: Vec<f32>,
+    t: Vec<f32>,
+}
+
+impl Inputs {
+    fn new(patch: &Patch, (nu, nv): (usize, usize), open: &Pose<'_>) -> Inputs {
+        let (u, v, du, dv) = parameters(patch, (nu, nv));
+        let (s, t) = u
+            .iter()
+            .zip(&v)
+            .map(|(&u, &v)| open.surface.st(u, v, [du, dv]).0)
+            .map(|st| (st[0], st[1]))
+            .unzip();
+        Inputs { nu, nv, u, v, du, dv, s, t }
+    }
+
+    /// The machine's view of the grid with positions `p`, normals `n` (also the geometric
+    /// ones), surface colour `cs`, vertex tint `tint` and opacity `os`.
+    fn input<'a>(
+        &'a self,
+        p: &'a [Vec3],
+        n: &'a [Vec3],
+        (cs, tint): (&'a [Vec3], &'a [Vec3]),
+        os: Vec3,
+    ) -> GridInput<'a> {
+        GridInput {
+            nu: self.nu + 1,
+            nv: self.nv + 1,
+            p,
+            n,
+            ng: n,
+            u: &self.u,
+            v: &self.v,
+            du: self.du,
+            dv: self.dv,
+            s: &self.s,
+            t: &self.t,
+            cs,
+            tint,
+            os,
+        }
+    }
 }
 
 impl Emitter<'_> {
@@ -52,29 +96,14 @@ impl Emitter<'_> {
         let o2c = *open.moment.object_to_camera()?;
         let c2o = o2c.inverse();
         let normal_to_camera = Mat3::from_mat4(o2c).inverse().transpose();
-        let (u, v, du, dv) = parameters(patch, (nu, nv));
-        let points: Vec<_> = u.iter().zip(&v).map(|(&u, &v)| open.surface.eval(u, v)).collect();
+        let inputs = Inputs::new(patch, (nu, nv), open);
+        let (u, v) = (&inputs.u, &inputs.v);
+        let points: Vec<_> = u.iter().zip(v).map(|(&u, &v)| open.surface.eval(u, v)).collect();
         let p: Vec<Vec3> = points.iter().map(|sp| o2c.transform_point3(sp.p)).collect();
         let n: Vec<Vec3> =
             points.iter().map(|sp| (normal_to_camera * sp.n).normalize_or_zero()).collect();
-        let (s, t) = texture_coordinates(open, &u, &v, [du, dv]);
         let cs: Vec<Vec3> = points.iter().map(|sp| sp.tint).collect();
-        let grid = GridInput {
-            nu: nu + 1,
-            nv: nv + 1,
-            p: &p,
-            n: &n,
-            ng: &n,
-            u: &u,
-            v: &v,
-            du,
-            dv,
-            s: &s,
-            t: &t,
-            cs: &cs,
-            tint: &cs,
-            os: Vec3::ONE,
-        };
+        let grid = inputs.input(&p, &n, (&cs, &cs), Vec3::ONE);
         let (moved, normals) = match sl.displace(&grid, &mut self.sl_counts, &mut self.sl_displaced)
         {
             Ok(Some(r)) => r,
@@ -129,28 +158,12 @@ impl Emitter<'_> {
         aovs: Option<&VertexAovs>,
     ) {
         let w2c = Mat3::from_mat4(camera.world_to_camera());
-        let (u, v, du, dv) = parameters(patch, (nu, nv));
-        let (s, t) = texture_coordinates(open, &u, &v, [du, dv]);
+        let inputs = Inputs::new(patch, (nu, nv), open);
         let p: Vec<Vec3> = opens.iter().map(|o| o.p_shaded).collect();
         let n: Vec<Vec3> = opens.iter().map(|o| (w2c * o.n_world).normalize_or_zero()).collect();
         let tint: Vec<Vec3> = opens.iter().map(|o| o.tint).collect();
         let cs: Vec<Vec3> = tint.iter().map(|&t| material.0 * t).collect();
-        let grid = GridInput {
-            nu: nu + 1,
-            nv: nv + 1,
-            p: &p,
-            n: &n,
-            ng: &n,
-            u: &u,
-            v: &v,
-            du,
-            dv,
-            s: &s,
-            t: &t,
-            cs: &cs,
-            tint: &tint,
-            os: material.1,
-        };
+        let grid = inputs.input(&p, &n, (&cs, &tint), material.1);
         let outputs = aovs.map_or(&[][..], |a| &a.outputs[..]);
         let displaced = std::mem::take(&mut self.sl_displaced);
         match sl.shade(&grid, &mut self.sl_counts, outputs, &displaced) {

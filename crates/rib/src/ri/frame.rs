@@ -12,6 +12,7 @@ use std::collections::HashMap;
 use reyes_scene::Light;
 
 use super::build::FrameBuild;
+use super::make::is_depth_driver;
 use super::state::{Attributes, FrameOptions, SurfaceShader};
 use super::xform::Xform;
 use super::{Frame, Loaded, RiOptions};
@@ -107,6 +108,7 @@ pub(crate) struct Machine {
     /// Warnings given once per key (unknown shaders, unsupported features).
     pub(super) warned: std::collections::HashSet<String>,
     frames: Vec<Frame>,
+    pub(super) multipass: super::make::Multipass,
     /// World blocks read, built or not (`--frames` may skip some): how many frames the file
     /// has, which decides whether output names are numbered.
     worlds: usize,
@@ -162,6 +164,7 @@ impl Machine {
             warnings: Vec::new(),
             warned: Default::default(),
             frames: Vec::new(),
+            multipass: Default::default(),
             worlds: 0,
             display_names: Vec::new(),
         }
@@ -205,6 +208,7 @@ impl Machine {
         match result {
             Ok(()) => Ok(Loaded {
                 frames: self.frames,
+                makes_after: self.multipass.pending,
                 warnings: self.warnings,
                 several_frames: self.worlds > 1,
                 display_repeats: repeats(&self.display_names),
@@ -656,9 +660,13 @@ impl Machine {
         if let Some(d) = self.frame_options.displays.iter().find(|d| !d.extra) {
             self.display_names.push(d.name.clone());
         }
+        let depth = self.frame_options.displays.iter().filter(|d| is_depth_driver(&d.driver));
+        let written: Vec<_> = depth.map(|d| self.reader.resolve_archive(&d.name, &r.at)).collect();
+        self.multipass.made.extend(written);
         if build.wanted {
             let (scene, displays) = build.finish(&mut self.warnings)?;
-            self.frames.push(Frame { number: frame_number, scene, displays });
+            let makes = std::mem::take(&mut self.multipass.pending);
+            self.frames.push(Frame { number: frame_number, scene, displays, makes });
         }
         // Outside the world block the transformation is the camera's again.
         self.ctm = self.frame_options.camera.clone();

@@ -37,6 +37,7 @@ pub(crate) mod xform;
 
 use reyes_scene::Scene;
 
+pub use make::{MakeJob, is_depth_driver};
 pub use state::Display;
 
 use crate::{Reader, RibError, Source, Warning};
@@ -78,6 +79,9 @@ pub struct Frame {
     pub scene: Scene,
     /// Its `Display` requests, main output first.
     pub displays: Vec<Display>,
+    /// The `Make*` requests read since the frame before it was built: run before it
+    /// renders, after the frames before it (a multipass file's maps).
+    pub makes: Vec<make::MakeJob>,
 }
 
 /// What a RIB file holds.
@@ -85,6 +89,8 @@ pub struct Frame {
 pub struct Loaded {
     /// The frames built, in file order.
     pub frames: Vec<Frame>,
+    /// The `Make*` requests after the last frame built: run after the frames.
+    pub makes_after: Vec<make::MakeJob>,
     /// Everything accepted but worth telling: unknown requests and parameters, features we
     /// do not support, stand-in shaders.
     pub warnings: Vec<Warning>,

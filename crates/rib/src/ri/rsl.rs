@@ -193,7 +193,12 @@ impl Machine {
             let path = match found {
                 Lookup::Unsearched(p) | Lookup::Found(p) | Lookup::Missing(p, _) => p,
             };
-            if path.is_file() {
+            // A map the file itself writes before this frame renders (a depth output of an
+            // earlier frame, a `Make*` request) is known though it does not exist yet.
+            let beside = self.reader.resolve_archive(&name, at);
+            let made = self.multipass.made.iter().find(|m| **m == path || **m == beside).cloned();
+            let path = made.unwrap_or(path);
+            if path.is_file() || self.multipass.made.contains(&path) {
                 if let Some(b) = &mut self.build
                     && !b.shaders.maps.iter().any(|(m, _)| *m == name)
                 {

@@ -23,6 +23,10 @@ fn render_rib(dir: &Path, rib: &str, shaders: &[(&str, &str)]) -> (usize, Vec<[f
     let file = dir.join("scene.rib");
     ok(std::fs::write(&file, rib));
     let loaded = ok(reyes_rib::load_scene_file(&file, &RiOptions::default()));
+    // The `Make*` requests before the frame run before it renders (as the CLI runs them).
+    for job in &loaded.frames[0].makes {
+        assert_eq!(ok(job.run()), None);
+    }
     let film = ok(render(&loaded.frames[0].scene, &RenderOptions::default())).film;
     (loaded.frames[0].scene.image.width as usize, film.rgba().to_vec())
 }
@@ -164,13 +168,18 @@ fn make_texture_requests_write_maps_the_frame_reads() {
             assert!((q[0] - s).abs() < 1e-4 && (q[1] - t).abs() < 1e-4, "({x}, {y}): {q:?}");
         }
     }
-    // A picture that is not there, and a filter that is no filter: one-line errors naming
-    // the request.
+    // A picture that is not there: a one-line error naming the request when it runs (after
+    // the frames before it, which may write it).
+    let file = dir.path().join("bad.rib");
+    let bad = "MakeTexture \"nosuch.png\" \"x.tex\" \"periodic\" \"periodic\" \"box\" 1 1\n";
+    ok(std::fs::write(&file, bad));
+    let loaded = ok(reyes_rib::load_scene_file(&file, &RiOptions::default()));
+    let text = loaded.makes_after[0].run().err().unwrap_or_else(|| panic!("{bad}: made"));
+    assert!(text.starts_with(&format!("{}:1:1: MakeTexture: ", file.display())), "{text}");
+    assert!(text.contains("cannot read") && !text.contains('\n'), "{text}");
+    // A filter that is no filter, a wrap mode that is none: one-line errors naming the
+    // request when the file is read.
     for (bad, says) in [
-        (
-            "MakeTexture \"nosuch.png\" \"x.tex\" \"periodic\" \"periodic\" \"box\" 1 1",
-            "cannot read",
-        ),
         (
             "MakeTexture \"ramp.exr\" \"x.tex\" \"periodic\" \"periodic\" \"fuzzy\" 1 1",
             "unknown filter",
