@@ -9,6 +9,7 @@ use crate::ir::Expr;
 use crate::types::BaseType;
 
 use super::geom::{self, V3};
+use super::lanes::map_v3;
 use super::space::{self, Mat, mat_det, mat_inverse, mat_mul, transform_num};
 use super::value::{Mask, Num, Value, map_c, map_f, map_n};
 use super::{ExecError, GridContext, noise};
@@ -30,6 +31,20 @@ impl GridContext<'_> {
         for a in args {
             vals.push(self.eval(a, mask)?);
         }
+        let r = self.builtin_of(name, e, args, &vals, mask);
+        vals.into_iter().for_each(super::pool::recycle);
+        r
+    }
+
+    /// [`Self::builtin`] on the arguments' values.
+    fn builtin_of(
+        &mut self,
+        name: &str,
+        e: &Expr,
+        args: &[Expr],
+        vals: &[Value],
+        mask: &Mask,
+    ) -> Result<Value, ExecError> {
         self.at = e.pos;
         let n = self.n;
         let nums: Vec<&Num> = vals.iter().map(Value::num).collect();
@@ -121,9 +136,7 @@ impl GridContext<'_> {
                 num(Num::scalar(0.0))
             }
             "length" => num(map_n(n, mask, &[a(0)], 1, |l, o| o[0] = geom::length(v3(l[0])))),
-            "normalize" => num(map_n(n, mask, &[a(0)], 3, |l, o| {
-                o.copy_from_slice(&geom::normalize(v3(l[0])))
-            })),
+            "normalize" => num(super::lanes::normalize_lanes(n, mask, a(0))),
             "distance" => num(map_n(n, mask, &[a(0), a(1)], 1, |l, o| {
                 o[0] = geom::length(geom::sub(v3(l[0]), v3(l[1])))
             })),
@@ -131,15 +144,14 @@ impl GridContext<'_> {
                 o[0] = geom::ptlined(v3(l[0]), v3(l[1]), v3(l[2]))
             })),
             "faceforward" => {
-                let ng = self.global_num("Ng");
-                let nref = if nums.len() >= 3 { a(2).clone() } else { ng };
-                num(map_n(n, mask, &[a(0), a(1), &nref], 3, |l, o| {
-                    o.copy_from_slice(&geom::faceforward(v3(l[0]), v3(l[1]), v3(l[2])))
-                }))
+                let nref = match self.global_value(Self::global_index("Ng")) {
+                    _ if nums.len() >= 3 => a(2),
+                    Some(Value::Num(ng)) => ng,
+                    _ => &super::value::ZERO1,
+                };
+                num(map_v3(n, mask, [a(0), a(1), nref], |[x, i, r]| geom::faceforward(x, i, r)))
             }
-            "reflect" => num(map_n(n, mask, &nums, 3, |l, o| {
-                o.copy_from_slice(&geom::reflect(v3(l[0]), v3(l[1])))
-            })),
+            "reflect" => num(map_v3(n, mask, [a(0), a(1)], |[i, x]| geom::reflect(i, x))),
             "refract" => num(map_n(n, mask, &nums, 3, |l, o| {
                 o.copy_from_slice(&geom::refract(v3(l[0]), v3(l[1]), l[2][0]))
             })),
@@ -166,7 +178,7 @@ impl GridContext<'_> {
                 o.copy_from_slice(&geom::add(space::xform_vector(&m, geom::sub(p, p0)), p0));
             })),
             "transform" | "vtransform" | "ntransform" => {
-                self.transform(e.ty.base, args, &vals, mask)
+                self.transform(e.ty.base, args, vals, mask)
             }
             "depth" => {
                 let to_cam = mat_inverse(&self.space("camera")?);
@@ -239,17 +251,17 @@ impl GridContext<'_> {
                 }
                 num(out)
             }
-            "ambient" | "diffuse" | "specular" | "phong" => num(self.lighting(name, &vals, mask)?),
+            "ambient" | "diffuse" | "specular" | "phong" => num(self.lighting(name, vals, mask)?),
             "specularbrdf" => num(map_n(n, mask, &nums, 3, |l, o| {
                 o.fill(super::light::specularbrdf(v3(l[0]), v3(l[1]), v3(l[2]), l[3][0]))
             })),
             "concat" | "format" | "printf" | "match" | "shadername" => {
-                self.string_fn(name, args, &vals, mask)
+                self.string_fn(name, args, vals, mask)
             }
-            "spline" => Ok(self.spline(args, &vals, w_out, mask)),
-            "lightsource" => self.lightsource(args, &vals, mask),
+            "spline" => Ok(self.spline(args, vals, w_out, mask)),
+            "lightsource" => self.lightsource(args, vals, mask),
             "atmosphere" | "displacement" | "surface" | "incident" | "opposite" | "attribute"
-            | "option" | "rendererinfo" | "textureinfo" => self.message(name, args, &vals, mask),
+            | "option" | "rendererinfo" | "textureinfo" => self.message(name, args, vals, mask),
             _ => Err(self.err_at(format!("\"{name}\" is not available in the grid machine yet"))),
         }
     }

@@ -6,6 +6,8 @@ use crate::ast::{AssignOp, BinOp, UnOp};
 use crate::ir::{Callee, Expr, ExprKind, Place};
 use crate::types::{BaseType, Type};
 
+use super::lanes::{map_v3, map_v3_f};
+use super::pool;
 use super::space::{mat_inverse, mat_mul};
 use super::value::{self, Mask, Num, Value, map_c, map_c1, map_c2, map_n};
 use super::{ExecError, GridContext};
@@ -20,8 +22,9 @@ impl GridContext<'_> {
             ExprKind::Float(v) => Value::Num(Num::scalar(*v as f32)),
             ExprKind::Str(s) => Value::Str(s.clone()),
             ExprKind::Var(id) => self.vars[*id].clone(),
-            ExprKind::Global(g) => self.globals[Self::global_index(g)]
-                .clone()
+            ExprKind::Global(g) => self
+                .global_value(Self::global_index(g))
+                .cloned()
                 .unwrap_or_else(|| Value::Num(Num::scalar(0.0))),
             ExprKind::Index(a, i) => {
                 let a = self.eval(a, mask)?;
@@ -33,12 +36,14 @@ impl GridContext<'_> {
                 convert(v, x.ty, e.ty, n, mask)
             }
             ExprKind::Unary(op, x) => {
-                let v = self.eval(x, mask)?;
-                let v = v.num();
-                Value::Num(match op {
+                let x = self.eval(x, mask)?;
+                let v = x.num();
+                let r = Value::Num(match op {
                     UnOp::Neg => map_c1(n, mask, v, |x| -x),
                     UnOp::Not => map_c1(n, mask, v, |x| bool01(x == 0.0)),
-                })
+                });
+                pool::recycle(x);
+                r
             }
             ExprKind::Binary(op @ (BinOp::And | BinOp::Or), a, b) => {
                 let a = self.eval(a, mask)?;
@@ -75,7 +80,10 @@ impl GridContext<'_> {
                         eq
                     }))));
                 }
-                Value::Num(binary(*op, a.num(), b.num(), n, mask))
+                let r = binary(*op, a.num(), b.num(), n, mask);
+                pool::recycle(a);
+                pool::recycle(b);
+                Value::Num(r)
             }
             ExprKind::Assign { place, index, op, value } => {
                 let v = self.eval(value, mask)?;
@@ -97,9 +105,15 @@ impl GridContext<'_> {
                         AssignOp::Mul => BinOp::Mul,
                         _ => BinOp::Div,
                     };
-                    Value::Num(binary(bop, cur.num(), v.num(), n, mask))
+                    let r = binary(bop, cur.num(), v.num(), n, mask);
+                    pool::recycle(cur);
+                    pool::recycle(v);
+                    Value::Num(r)
                 };
                 self.assign(place, idx.as_ref().map(Value::num), &v, mask);
+                if let Some(i) = idx {
+                    pool::recycle(i);
+                }
                 v
             }
             ExprKind::Cond(c, a, b) => {
@@ -113,10 +127,12 @@ impl GridContext<'_> {
                 if !mt.is_empty() {
                     let x = self.eval(a, &mt)?;
                     value::store(&mut out, &x, &mt, n);
+                    pool::recycle(x);
                 }
                 if !mf.is_empty() {
                     let y = self.eval(b, &mf)?;
                     value::store(&mut out, &y, &mf, n);
+                    pool::recycle(y);
                 }
                 out
             }
@@ -137,6 +153,7 @@ impl GridContext<'_> {
                         }
                     }
                 });
+                vals.into_iter().for_each(pool::recycle);
                 match space {
                     Some(s) => Value::Num(self.in_space(s, e.ty.base, &v, mask)?),
                     None => Value::Num(v),
@@ -210,8 +227,9 @@ impl GridContext<'_> {
     pub(crate) fn read_place(&self, place: &Place) -> Value {
         match place {
             Place::Var(id) => self.vars[*id].clone(),
-            Place::Global(g) => self.globals[Self::global_index(g)]
-                .clone()
+            Place::Global(g) => self
+                .global_value(Self::global_index(g))
+                .cloned()
                 .unwrap_or_else(|| Value::Num(Num::scalar(0.0))),
         }
     }
@@ -225,7 +243,7 @@ impl GridContext<'_> {
         match (place, idx) {
             (Place::Global(g), _) => {
                 if *g == "P" {
-                    self.light_cache = None;
+                    pool::recycle_lights(self.light_cache.take());
                 }
                 self.set_global_masked(g, v.num(), mask);
             }
@@ -299,7 +317,7 @@ pub(crate) fn convert(v: Value, from: Type, to: Type, n: usize, mask: &Mask) -> 
         ),
         Value::Num(x) => {
             let (fb, tb) = (from.base, to.base);
-            Value::Num(match (fb, tb) {
+            let r = match (fb, tb) {
                 (BaseType::Float, t) if t.is_triple() => map_n(n, mask, &[&x], 3, |l, o| {
                     o.fill(l[0][0]);
                 }),
@@ -309,8 +327,10 @@ pub(crate) fn convert(v: Value, from: Type, to: Type, n: usize, mask: &Mask) -> 
                     }
                 }),
                 (_, BaseType::Bool) if x.w == 1 => map_c(n, mask, &[&x], |a| bool01(a[0] != 0.0)),
-                _ => x,
-            })
+                _ => return Value::Num(x),
+            };
+            pool::give(x.data);
+            Value::Num(r)
         }
         other => other,
     }
@@ -329,6 +349,14 @@ pub(crate) fn binary(op: BinOp, a: &Num, b: &Num, n: usize, mask: &Mask) -> Num 
         BinOp::Sub => map_c2(n, mask, a, b, |x, y| x - y),
         BinOp::Mul => map_c2(n, mask, a, b, |x, y| x * y),
         BinOp::Div => map_c2(n, mask, a, b, |x, y| x / y),
+        // Left to right, as the general case's `Iterator::sum` (which starts from -0, the
+        // identity of addition).
+        BinOp::Dot if a.w == 3 && b.w == 3 => {
+            map_v3_f(n, mask, [a, b], |[x, y]| super::geom::dot(x, y))
+        }
+        BinOp::Cross if a.w == 3 && b.w == 3 => {
+            map_v3(n, mask, [a, b], |[x, y]| super::geom::cross(x, y))
+        }
         BinOp::Dot => map_n(n, mask, &[a, b], 1, |l, o| {
             o[0] = l[0].iter().zip(l[1]).map(|(x, y)| x * y).sum();
         }),

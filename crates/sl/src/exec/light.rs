@@ -8,6 +8,8 @@
 //! reaches `ambient()` only. [`ShaderLights`] is the implementation that runs light shaders
 //! ([`ShaderLight`]) over the same grid with `Ps` set to the surface's points.
 
+use std::rc::Rc;
+
 use crate::ir::{CheckedShader, Expr, Stmt};
 
 use super::geom::{V3, dot, length, scale};
@@ -148,22 +150,20 @@ fn in_cone(l: V3, axis: V3, cos_angle: f32) -> bool {
 }
 
 impl GridContext<'_> {
-    /// The lights reaching `position` (cached until `P` is assigned).
+    /// The lights reaching `position` (cached until `P` is assigned). Shared with the cache,
+    /// so a second `diffuse` or `specular` at the same points copies nothing.
     pub(crate) fn light_samples(
         &mut self,
         category: &str,
         position: &Num,
-    ) -> Result<Vec<LightSample>, ExecError> {
-        if let Some((p, c, s)) = &self.light_cache
-            && p == position
-            && c == category
-        {
-            return Ok(s.clone());
+    ) -> Result<Rc<[LightSample]>, ExecError> {
+        if let Some(s) = self.cached_lights(category, position) {
+            return Ok(s);
         }
         let normal = self.global_num("N");
         let (nu, nv) = (self.nu, self.nv);
         let all = Mask::all(self.n);
-        let Some(lights) = self.lights.as_deref_mut() else { return Ok(Vec::new()) };
+        let Some(lights) = self.lights.as_deref_mut() else { return Ok(Rc::from([])) };
         let q = LightQuery { category, p: position, n: &normal, mask: &all, nu, nv };
         let s = lights.lights(&q)?;
         let n = self.n;
@@ -175,7 +175,43 @@ impl GridContext<'_> {
                 "light {bad} returned L, Cl, Ol not of 3 floats (per point, for {n} points) or lit not of {n} flags"
             )));
         }
-        self.light_cache = Some((position.clone(), category.to_string(), s.clone()));
+        super::pool::give(normal.data);
+        let s: Rc<[LightSample]> = Rc::from(s);
+        let old = self.light_cache.replace((position.clone(), category.to_string(), Rc::clone(&s)));
+        self.light_cache_at_p = false;
+        super::pool::recycle_lights(old);
+        Ok(s)
+    }
+
+    /// The cached lights, if they were asked for at `position` in `category`.
+    fn cached_lights(&self, category: &str, position: &Num) -> Option<Rc<[LightSample]>> {
+        match &*self.light_cache {
+            Some((p, c, s)) if p == position && c == category => Some(Rc::clone(s)),
+            _ => None,
+        }
+    }
+
+    /// The lights of every category at the global `P` (read in place when cached).
+    pub(crate) fn light_samples_at_p(&mut self) -> Result<Rc<[LightSample]>, ExecError> {
+        if self.light_cache_at_p
+            && let Some((_, c, s)) = &*self.light_cache
+            && c.is_empty()
+        {
+            return Ok(Rc::clone(s));
+        }
+        let k = Self::global_index("P");
+        let s = match self.global_value(k) {
+            Some(Value::Num(p)) => self.cached_lights("", p),
+            _ => None,
+        };
+        let s = match s {
+            Some(s) => s,
+            None => {
+                let p = self.global_num("P");
+                self.light_samples("", &p)?
+            }
+        };
+        self.light_cache_at_p = true;
         Ok(s)
     }
 
@@ -340,62 +376,6 @@ impl GridContext<'_> {
             _ => 0.0,
         };
         Ok(Value::Num(Num::scalar(hit)))
-    }
-
-    /// `ambient`, `diffuse`, `specular`, `phong`: sums over the lights at the global `P`.
-    pub(crate) fn lighting(
-        &mut self,
-        name: &str,
-        args: &[Value],
-        mask: &Mask,
-    ) -> Result<Num, ExecError> {
-        let p = self.global_num("P");
-        let samples = self.light_samples("", &p)?;
-        let n = self.n;
-        let arg = |k: usize| args.get(k).map(|v| v.num().clone()).unwrap_or(Num::scalar(0.0));
-        let (nn, v, x) = (arg(0), arg(1), arg(2));
-        let mut out = Num::zeros(3, true, n);
-        for s in &samples {
-            if (name == "ambient") != s.ambient {
-                continue;
-            }
-            let flag = |key: &str| s.outputs.iter().find(|(k, _)| k == key).map(|(_, v)| v.num());
-            let skip = match name {
-                "diffuse" => flag("__nondiffuse"),
-                "specular" | "phong" => flag("__nonspecular"),
-                _ => None,
-            };
-            for i in mask.iter() {
-                if !s.lit.get(i).copied().unwrap_or(false) || skip.is_some_and(|f| f.f(i) != 0.0) {
-                    continue;
-                }
-                let cl = s.cl.v3(i);
-                let k = if name == "ambient" {
-                    1.0
-                } else {
-                    let ls = super::geom::normalize(scale(s.l.v3(i), -1.0));
-                    let nf = super::geom::normalize(nn.v3(i));
-                    let cos = dot(nf, ls);
-                    if cos <= 0.0 {
-                        continue;
-                    }
-                    match name {
-                        "diffuse" => cos,
-                        "specular" => specularbrdf(ls, nf, v.v3(i), x.f(i)),
-                        _ => {
-                            let vv = super::geom::normalize(v.v3(i));
-                            let r = super::geom::reflect(scale(vv, -1.0), nf);
-                            dot(r, ls).max(0.0).powf(x.f(i))
-                        }
-                    }
-                };
-                let o = out.lane_mut(i);
-                for c in 0..3 {
-                    o[c] += cl[c] * k;
-                }
-            }
-        }
-        Ok(out)
     }
 }
 

@@ -20,8 +20,11 @@ mod builtins;
 mod deriv;
 mod expr;
 mod geom;
+mod lanes;
 pub mod light;
+mod lighting;
 mod noise;
+mod pool;
 pub mod space;
 mod stmt;
 mod strings;
@@ -104,11 +107,11 @@ pub struct GridContext<'a> {
     pub(crate) nv: usize,
     pub(crate) n: usize,
     /// The globals, in [`GLOBALS`] order; `None` until set (then defaults at the run).
-    pub(crate) globals: Vec<Option<Value>>,
+    pub(crate) globals: pool::Pooled<Vec<Option<Value>>>,
     /// The globals as the caller set them: each run starts from these, so running twice gives
     /// the same results (a displacement does not move `P` twice).
-    pub(crate) inputs: Vec<Option<Value>>,
-    pub(crate) vars: Vec<Value>,
+    pub(crate) inputs: pool::Pooled<Vec<Option<Value>>>,
+    pub(crate) vars: pool::Pooled<Vec<Value>>,
     pub(crate) param_set: HashMap<usize, Value>,
     pub(crate) spaces: Spaces,
     pub(crate) lights: Option<&'a mut dyn Lights>,
@@ -116,7 +119,10 @@ pub struct GridContext<'a> {
     pub(crate) budget: u64,
     pub(crate) stats: Stats,
     pub(crate) frames: Vec<stmt::FuncFrame>,
-    pub(crate) light_cache: Option<(Num, String, Vec<LightSample>)>,
+    pub(crate) light_cache: pool::Pooled<Option<pool::LightCache>>,
+    /// The cached lights are those of every category at the global `P` as it is now (`P`
+    /// is assigned only through `assign`, which drops the cache).
+    pub(crate) light_cache_at_p: bool,
     pub(crate) light_out: Option<light::LightRecord>,
     pub(crate) current_light: Option<Vec<(String, Value)>>,
     pub(crate) messages: HashMap<(String, String), Value>,
@@ -134,9 +140,9 @@ impl<'a> GridContext<'a> {
             nu,
             nv,
             n: nu.saturating_mul(nv),
-            globals: vec![None; GLOBALS.len()],
-            inputs: vec![None; GLOBALS.len()],
-            vars: Vec::new(),
+            globals: pool::Pooled(vec![None; GLOBALS.len()]),
+            inputs: pool::Pooled(vec![None; GLOBALS.len()]),
+            vars: pool::Pooled(Vec::new()),
             param_set: HashMap::new(),
             spaces: Spaces::default(),
             lights: None,
@@ -144,7 +150,8 @@ impl<'a> GridContext<'a> {
             budget: DEFAULT_BUDGET,
             stats: Stats::default(),
             frames: Vec::new(),
-            light_cache: None,
+            light_cache: pool::Pooled(None),
+            light_cache_at_p: false,
             light_out: None,
             current_light: None,
             messages: HashMap::new(),
@@ -216,8 +223,10 @@ impl<'a> GridContext<'a> {
                 v.data.len()
             )));
         }
-        self.inputs[k] = Some(Value::Num(v.clone()));
-        self.globals[k] = Some(Value::Num(v));
+        // Kept once: a run starts its globals from the inputs, and `get` reads the input
+        // until then.
+        self.inputs[k] = Some(Value::Num(v));
+        self.globals[k] = None;
         Ok(())
     }
 
@@ -229,7 +238,9 @@ impl<'a> GridContext<'a> {
     /// Sets a global to one value per point (`width * points` floats, point after point).
     pub fn set_varying(&mut self, name: &str, data: &[f32]) -> Result<(), ExecError> {
         let w = GLOBALS.iter().find(|g| g.name == name).map_or(1, |g| value::width(g.ty.base));
-        self.set_global(name, Num { w, varying: true, data: data.to_vec() })
+        let mut buf = pool::take(data.len());
+        buf.extend_from_slice(data);
+        self.set_global(name, Num { w, varying: true, data: buf })
     }
 
     /// Sets `u`, `v` (per point, evenly from `u0` to `u1` along a row and `v0` to `v1` down a
@@ -291,7 +302,7 @@ impl<'a> GridContext<'a> {
     /// A global after the run (or as set).
     pub fn get(&self, name: &str) -> Option<&Value> {
         let k = GLOBALS.iter().position(|g| g.name == name)?;
-        self.globals[k].as_ref()
+        self.global_value(k)
     }
 
     /// A global's triple at point `i`.
@@ -339,11 +350,13 @@ impl<'a> GridContext<'a> {
         }
         self.stats = Stats::default();
         self.printed.clear();
-        self.light_cache = None;
+        pool::recycle_lights(self.light_cache.take());
         self.init_globals();
         let n = self.n;
-        self.vars =
-            sh.vars.iter().map(|v| Value::zero(v.ty, v.detail == Detail::Varying, n)).collect();
+        self.recycle_vars();
+        self.vars = pool::Pooled(
+            sh.vars.iter().map(|v| Value::zero(v.ty, v.detail == Detail::Varying, n)).collect(),
+        );
         self.frames = vec![stmt::FuncFrame::new(n)];
         self.init_params()?;
         self.exec_block(&sh.body, &Mask::all(n))?;
@@ -358,8 +371,9 @@ impl<'a> GridContext<'a> {
         let n = self.n;
         self.stats = Stats::default();
         self.init_globals();
-        self.vars =
-            sh.vars.iter().map(|v| Value::zero(v.ty, v.detail == Detail::Varying, n)).collect();
+        self.vars = pool::Pooled(
+            sh.vars.iter().map(|v| Value::zero(v.ty, v.detail == Detail::Varying, n)).collect(),
+        );
         self.frames = vec![stmt::FuncFrame::new(n)];
         self.init_params()?;
         Ok(sh.params.iter().map(|&id| (sh.vars[id].name.clone(), self.vars[id].clone())).collect())
@@ -389,28 +403,45 @@ impl<'a> GridContext<'a> {
         let written = &self.shader.globals_written;
         let light = self.shader.kind == ShaderKind::Light;
         for (k, g) in GLOBALS.iter().enumerate() {
+            if let Some(old) = self.globals[k].take() {
+                pool::recycle(old);
+            }
             let varying = g.detail == Detail::Varying;
             let w = value::width(g.ty.base);
+            // Places the shader writes (and the lights' L, Cl, Ol) hold a lane per point.
+            let lit = matches!(g.name, "L" | "Cl" | "Ol");
+            let lanes = varying && (written.contains(&g.name) || lit || (light && g.name == "Ps"));
+            let fixed = matches!(g.name, "PI" | "ncomps");
+            let given = matches!(self.inputs[k], Some(Value::Num(_)));
+            if given && !fixed && !lanes && !written.contains(&g.name) {
+                // Read in place from the input ([`Self::global_value`]): no copy per run.
+                continue;
+            }
             let v = match g.name {
                 "PI" => Num::scalar(std::f32::consts::PI),
                 "ncomps" => Num::scalar(3.0),
-                _ => match self.inputs[k].clone() {
-                    Some(Value::Num(v)) => v,
+                _ => match self.inputs[k].as_ref() {
+                    Some(Value::Num(v)) => v.clone(),
                     _ => match g.name {
                         "Cs" | "Os" => Num::uniform(&[1.0; 3]),
                         _ => Num::zeros(w, false, n),
                     },
                 },
             };
-            // Places the shader writes (and the lights' L, Cl, Ol) hold a lane per point.
-            let lit = matches!(g.name, "L" | "Cl" | "Ol");
-            let v = if varying && (written.contains(&g.name) || lit || (light && g.name == "Ps")) {
-                v.to_varying(n)
-            } else {
-                v
-            };
+            let v = if lanes && !v.varying { v.to_varying(n) } else { v };
             self.globals[k] = Some(Value::Num(v));
         }
+    }
+
+    /// Global `k` as the shader sees it: its own copy once written (or made varying), else
+    /// the input as set (read in place), else its default.
+    pub(crate) fn global_value(&self, k: usize) -> Option<&Value> {
+        self.globals[k].as_ref().or(self.inputs[k].as_ref())
+    }
+
+    /// Gives the variables' buffers of an earlier run back to the pool.
+    fn recycle_vars(&mut self) {
+        pool::Recycle::recycle(&mut *self.vars);
     }
 
     pub(crate) fn global_index(name: &str) -> usize {
@@ -418,7 +449,7 @@ impl<'a> GridContext<'a> {
     }
 
     pub(crate) fn global_num(&self, name: &str) -> Num {
-        match &self.globals[Self::global_index(name)] {
+        match self.global_value(Self::global_index(name)) {
             Some(Value::Num(v)) => v.clone(),
             _ => Num::zeros(1, false, self.n),
         }
@@ -427,6 +458,10 @@ impl<'a> GridContext<'a> {
     pub(crate) fn set_global_masked(&mut self, name: &str, v: &Num, mask: &Mask) {
         let k = Self::global_index(name);
         let n = self.n;
+        if self.globals[k].is_none() {
+            // Read in place until now: the run's own copy from here on.
+            self.globals[k] = self.inputs[k].clone();
+        }
         if let Some(Value::Num(dst)) = &mut self.globals[k] {
             if !dst.varying && (v.varying || mask.idx.len() != n) {
                 *dst = dst.to_varying(n);

@@ -9,6 +9,7 @@
 
 use crate::ir::{Expr, Stmt};
 
+use super::pool;
 use super::value::{self, Mask, Value};
 use super::{ExecError, GridContext};
 
@@ -66,23 +67,27 @@ impl GridContext<'_> {
     fn exec(&mut self, st: &Stmt, mask: &Mask) -> Result<(), ExecError> {
         match st {
             Stmt::Expr(e) => {
-                self.eval(e, mask)?;
+                let v = self.eval(e, mask)?;
+                pool::recycle(v);
             }
             Stmt::Local { var, init } => {
                 if let Some(e) = init {
                     let v = self.eval(e, mask)?;
                     self.store_var(*var, &v, mask);
+                    pool::recycle(v);
                 }
             }
             Stmt::Block(b) => self.exec_block(b, mask)?,
             Stmt::If { cond, then, els } => {
-                let c = self.eval(cond, mask)?;
-                let c = c.num();
+                let cv = self.eval(cond, mask)?;
+                let c = cv.num();
                 if !c.varying {
                     let branch = if c.f(0) != 0.0 { then } else { els };
+                    pool::recycle(cv);
                     self.exec_block(branch, mask)?;
                 } else {
                     let (mt, mf) = (mask.when(c, true), mask.when(c, false));
+                    pool::recycle(cv);
                     if !mt.is_empty() {
                         self.exec_block(then, &mt)?;
                     }

@@ -6,7 +6,7 @@
 use crate::types::{BaseType, Type};
 
 /// A number of the grid: one lane (uniform) or one lane per point (varying).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, PartialEq)]
 pub struct Num {
     /// Floats per lane: 1, 3 or 16.
     pub w: usize,
@@ -29,7 +29,7 @@ impl Num {
 
     /// Zeros: `n` lanes when varying.
     pub fn zeros(w: usize, varying: bool, n: usize) -> Num {
-        Num { w, varying, data: vec![0.0; if varying { w * n } else { w }] }
+        Num { w, varying, data: super::pool::zeros(if varying { w * n } else { w }) }
     }
 
     /// The lane of point `i` (the one lane of a uniform value).
@@ -63,11 +63,26 @@ impl Num {
         if self.varying {
             return self.clone();
         }
-        let mut data = Vec::with_capacity(self.w * n);
-        for _ in 0..n {
-            data.extend_from_slice(&self.data[..self.w]);
+        let lane = &self.data[..self.w];
+        let total = self.w * n;
+        let mut data = super::pool::take(total);
+        if let [x] = *lane {
+            data.resize(n, x);
+        } else if n > 0 {
+            // Doubling copies: a handful of block copies, not one per lane.
+            data.extend_from_slice(lane);
+            while data.len() < total {
+                data.extend_from_within(..data.len().min(total - data.len()));
+            }
         }
         Num { w: self.w, varying: true, data }
+    }
+}
+
+impl Clone for Num {
+    /// A copy in a buffer from the machine's pool (see `pool`).
+    fn clone(&self) -> Num {
+        super::pool::dup(self)
     }
 }
 
@@ -276,6 +291,11 @@ pub fn map_c2(n: usize, mask: &Mask, a: &Num, b: &Num, f: impl Fn(f32, f32) -> f
         let data = (0..w).map(|c| f(a.data[c * ca], b.data[c * cb])).collect();
         return Num { w, varying: false, data };
     }
+    match w {
+        1 => return c2_fixed::<1>(n, mask, a, b, &f),
+        3 => return c2_fixed::<3>(n, mask, a, b, &f),
+        _ => {}
+    }
     let (sa, sb) = (if a.varying { a.w } else { 0 }, if b.varying { b.w } else { 0 });
     let mut out = Num::zeros(w, true, n);
     if mask.idx.len() == n && sa == w && sb == w {
@@ -290,6 +310,90 @@ pub fn map_c2(n: usize, mask: &Mask, a: &Num, b: &Num, f: impl Fn(f32, f32) -> f
         }
     }
     out
+}
+
+/// An operand of [`c2_fixed`] as `W`-wide lanes: a uniform lane (a float broadcast), a
+/// varying value of width `W`, or a varying float broadcast to `W`.
+#[derive(Clone, Copy)]
+enum Lanes<'a, const W: usize> {
+    Uniform([f32; W]),
+    Wide(&'a [f32]),
+    Float(&'a [f32]),
+}
+
+impl<'a, const W: usize> Lanes<'a, W> {
+    fn of(x: &'a Num) -> Lanes<'a, W> {
+        match (x.varying, x.w == 1) {
+            (false, _) => {
+                Lanes::Uniform(std::array::from_fn(|c| x.data[if x.w == 1 { 0 } else { c }]))
+            }
+            (true, false) => Lanes::Wide(&x.data),
+            (true, true) => Lanes::Float(&x.data),
+        }
+    }
+}
+
+/// `f` on `W`-wide lanes of a varying result, each operand read in place (a uniform one is
+/// not broadcast into a buffer first). One loop per pairing of operand kinds, so each is
+/// a plain loop the compiler can unroll.
+fn c2_fixed<const W: usize>(
+    n: usize,
+    mask: &Mask,
+    a: &Num,
+    b: &Num,
+    f: &impl Fn(f32, f32) -> f32,
+) -> Num {
+    let mut out = Num::zeros(W, true, n);
+    let full = mask.idx.len() == n;
+    let o = &mut out.data;
+    let wide = |d: &[f32], i: usize| -> [f32; W] { std::array::from_fn(|c| d[i * W + c]) };
+    let flt = |d: &[f32], i: usize| -> [f32; W] { [d[i]; W] };
+    match (Lanes::<W>::of(a), Lanes::<W>::of(b)) {
+        (Lanes::Wide(x), Lanes::Wide(y)) => {
+            lanes2(o, mask, full, |i| wide(x, i), |i| wide(y, i), f);
+        }
+        (Lanes::Wide(x), Lanes::Uniform(y)) => lanes2(o, mask, full, |i| wide(x, i), |_| y, f),
+        (Lanes::Uniform(x), Lanes::Wide(y)) => lanes2(o, mask, full, |_| x, |i| wide(y, i), f),
+        (Lanes::Wide(x), Lanes::Float(y)) => {
+            lanes2(o, mask, full, |i| wide(x, i), |i| flt(y, i), f);
+        }
+        (Lanes::Float(x), Lanes::Wide(y)) => {
+            lanes2(o, mask, full, |i| flt(x, i), |i| wide(y, i), f);
+        }
+        (Lanes::Float(x), Lanes::Float(y)) => {
+            lanes2(o, mask, full, |i| flt(x, i), |i| flt(y, i), f);
+        }
+        (Lanes::Float(x), Lanes::Uniform(y)) => lanes2(o, mask, full, |i| flt(x, i), |_| y, f),
+        (Lanes::Uniform(x), Lanes::Float(y)) => lanes2(o, mask, full, |_| x, |i| flt(y, i), f),
+        (Lanes::Uniform(x), Lanes::Uniform(y)) => lanes2(o, mask, full, |_| x, |_| y, f),
+    }
+    out
+}
+
+#[inline(always)]
+fn lanes2<const W: usize>(
+    out: &mut [f32],
+    mask: &Mask,
+    full: bool,
+    a: impl Fn(usize) -> [f32; W],
+    b: impl Fn(usize) -> [f32; W],
+    f: &impl Fn(f32, f32) -> f32,
+) {
+    let one = |i: usize, o: &mut [f32]| {
+        let (x, y) = (a(i), b(i));
+        for c in 0..W {
+            o[c] = f(x[c], y[c]);
+        }
+    };
+    if full {
+        for (i, o) in out.chunks_exact_mut(W).enumerate() {
+            one(i, o);
+        }
+    } else {
+        for i in mask.iter() {
+            one(i, &mut out[i * W..(i + 1) * W]);
+        }
+    }
 }
 
 /// Writes `src` into `dst` at the active points (a varying destination) or whole (a uniform
@@ -340,8 +444,10 @@ pub fn store(dst: &mut Value, src: &Value, mask: &Mask, n: usize) {
 
 /// How many floats of `v` at the active points are not finite.
 pub fn count_nonfinite(v: &Num, mask: &Mask) -> u64 {
-    if !v.varying {
-        return v.data.iter().filter(|x| !x.is_finite()).count() as u64;
+    let count = |d: &[f32]| d.iter().filter(|x| !x.is_finite()).count() as u64;
+    if !v.varying || mask.idx.len() * v.w == v.data.len() {
+        // Uniform, or every point active: the whole buffer in one pass.
+        return count(&v.data);
     }
     mask.iter().map(|i| v.lane(i).iter().filter(|x| !x.is_finite()).count() as u64).sum()
 }
