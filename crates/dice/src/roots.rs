@@ -145,15 +145,7 @@ pub(crate) fn blobby_extent(
     let poses = motion.poses(0);
     let crate::shapes::Surface::Blob(face) = poses.first()?.surface else { return None };
     let (lo, hi) = face.program.bound()?;
-    let corners = (0..8).map(|k| {
-        glam::DVec3::new(
-            if k & 1 == 0 { lo.x } else { hi.x },
-            if k & 2 == 0 { lo.y } else { hi.y },
-            if k & 4 == 0 { lo.z } else { hi.z },
-        )
-        .as_vec3()
-    });
-    let corners: Vec<glam::Vec3> = corners.collect();
+    let corners = crate::shapes::box_corners(lo.as_vec3(), hi.as_vec3());
     Some(Extent::per_breakpoint(
         poses
             .iter()

@@ -112,6 +112,18 @@ pub(crate) fn tube(phi_min: f32, phi_max: f32, v: f32) -> (f32, f32) {
 
 /// True if `angle` is a whole turn either way, to the rounding of a conversion from degrees.
 #[inline]
+/// The eight corners of the box `[lo, hi]`: corner `k` takes `hi` along axis `a` where bit
+/// `a` of `k` is set.
+pub(crate) fn box_corners(lo: Vec3, hi: Vec3) -> [Vec3; 8] {
+    std::array::from_fn(|k| {
+        Vec3::new(
+            if k & 1 == 0 { lo.x } else { hi.x },
+            if k & 2 == 0 { lo.y } else { hi.y },
+            if k & 4 == 0 { lo.z } else { hi.z },
+        )
+    })
+}
+
 fn full_turn(angle: f32) -> bool {
     (angle.abs() - std::f32::consts::TAU).abs() <= 4.0 * f32::EPSILON * std::f32::consts::TAU
 }

@@ -130,15 +130,7 @@ impl PointBatch {
         if lo.x > hi.x {
             return Vec::new();
         }
-        (0..8)
-            .map(|k| {
-                Vec3::new(
-                    if k & 1 == 0 { lo.x } else { hi.x },
-                    if k & 2 == 0 { lo.y } else { hi.y },
-                    if k & 4 == 0 { lo.z } else { hi.z },
-                )
-            })
-            .collect()
+        super::box_corners(lo, hi).to_vec()
     }
 
     /// The disk's plane at centre `c`: two unit axes `(e1, e2)` with `e1 x e2` toward the

@@ -147,15 +147,7 @@ impl SubdivPatch {
             }
             None => {
                 let (lo, hi) = self.points.limit.part(u, v).bound();
-                (0..8)
-                    .map(|k| {
-                        Vec3::new(
-                            if k & 1 == 0 { lo.x } else { hi.x },
-                            if k & 2 == 0 { lo.y } else { hi.y },
-                            if k & 4 == 0 { lo.z } else { hi.z },
-                        )
-                    })
-                    .collect()
+                super::box_corners(lo, hi).to_vec()
             }
         }
     }
